@@ -1,0 +1,45 @@
+// Real-time factor of the dynamic model: simulated seconds per wall second on one core.
+// BM_SimulateCtGantry is the figure of the README: the CT bearing (414 balls) under the
+// paper's load at 10 kHz output with the converged internal step.
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+#include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/bearing_dynamics.hpp"
+
+namespace {
+
+using bearing_sim::Vector5;
+
+void simulate(benchmark::State& state, const std::string& file, const Vector5& load, double speed_rad_s) {
+  const bearing_sim::BearingModel model(
+      bearing_sim::load_bearing_config(std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/" + file));
+  bearing_sim::BearingDynamics dynamics(model, load, speed_rad_s, {10000.0, 0});
+  constexpr int kSamplesPerIteration = 1000;  // 0.1 s simulated
+  for (auto _ : state) {
+    for (int i = 0; i < kSamplesPerIteration; ++i) benchmark::DoNotOptimize(dynamics.step());
+  }
+  const double simulated_s = state.iterations() * kSamplesPerIteration / dynamics.sample_rate_hz();
+  state.counters["realtime_factor"] = benchmark::Counter(simulated_s, benchmark::Counter::kIsRate);
+  state.counters["substeps"] = dynamics.substeps();
+  state.counters["balls"] = model.ball_count();
+}
+
+void BM_SimulateCtGantry(benchmark::State& state) {
+  Vector5 load;
+  load << 6800.0, 0.0, 0.0, 0.0, 2100.0;
+  simulate(state, "ct_gantry_lyc.yaml", load, 180.0 * 2.0 * 3.14159265358979 / 60.0);
+}
+
+void BM_SimulateIns61822(benchmark::State& state) {
+  Vector5 load;
+  load << 3400.0, 0.0, 1750.0, 0.0, 0.0;
+  simulate(state, "ins_618_22_db.yaml", load, 60.0 * 2.0 * 3.14159265358979 / 60.0);
+}
+
+}  // namespace
+
+BENCHMARK(BM_SimulateCtGantry)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_SimulateIns61822)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK_MAIN();

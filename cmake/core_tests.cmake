@@ -1,0 +1,11 @@
+# gtest suites of the ROS-free core. Each links only the core library.
+file(GLOB BEARING_SIM_CORE_TESTS ${CMAKE_CURRENT_SOURCE_DIR}/test/core/test_*.cpp)
+foreach(test_source ${BEARING_SIM_CORE_TESTS})
+  get_filename_component(test_name ${test_source} NAME_WE)
+  catkin_add_gtest(${test_name} ${test_source} test/core/test_support.cpp
+    WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR} TIMEOUT 600)
+  target_link_libraries(${test_name} bearing_sim_core)
+  target_compile_definitions(${test_name} PRIVATE
+    BEARING_SIM_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
+  bearing_sim_optimize(${test_name})
+endforeach()

@@ -1,0 +1,1 @@
+# ROS nodes (issue 3 onwards).

@@ -1,0 +1,1 @@
+# rostests (issue 3 onwards).

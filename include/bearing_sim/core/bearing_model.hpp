@@ -1,0 +1,89 @@
+#pragma once
+// Geometry, Hertz constants and contact forces of one bearing (MODEL.md sections 2-4).
+// Everything derived from the bearing file is computed here, once.
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/hertz_contact.hpp"
+
+namespace bearing_sim {
+
+// Generalized coordinates of the moving ring relative to the fixed ring:
+// (x, y, z, theta_x, theta_y) in m and rad; loads in the same order in N and N*m.
+using Vector5 = Eigen::Matrix<double, 5, 1>;
+using Matrix5 = Eigen::Matrix<double, 5, 5>;
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+
+struct BallState {
+  int row = 0;                    // 0 or 1
+  int index_in_row = 0;
+  double azimuth_rad = 0.0;
+  double load_N = 0.0;            // normal contact force Q
+  double deflection_m = 0.0;      // delta (negative: gap)
+  double contact_angle_rad = 0.0; // loaded contact angle
+  double pressure_Pa = 0.0;       // largest of the inner and outer maximum Hertz pressures
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // contact line, inner to outer
+};
+
+class BearingModel {
+ public:
+  explicit BearingModel(BearingConfig config);
+
+  const BearingConfig& config() const { return config_; }
+  int ball_count() const { return static_cast<int>(cos_base_.size()); }
+  int balls_per_row() const { return config_.balls_per_row; }
+  int rows() const { return config_.rows; }
+
+  double groove_centre_distance_m() const { return groove_centre_distance_; }  // A
+  double contact_stiffness() const { return contact_stiffness_; }             // Kn, N/m^1.5
+  const HertzContact& inner_contact() const { return inner_contact_; }
+  const HertzContact& outer_contact() const { return outer_contact_; }
+  double pitch_radius_m() const { return config_.pitch_diameter_m / 2.0; }
+  double row_axial_position_m(int row) const;  // z_r of the ball centres
+  int row_contact_sign(int row) const;          // c_r
+  int row_of_ball(int ball) const { return row_[ball]; }
+  double base_azimuth_rad(int ball) const { return base_azimuth_[ball]; }
+  // +1 when the outer ring is the moving body, -1 for the inner ring.
+  double moving_sign() const { return moving_sign_; }
+
+  // Mass matrix diag(m, m, m, J, J) of the moving ring.
+  Vector5 mass_diagonal() const;
+
+  // Extra contact deflection per ball (waviness, defects); zero by default.
+  void set_deflection_offsets(const std::vector<double>& offsets_m);
+  const std::vector<double>& deflection_offsets() const { return deflection_offset_; }
+
+  // Contact forces and moments on the moving ring, with contact damping (hot path).
+  Vector5 contact_force(const Vector5& q, const Vector5& q_dot, double cage_angle_rad) const;
+  // Same, without damping, and the stiffness K = -d(force)/dq (analytic).
+  Vector5 contact_force_and_stiffness(const Vector5& q, double cage_angle_rad, Matrix5* stiffness) const;
+  // Per-ball detail at a static configuration.
+  std::vector<BallState> ball_states(const Vector5& q, double cage_angle_rad) const;
+
+  // Nominal cage speed for the given ring speeds (MODEL.md section 5).
+  double cage_speed_rad_s(double inner_rad_s, double outer_rad_s) const;
+  // Inner and outer ring speeds (rad/s) for a speed of the rotating ring.
+  void ring_speeds(double rotating_ring_rad_s, double* inner_rad_s, double* outer_rad_s) const;
+
+ private:
+  BearingConfig config_;
+  HertzContact inner_contact_, outer_contact_;
+  double contact_stiffness_ = 0.0;
+  double groove_centre_distance_ = 0.0;
+  double groove_centre_radius_ = 0.0;  // radial coordinate of the outer-groove centre
+  double cos_a0_ = 1.0;
+  double moving_sign_ = 1.0;
+  // Per ball (structure of arrays, for the vectorized force loop).
+  std::vector<int> row_;
+  std::vector<double> base_azimuth_, cos_base_, sin_base_;
+  std::vector<double> groove_centre_z_;  // axial coordinate of the outer-groove centre
+  std::vector<double> normal_z_;         // c_r sin a0
+  std::vector<double> deflection_offset_;
+};
+
+// 6x6 Bushing stiffness (x, y, z, rx, ry, rz) with a zero row and column for rz.
+Matrix6 bushing_matrix(const Matrix5& stiffness);
+
+}  // namespace bearing_sim

@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# The main job: install what is missing, build, and run the CT gantry bearing in real time.
+# Extra arguments go to roslaunch (e.g. rviz:=true).
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+"$here/install_deps.sh"
+"$here/build.sh"
+source "$here/env.sh"
+source "$BEARING_SIM_BUILD/devel/setup.bash"
+exec roslaunch bearing_sim ct_gantry.launch "$@"

@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Install what is missing, build, run every test (gtest and rostest), and end with
+# a line "N passed, N failed". Exit status 0 only if every test passed.
+set -uo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+"$here/install_deps.sh" || exit 1
+"$here/build.sh" || exit 1
+source "$here/env.sh"
+"$here/build.sh" tests || exit 1
+source "$BEARING_SIM_BUILD/devel/setup.bash"
+rm -rf "$BEARING_SIM_BUILD/test_results"
+cmake --build "$BEARING_SIM_BUILD" -- -j1 run_tests 2>&1 | tee "$BEARING_SIM_BUILD/run_tests.log" \
+  | grep -E '^\[ *(RUN|OK|FAILED|PASSED) |^\[ROSTEST\]|^(SUMMARY|  \* RESULT|FAILURE)|Failure|Error' || true
+/usr/bin/python3 "$here/count_test_results.py" "$BEARING_SIM_BUILD/test_results" "$here/../test/expected_suites.txt"

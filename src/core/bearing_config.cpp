@@ -1,0 +1,220 @@
+#include "bearing_sim/core/bearing_config.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "bearing_sim/core/errors.hpp"
+
+namespace bearing_sim {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+class Reader {
+ public:
+  Reader(const YAML::Node& map, std::string source, std::string prefix)
+      : map_(map), source_(std::move(source)), prefix_(std::move(prefix)) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    throw ConfigError(source_ + ": key '" + prefix_ + key + "': " + what);
+  }
+
+  void check_keys(const std::set<std::string>& known) const {
+    for (const auto& kv : map_) {
+      const std::string key = kv.first.as<std::string>();
+      if (!known.count(key)) {
+        std::string list;
+        for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+        fail(key, "unknown key (known keys: " + list + ")");
+      }
+    }
+  }
+
+  bool has(const std::string& key) const { return static_cast<bool>(map_[key]); }
+
+  double number(const std::string& key, double fallback, bool required = false) const {
+    const YAML::Node node = map_[key];
+    if (!node) {
+      if (required) fail(key, "is required but missing");
+      return fallback;
+    }
+    if (!node.IsScalar()) fail(key, "expected a number");
+    double value = 0.0;
+    try {
+      value = node.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(key, "expected a number, got '" + node.Scalar() + "'");
+    }
+    if (!std::isfinite(value)) fail(key, "must be finite, got '" + node.Scalar() + "'");
+    return value;
+  }
+
+  int integer(const std::string& key, int fallback, bool required = false) const {
+    const YAML::Node node = map_[key];
+    if (!node) {
+      if (required) fail(key, "is required but missing");
+      return fallback;
+    }
+    long value = 0;
+    try {
+      if (!node.IsScalar()) throw YAML::Exception(YAML::Mark(), "");
+      value = node.as<long>();
+    } catch (const YAML::Exception&) {
+      fail(key, "expected an integer, got '" + (node.IsScalar() ? node.Scalar() : std::string("a non-scalar")) + "'");
+    }
+    if (value < -1000000 || value > 1000000) fail(key, "integer out of range");
+    return static_cast<int>(value);
+  }
+
+  std::string text(const std::string& key, const std::string& fallback) const {
+    const YAML::Node node = map_[key];
+    if (!node) return fallback;
+    if (!node.IsScalar()) fail(key, "expected a string");
+    return node.Scalar();
+  }
+
+  YAML::Node map(const std::string& key) const {
+    const YAML::Node node = map_[key];
+    if (node && !node.IsMap()) fail(key, "expected a mapping");
+    return node;
+  }
+
+  void require(bool ok, const std::string& key, const std::string& what) const {
+    if (!ok) fail(key, what);
+  }
+
+  const std::string& source() const { return source_; }
+
+ private:
+  YAML::Node map_;
+  std::string source_;
+  std::string prefix_;
+};
+
+}  // namespace
+
+BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& source) {
+  if (!root || !root.IsMap()) throw ConfigError(source + ": expected a YAML mapping of bearing keys");
+  Reader r(root, source, "");
+  r.check_keys({"name", "rows", "arrangement", "balls_per_row", "ball_diameter_mm",
+                "pitch_diameter_mm", "row_spacing_mm", "row_phase_deg", "contact_angle_deg",
+                "inner_groove_curvature", "outer_groove_curvature", "clearance_um",
+                "outer_diameter_mm", "inner_diameter_mm", "width_mm", "rotating_ring", "material",
+                "rotating_mass_kg", "tilt_inertia_kg_m2", "damping"});
+
+  BearingConfig c;
+  c.name = r.text("name", "unnamed bearing");
+
+  c.rows = r.integer("rows", 1);
+  r.require(c.rows == 1 || c.rows == 2, "rows", "must be 1 or 2, got " + std::to_string(c.rows));
+
+  const std::string arrangement = r.text("arrangement", "back_to_back");
+  if (arrangement == "back_to_back") c.arrangement = Arrangement::BackToBack;
+  else if (arrangement == "face_to_face") c.arrangement = Arrangement::FaceToFace;
+  else r.fail("arrangement", "must be back_to_back or face_to_face, got '" + arrangement + "'");
+
+  c.balls_per_row = r.integer("balls_per_row", 0, true);
+  r.require(c.balls_per_row >= 3 && c.balls_per_row <= 5000, "balls_per_row",
+            "must be between 3 and 5000, got " + std::to_string(c.balls_per_row));
+
+  const double d_mm = r.number("ball_diameter_mm", 0.0, true);
+  r.require(d_mm > 0.0, "ball_diameter_mm", "must be > 0");
+  const double dm_mm = r.number("pitch_diameter_mm", 0.0, true);
+  r.require(dm_mm > d_mm, "pitch_diameter_mm", "must be larger than ball_diameter_mm");
+  r.require(c.balls_per_row * d_mm < kPi * dm_mm, "balls_per_row",
+            "the balls do not fit on the pitch circle (Z d >= pi dm)");
+  c.ball_diameter_m = d_mm * 1e-3;
+  c.pitch_diameter_m = dm_mm * 1e-3;
+
+  const double s_mm = r.number("row_spacing_mm", 0.0, c.rows == 2);
+  if (c.rows == 2) r.require(s_mm > 0.0, "row_spacing_mm", "must be > 0 for two rows");
+  else r.require(s_mm >= 0.0, "row_spacing_mm", "must be >= 0");
+  c.row_spacing_m = s_mm * 1e-3;
+  c.row_phase_rad = r.number("row_phase_deg", 0.0) * kPi / 180.0;
+
+  const double a0_deg = r.number("contact_angle_deg", 0.0);
+  r.require(a0_deg >= 0.0 && a0_deg < 60.0, "contact_angle_deg", "must be in [0, 60) deg");
+  c.contact_angle_rad = a0_deg * kPi / 180.0;
+
+  c.inner_groove_curvature = r.number("inner_groove_curvature", 0.0, true);
+  r.require(c.inner_groove_curvature > 0.5 && c.inner_groove_curvature < 1.0,
+            "inner_groove_curvature", "must be in (0.5, 1.0) (groove radius / ball diameter)");
+  c.outer_groove_curvature = r.number("outer_groove_curvature", 0.0, true);
+  r.require(c.outer_groove_curvature > 0.5 && c.outer_groove_curvature < 1.0,
+            "outer_groove_curvature", "must be in (0.5, 1.0) (groove radius / ball diameter)");
+
+  const double g0_um = r.number("clearance_um", 0.0);
+  r.require(std::abs(g0_um * 1e-6) < 0.05 * c.ball_diameter_m, "clearance_um",
+            "magnitude must be below 5% of the ball diameter");
+  c.clearance_m = g0_um * 1e-6;
+
+  // Envelope defaults: a ring section two ball diameters deep and 1.5 wide.
+  c.outer_diameter_m = r.number("outer_diameter_mm", dm_mm + 2.0 * d_mm) * 1e-3;
+  c.inner_diameter_m = r.number("inner_diameter_mm", dm_mm - 2.0 * d_mm) * 1e-3;
+  c.width_m = r.number("width_mm", std::max(1.5 * d_mm, 1.5 * d_mm + s_mm)) * 1e-3;
+  r.require(c.outer_diameter_m > c.pitch_diameter_m, "outer_diameter_mm", "must exceed pitch_diameter_mm");
+  r.require(c.inner_diameter_m > 0.0 && c.inner_diameter_m < c.pitch_diameter_m, "inner_diameter_mm",
+            "must be > 0 and below pitch_diameter_mm");
+  r.require(c.width_m > 0.0, "width_mm", "must be > 0");
+
+  const std::string ring = r.text("rotating_ring", "outer");
+  if (ring == "outer") c.rotating_ring = RotatingRing::Outer;
+  else if (ring == "inner") c.rotating_ring = RotatingRing::Inner;
+  else r.fail("rotating_ring", "must be outer or inner, got '" + ring + "'");
+
+  if (const YAML::Node m = r.map("material")) {
+    Reader mr(m, source, "material.");
+    mr.check_keys({"youngs_modulus_GPa", "poisson_ratio", "density_kg_m3"});
+    c.material.youngs_modulus_Pa = mr.number("youngs_modulus_GPa", 208.0) * 1e9;
+    mr.require(c.material.youngs_modulus_Pa > 0.0, "youngs_modulus_GPa", "must be > 0");
+    c.material.poisson_ratio = mr.number("poisson_ratio", 0.3);
+    mr.require(c.material.poisson_ratio > 0.0 && c.material.poisson_ratio < 0.5, "poisson_ratio",
+               "must be in (0, 0.5)");
+    c.material.density_kg_m3 = mr.number("density_kg_m3", 7850.0);
+    mr.require(c.material.density_kg_m3 > 0.0, "density_kg_m3", "must be > 0");
+  }
+
+  c.rotating_mass_kg = r.number("rotating_mass_kg", 0.0);
+  r.require(c.rotating_mass_kg >= 0.0 && (c.rotating_mass_kg > 0.0 || !r.has("rotating_mass_kg")),
+            "rotating_mass_kg", "must be > 0");
+
+  c.tilt_inertia_given = r.has("tilt_inertia_kg_m2");
+  c.tilt_inertia_kg_m2 = r.number("tilt_inertia_kg_m2", 0.0);
+  if (c.tilt_inertia_given) r.require(c.tilt_inertia_kg_m2 > 0.0, "tilt_inertia_kg_m2", "must be > 0");
+  else {
+    // Thick ring about a diameter, over the moving ring's side of the pitch circle.
+    const double ro = c.rotating_ring == RotatingRing::Outer ? c.outer_diameter_m / 2 : c.pitch_diameter_m / 2;
+    const double ri = c.rotating_ring == RotatingRing::Outer ? c.pitch_diameter_m / 2 : c.inner_diameter_m / 2;
+    c.tilt_inertia_kg_m2 = c.rotating_mass_kg * (3.0 * (ro * ro + ri * ri) + c.width_m * c.width_m) / 12.0;
+  }
+
+  if (const YAML::Node dmp = r.map("damping")) {
+    Reader dr(dmp, source, "damping.");
+    dr.check_keys({"contact_damping_Ns_per_m"});
+    c.contact_damping_Ns_per_m = dr.number("contact_damping_Ns_per_m", 0.0);
+    dr.require(c.contact_damping_Ns_per_m >= 0.0, "contact_damping_Ns_per_m", "must be >= 0");
+  }
+  return c;
+}
+
+BearingConfig bearing_config_from_string(const std::string& yaml_text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(source + ": malformed YAML: " + e.what());
+  }
+  return parse_bearing_config(root, source);
+}
+
+BearingConfig load_bearing_config(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path + ": cannot open bearing file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return bearing_config_from_string(buffer.str(), path);
+}
+
+}  // namespace bearing_sim

@@ -1,0 +1,213 @@
+#include "bearing_sim/core/bearing_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bearing_sim/core/errors.hpp"
+
+namespace bearing_sim {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}
+
+BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
+  const auto& c = config_;
+  const double d = c.ball_diameter_m;
+  const double a0 = c.contact_angle_rad;
+  const double E = c.material.youngs_modulus_Pa;
+  const double nu = c.material.poisson_ratio;
+  inner_contact_ = inner_race_contact(d, c.pitch_diameter_m, a0, c.inner_groove_curvature, E, nu);
+  outer_contact_ = outer_race_contact(d, c.pitch_diameter_m, a0, c.outer_groove_curvature, E, nu);
+  contact_stiffness_ = series_stiffness(inner_contact_.stiffness_N_per_m15, outer_contact_.stiffness_N_per_m15);
+  groove_centre_distance_ = (c.inner_groove_curvature + c.outer_groove_curvature - 1.0) * d;
+  cos_a0_ = std::cos(a0);
+  groove_centre_radius_ = c.pitch_diameter_m / 2.0 - (c.outer_groove_curvature - 0.5) * d * cos_a0_;
+  moving_sign_ = c.rotating_ring == RotatingRing::Outer ? 1.0 : -1.0;
+
+  const int n = c.rows * c.balls_per_row;
+  row_.resize(n);
+  base_azimuth_.resize(n);
+  cos_base_.resize(n);
+  sin_base_.resize(n);
+  groove_centre_z_.resize(n);
+  normal_z_.resize(n);
+  deflection_offset_.assign(n, 0.0);
+  for (int r = 0; r < c.rows; ++r) {
+    const double nz = row_contact_sign(r) * std::sin(a0);
+    const double gz = row_axial_position_m(r) - (c.outer_groove_curvature - 0.5) * d * nz;
+    for (int j = 0; j < c.balls_per_row; ++j) {
+      const int b = r * c.balls_per_row + j;
+      row_[b] = r;
+      base_azimuth_[b] = 2.0 * kPi * j / c.balls_per_row + (r == 1 ? c.row_phase_rad : 0.0);
+      cos_base_[b] = std::cos(base_azimuth_[b]);
+      sin_base_[b] = std::sin(base_azimuth_[b]);
+      groove_centre_z_[b] = gz;
+      normal_z_[b] = nz;
+    }
+  }
+}
+
+double BearingModel::row_axial_position_m(int row) const {
+  if (config_.rows == 1) return 0.0;
+  return row == 0 ? config_.row_spacing_m / 2.0 : -config_.row_spacing_m / 2.0;
+}
+
+int BearingModel::row_contact_sign(int row) const {
+  if (config_.rows == 1) return 1;
+  const int side = row == 0 ? 1 : -1;  // sign(z_r)
+  return config_.arrangement == Arrangement::BackToBack ? -side : side;
+}
+
+Vector5 BearingModel::mass_diagonal() const {
+  if (!config_.has_dynamics())
+    throw InvalidInputError(config_.name + ": rotating_mass_kg is required for dynamics");
+  Vector5 m;
+  m << config_.rotating_mass_kg, config_.rotating_mass_kg, config_.rotating_mass_kg, config_.tilt_inertia_kg_m2,
+      config_.tilt_inertia_kg_m2;
+  return m;
+}
+
+void BearingModel::set_deflection_offsets(const std::vector<double>& offsets_m) {
+  if (static_cast<int>(offsets_m.size()) != ball_count())
+    throw InvalidInputError("deflection offsets: expected one value per ball");
+  for (double o : offsets_m)
+    if (!std::isfinite(o)) throw InvalidInputError("deflection offsets: non-finite value");
+  deflection_offset_ = offsets_m;
+}
+
+// The loops below share this kinematics (MODEL.md section 2); it is written once and
+// inlined so that the force loop vectorizes.
+namespace {
+struct Kinematics {
+  double px, py, pz;  // outer-groove centre P_o
+  double vx, vy, vz;  // loaded centre vector v = A e0 - u
+  double norm;        // |v|
+  double deflection;  // delta
+};
+
+inline Kinematics kinematics(double cphi, double sphi, double gz, double nz, double offset, double rho,
+                             double cos_a0, double A, double g0, double sign, const double* q) {
+  Kinematics k;
+  k.px = rho * cphi;
+  k.py = rho * sphi;
+  k.pz = gz;
+  const double ux = q[0] + q[4] * k.pz;
+  const double uy = q[1] - q[3] * k.pz;
+  const double uz = q[2] + q[3] * k.py - q[4] * k.px;
+  k.vx = A * cos_a0 * cphi - sign * ux;
+  k.vy = A * cos_a0 * sphi - sign * uy;
+  k.vz = A * nz - sign * uz;
+  k.norm = std::sqrt(k.vx * k.vx + k.vy * k.vy + k.vz * k.vz);
+  k.deflection = k.norm - A - g0 + offset;
+  return k;
+}
+}  // namespace
+
+Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, double cage_angle_rad) const {
+  const double cc = std::cos(cage_angle_rad), sc = std::sin(cage_angle_rad);
+  const double rho = groove_centre_radius_, ca = cos_a0_, A = groove_centre_distance_;
+  const double g0 = config_.clearance_m, sign = moving_sign_, kn = contact_stiffness_;
+  const double cn = config_.contact_damping_Ns_per_m;
+  const double* qp = q.data();
+  const double* qd = q_dot.data();
+  const double* cb = cos_base_.data();
+  const double* sb = sin_base_.data();
+  const double* gzs = groove_centre_z_.data();
+  const double* nzs = normal_z_.data();
+  const double* off = deflection_offset_.data();
+  const int n = ball_count();
+  double fx = 0, fy = 0, fz = 0, mx = 0, my = 0;
+#pragma omp simd reduction(+ : fx, fy, fz, mx, my)
+  for (int b = 0; b < n; ++b) {
+    const double cphi = cc * cb[b] - sc * sb[b];
+    const double sphi = sc * cb[b] + cc * sb[b];
+    const Kinematics k = kinematics(cphi, sphi, gzs[b], nzs[b], off[b], rho, ca, A, g0, sign, qp);
+    const double dp = k.deflection > 0.0 ? k.deflection : 0.0;
+    // Rate of deflection from the ring velocity: d(delta)/dt = -e . du/dt.
+    const double wx = sign * (qd[0] + qd[4] * k.pz);
+    const double wy = sign * (qd[1] - qd[3] * k.pz);
+    const double wz = sign * (qd[2] + qd[3] * k.py - qd[4] * k.px);
+    const double rate = -(k.vx * wx + k.vy * wy + k.vz * wz) / k.norm;
+    double load = kn * dp * std::sqrt(dp) + cn * rate;
+    load = (k.deflection > 0.0 && load > 0.0) ? load : 0.0;
+    const double s = sign * load / k.norm;
+    fx += s * k.vx;
+    fy += s * k.vy;
+    fz += s * k.vz;
+    mx += s * (k.py * k.vz - k.pz * k.vy);
+    my += s * (k.pz * k.vx - k.px * k.vz);
+  }
+  Vector5 f;
+  f << fx, fy, fz, mx, my;
+  return f;
+}
+
+Vector5 BearingModel::contact_force_and_stiffness(const Vector5& q, double cage_angle_rad, Matrix5* stiffness) const {
+  const double cc = std::cos(cage_angle_rad), sc = std::sin(cage_angle_rad);
+  const double A = groove_centre_distance_, g0 = config_.clearance_m, sign = moving_sign_;
+  const double kn = contact_stiffness_;
+  Vector5 f = Vector5::Zero();
+  if (stiffness) stiffness->setZero();
+  for (int b = 0; b < ball_count(); ++b) {
+    const double cphi = cc * cos_base_[b] - sc * sin_base_[b];
+    const double sphi = sc * cos_base_[b] + cc * sin_base_[b];
+    const Kinematics k = kinematics(cphi, sphi, groove_centre_z_[b], normal_z_[b], deflection_offset_[b],
+                                    groove_centre_radius_, cos_a0_, A, g0, sign, q.data());
+    if (k.deflection <= 0.0) continue;
+    const double load = kn * k.deflection * std::sqrt(k.deflection);
+    const Eigen::Vector3d e(k.vx / k.norm, k.vy / k.norm, k.vz / k.norm);
+    // G maps q to the displacement of the groove centre: u = G q.
+    Eigen::Matrix<double, 3, 5> G;
+    G << 1, 0, 0, 0, k.pz,  //
+        0, 1, 0, -k.pz, 0,  //
+        0, 0, 1, k.py, -k.px;
+    f += sign * load * (G.transpose() * e);
+    if (stiffness) {
+      const double load_slope = 1.5 * kn * std::sqrt(k.deflection);
+      const Eigen::Matrix3d ee = e * e.transpose();
+      const Eigen::Matrix3d kc = load_slope * ee + (load / k.norm) * (Eigen::Matrix3d::Identity() - ee);
+      *stiffness += G.transpose() * kc * G;
+    }
+  }
+  return f;
+}
+
+std::vector<BallState> BearingModel::ball_states(const Vector5& q, double cage_angle_rad) const {
+  std::vector<BallState> balls(ball_count());
+  for (int b = 0; b < ball_count(); ++b) {
+    const double phi = cage_angle_rad + base_azimuth_[b];
+    const Kinematics k = kinematics(std::cos(phi), std::sin(phi), groove_centre_z_[b], normal_z_[b],
+                                    deflection_offset_[b], groove_centre_radius_, cos_a0_, groove_centre_distance_,
+                                    config_.clearance_m, moving_sign_, q.data());
+    BallState& s = balls[b];
+    s.row = row_[b];
+    s.index_in_row = b % config_.balls_per_row;
+    s.azimuth_rad = std::remainder(phi, 2.0 * kPi);
+    s.deflection_m = k.deflection;
+    s.load_N = k.deflection > 0.0 ? contact_stiffness_ * std::pow(k.deflection, 1.5) : 0.0;
+    const double radial = k.vx * std::cos(phi) + k.vy * std::sin(phi);
+    s.contact_angle_rad = std::atan2(std::abs(k.vz), radial);
+    s.normal = Eigen::Vector3d(k.vx, k.vy, k.vz) / k.norm;
+    s.pressure_Pa = std::max(inner_contact_.max_pressure_Pa(s.load_N), outer_contact_.max_pressure_Pa(s.load_N));
+  }
+  return balls;
+}
+
+double BearingModel::cage_speed_rad_s(double inner_rad_s, double outer_rad_s) const {
+  const double gamma = config_.ball_diameter_m * cos_a0_ / config_.pitch_diameter_m;
+  return inner_rad_s * (1.0 - gamma) / 2.0 + outer_rad_s * (1.0 + gamma) / 2.0;
+}
+
+void BearingModel::ring_speeds(double rotating_ring_rad_s, double* inner_rad_s, double* outer_rad_s) const {
+  const bool outer = config_.rotating_ring == RotatingRing::Outer;
+  *inner_rad_s = outer ? 0.0 : rotating_ring_rad_s;
+  *outer_rad_s = outer ? rotating_ring_rad_s : 0.0;
+}
+
+Matrix6 bushing_matrix(const Matrix5& stiffness) {
+  Matrix6 k = Matrix6::Zero();
+  k.topLeftCorner<5, 5>() = stiffness;
+  return k;
+}
+
+}  // namespace bearing_sim
