@@ -1,15 +1,35 @@
 #pragma once
 // Shared fixtures of the core tests.
 #include <string>
+#include <vector>
 
 #include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/bearing_model.hpp"
 
 namespace bearing_sim::test {
+
+constexpr double kPi = 3.14159265358979323846;
 
 // Path of a shipped bearing file, e.g. bearing_file("ct_gantry_lyc.yaml").
 std::string bearing_file(const std::string& name);
 
 // The ISO/TS 16281 reference bearing of MODEL.md section 4 (6 balls, 11.1 mm, a0 = 0).
 BearingConfig iso_reference_bearing(double clearance_m = 0.0);
+
+// The CT gantry bearing of config/bearings/ct_gantry_lyc.yaml.
+BearingConfig ct_bearing();
+// Its operating case: 6800 N along x, 2100 N*m about y, outer ring at 180 rpm.
+Vector5 ct_load();
+constexpr double kCtSpeedRadS = 180.0 * 2.0 * kPi / 60.0;
+
+// A single-row bearing built from the given numbers (sizes in mm, angle in deg).
+BearingConfig single_row(int balls, double d_mm, double dm_mm, double contact_angle_deg, double fi, double fo,
+                         double clearance_um = 0.0, const std::string& extra_yaml = "");
+
+// Amplitude spectrum |X(f)| of x (mean removed) at frequency f, by a direct DFT sum.
+double dft_amplitude(const std::vector<double>& x, double sample_rate_hz, double f_hz);
+
+// Generalized load vector (Fx, Fy, Fz, Mx, My).
+Vector5 load5(double fx, double fy, double fz, double mx, double my);
 
 }  // namespace bearing_sim::test

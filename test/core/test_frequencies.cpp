@@ -1,0 +1,54 @@
+// Cage, ball-pass and ball-spin frequencies (MODEL.md section 5).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "bearing_sim/core/frequencies.hpp"
+#include "test_support.hpp"
+
+using namespace bearing_sim;
+using namespace bearing_sim::test;
+
+TEST(Frequencies, Bearing6205PublishedMultipliers) {
+  // 6205-2RS JEM SKF (the Case Western Reserve bearing data set): Z = 9, d = 7.94 mm,
+  // dm = 39.04 mm; published multipliers of the shaft (inner ring) speed: BPFO 3.5848,
+  // BPFI 5.4152, FTF 0.39828, BSF 4.7135 (= 2 x ball spin, two race impacts per turn).
+  const BearingModel model(single_row(9, 7.94, 39.04, 0.0, 0.52, 0.52, 0.0, "rotating_ring: inner\n"));
+  const double shaft_hz = 29.95;  // 1797 rpm
+  const BearingFrequencies f = bearing_frequencies(model, 2.0 * kPi * shaft_hz);
+  // The multipliers are published to 5 digits: 0.1% is the brief's tolerance and ~10x their rounding.
+  EXPECT_NEAR(f.ball_pass_outer_race_hz / shaft_hz, 3.5848, 1e-3 * 3.5848);
+  EXPECT_NEAR(f.ball_pass_inner_race_hz / shaft_hz, 5.4152, 1e-3 * 5.4152);
+  EXPECT_NEAR(f.cage_hz / shaft_hz, 0.39828, 1e-3 * 0.39828);
+  EXPECT_NEAR(2.0 * f.ball_spin_hz / shaft_hz, 4.7135, 1e-3 * 4.7135);
+  EXPECT_NEAR(f.relative_ring_hz, shaft_hz, 1e-12 * shaft_hz);
+  // Conservation: BPFO + BPFI = Z f_r for any bearing (rounding only).
+  EXPECT_NEAR(f.ball_pass_outer_race_hz + f.ball_pass_inner_race_hz, 9.0 * shaft_hz, 1e-12 * shaft_hz);
+  // Outer ring fixed: the load zone is fixed to it, so the varying compliance is BPFO.
+  EXPECT_NEAR(f.varying_compliance_hz, f.ball_pass_outer_race_hz, 1e-12 * shaft_hz);
+}
+
+TEST(Frequencies, CtBearingOuterRingAt180Rpm) {
+  const BearingModel model(ct_bearing());
+  const BearingFrequencies f = bearing_frequencies(model, kCtSpeedRadS);
+  // MODEL.md section 5: cage about 1.513 Hz, varying compliance about 313 Hz.
+  // Hand: gamma = 12 cos 35 / 1111 = 0.008848; f_c = 3 (1 + gamma)/2 = 1.51327 Hz;
+  // 207 f_c = 313.25 Hz. 0.1% covers the three-digit rounding of the MODEL values.
+  EXPECT_NEAR(f.cage_hz, 1.513, 1e-3 * 1.513);
+  EXPECT_NEAR(f.varying_compliance_hz, 313.25, 1e-3 * 313.25);
+  EXPECT_NEAR(f.varying_compliance_hz, 207.0 * f.cage_hz, 1e-12 * f.varying_compliance_hz);
+  // Inner ring fixed: the balls pass it at Z f_c = BPFI, and BPFO = Z (f_o - f_c).
+  EXPECT_NEAR(f.ball_pass_inner_race_hz, f.varying_compliance_hz, 1e-9);
+  EXPECT_NEAR(f.ball_pass_outer_race_hz, 207.0 * (3.0 - f.cage_hz), 1e-9);
+  EXPECT_NEAR(f.relative_ring_hz, 3.0, 1e-12);
+}
+
+TEST(Frequencies, CageSpeedIsLinearInRingSpeeds) {
+  // Rolling without slip: both rings at the same speed carry the cage with them.
+  const BearingModel model(ct_bearing());
+  EXPECT_NEAR(model.cage_speed_rad_s(10.0, 10.0), 10.0, 1e-12);
+  const BearingFrequencies f = bearing_frequencies(model, 10.0, 10.0);
+  EXPECT_NEAR(f.ball_pass_outer_race_hz, 0.0, 1e-12);
+  EXPECT_NEAR(f.ball_pass_inner_race_hz, 0.0, 1e-12);
+  EXPECT_NEAR(f.ball_spin_hz, 0.0, 1e-12);
+}
