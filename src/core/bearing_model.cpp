@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "bearing_sim/core/errors.hpp"
 
@@ -27,11 +28,12 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
   const int n = c.rows * c.balls_per_row;
   row_.resize(n);
   base_azimuth_.resize(n);
-  cos_base_.resize(n);
-  sin_base_.resize(n);
-  groove_centre_z_.resize(n);
-  normal_z_.resize(n);
-  deflection_offset_.assign(n, 0.0);
+  balls_.ball.resize(n);
+  balls_.cos_base.resize(n);
+  balls_.sin_base.resize(n);
+  balls_.groove_centre_z.resize(n);
+  balls_.normal_z.resize(n);
+  balls_.deflection_offset.assign(n, 0.0);
   for (int r = 0; r < c.rows; ++r) {
     const double nz = row_contact_sign(r) * std::sin(a0);
     const double gz = row_axial_position_m(r) - (c.outer_groove_curvature - 0.5) * d * nz;
@@ -39,12 +41,32 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
       const int b = r * c.balls_per_row + j;
       row_[b] = r;
       base_azimuth_[b] = 2.0 * kPi * j / c.balls_per_row + (r == 1 ? c.row_phase_rad : 0.0);
-      cos_base_[b] = std::cos(base_azimuth_[b]);
-      sin_base_[b] = std::sin(base_azimuth_[b]);
-      groove_centre_z_[b] = gz;
-      normal_z_[b] = nz;
+      balls_.ball[b] = b;
+      balls_.cos_base[b] = std::cos(base_azimuth_[b]);
+      balls_.sin_base[b] = std::sin(base_azimuth_[b]);
+      balls_.groove_centre_z[b] = gz;
+      balls_.normal_z[b] = nz;
     }
+    max_lever_arm_ = std::max(max_lever_arm_, std::hypot(groove_centre_radius_, gz));
   }
+}
+
+void BallArrays::clear() {
+  ball.clear();
+  cos_base.clear();
+  sin_base.clear();
+  groove_centre_z.clear();
+  normal_z.clear();
+  deflection_offset.clear();
+}
+
+void BallArrays::push_back(const BallArrays& from, std::size_t i) {
+  ball.push_back(from.ball[i]);
+  cos_base.push_back(from.cos_base[i]);
+  sin_base.push_back(from.sin_base[i]);
+  groove_centre_z.push_back(from.groove_centre_z[i]);
+  normal_z.push_back(from.normal_z[i]);
+  deflection_offset.push_back(from.deflection_offset[i]);
 }
 
 double BearingModel::row_axial_position_m(int row) const {
@@ -72,7 +94,7 @@ void BearingModel::set_deflection_offsets(const std::vector<double>& offsets_m) 
     throw InvalidInputError("deflection offsets: expected one value per ball");
   for (double o : offsets_m)
     if (!std::isfinite(o)) throw InvalidInputError("deflection offsets: non-finite value");
-  deflection_offset_ = offsets_m;
+  balls_.deflection_offset = offsets_m;
 }
 
 // The loops below share this kinematics (MODEL.md section 2); it is written once and
@@ -103,19 +125,20 @@ inline Kinematics kinematics(double cphi, double sphi, double gz, double nz, dou
 }
 }  // namespace
 
-Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, double cage_angle_rad) const {
+Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, double cage_angle_rad,
+                                    const BallArrays& balls) const {
   const double cc = std::cos(cage_angle_rad), sc = std::sin(cage_angle_rad);
   const double rho = groove_centre_radius_, ca = cos_a0_, A = groove_centre_distance_;
   const double g0 = config_.clearance_m, sign = moving_sign_, kn = contact_stiffness_;
   const double cn = config_.contact_damping_Ns_per_m;
   const double* qp = q.data();
   const double* qd = q_dot.data();
-  const double* cb = cos_base_.data();
-  const double* sb = sin_base_.data();
-  const double* gzs = groove_centre_z_.data();
-  const double* nzs = normal_z_.data();
-  const double* off = deflection_offset_.data();
-  const int n = ball_count();
+  const double* cb = balls.cos_base.data();
+  const double* sb = balls.sin_base.data();
+  const double* gzs = balls.groove_centre_z.data();
+  const double* nzs = balls.normal_z.data();
+  const double* off = balls.deflection_offset.data();
+  const int n = static_cast<int>(balls.size());
   double fx = 0, fy = 0, fz = 0, mx = 0, my = 0;
 #pragma omp simd reduction(+ : fx, fy, fz, mx, my)
   for (int b = 0; b < n; ++b) {
@@ -127,10 +150,11 @@ Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, doub
     const double wx = sign * (qd[0] + qd[4] * k.pz);
     const double wy = sign * (qd[1] - qd[3] * k.pz);
     const double wz = sign * (qd[2] + qd[3] * k.py - qd[4] * k.px);
-    const double rate = -(k.vx * wx + k.vy * wy + k.vz * wz) / k.norm;
+    const double inv_norm = 1.0 / k.norm;
+    const double rate = -(k.vx * wx + k.vy * wy + k.vz * wz) * inv_norm;
     double load = kn * dp * std::sqrt(dp) + cn * rate;
     load = (k.deflection > 0.0 && load > 0.0) ? load : 0.0;
-    const double s = sign * load / k.norm;
+    const double s = sign * load * inv_norm;
     fx += s * k.vx;
     fy += s * k.vy;
     fz += s * k.vz;
@@ -149,10 +173,10 @@ Vector5 BearingModel::contact_force_and_stiffness(const Vector5& q, double cage_
   Vector5 f = Vector5::Zero();
   if (stiffness) stiffness->setZero();
   for (int b = 0; b < ball_count(); ++b) {
-    const double cphi = cc * cos_base_[b] - sc * sin_base_[b];
-    const double sphi = sc * cos_base_[b] + cc * sin_base_[b];
-    const Kinematics k = kinematics(cphi, sphi, groove_centre_z_[b], normal_z_[b], deflection_offset_[b],
-                                    groove_centre_radius_, cos_a0_, A, g0, sign, q.data());
+    const double cphi = cc * balls_.cos_base[b] - sc * balls_.sin_base[b];
+    const double sphi = sc * balls_.cos_base[b] + cc * balls_.sin_base[b];
+    const Kinematics k = kinematics(cphi, sphi, balls_.groove_centre_z[b], balls_.normal_z[b],
+                                    balls_.deflection_offset[b], groove_centre_radius_, cos_a0_, A, g0, sign, q.data());
     if (k.deflection <= 0.0) continue;
     const double load = kn * k.deflection * std::sqrt(k.deflection);
     const Eigen::Vector3d e(k.vx / k.norm, k.vy / k.norm, k.vz / k.norm);
@@ -172,12 +196,52 @@ Vector5 BearingModel::contact_force_and_stiffness(const Vector5& q, double cage_
   return f;
 }
 
+void BearingModel::deflections(const Vector5& q, double cage_angle_rad, const BallArrays& balls,
+                               std::vector<double>* out) const {
+  const double cc = std::cos(cage_angle_rad), sc = std::sin(cage_angle_rad);
+  const double rho = groove_centre_radius_, ca = cos_a0_, A = groove_centre_distance_;
+  const double g0 = config_.clearance_m, sign = moving_sign_;
+  const double* qp = q.data();
+  const double* cb = balls.cos_base.data();
+  const double* sb = balls.sin_base.data();
+  const double* gzs = balls.groove_centre_z.data();
+  const double* nzs = balls.normal_z.data();
+  const double* off = balls.deflection_offset.data();
+  const int n = static_cast<int>(balls.size());
+  out->resize(n);
+  double* d = out->data();
+#pragma omp simd
+  for (int b = 0; b < n; ++b) {
+    const double cphi = cc * cb[b] - sc * sb[b];
+    const double sphi = sc * cb[b] + cc * sb[b];
+    d[b] = kinematics(cphi, sphi, gzs[b], nzs[b], off[b], rho, ca, A, g0, sign, qp).deflection;
+  }
+}
+
+void BearingModel::split_by_deflection(const Vector5& q, double cage_angle_rad, double margin_m,
+                                       BallArrays* near_contact, BallArrays* clear) const {
+  thread_local std::vector<double> deflection;
+  deflections(q, cage_angle_rad, balls_, &deflection);
+  near_contact->clear();
+  clear->clear();
+  for (std::size_t b = 0; b < balls_.size(); ++b)
+    (deflection[b] > -margin_m ? near_contact : clear)->push_back(balls_, b);
+}
+
+double BearingModel::max_deflection(const Vector5& q, double cage_angle_rad, const BallArrays& balls) const {
+  thread_local std::vector<double> deflection;
+  deflections(q, cage_angle_rad, balls, &deflection);
+  double worst = -std::numeric_limits<double>::infinity();
+  for (double d : deflection) worst = std::max(worst, d);
+  return worst;
+}
+
 std::vector<BallState> BearingModel::ball_states(const Vector5& q, double cage_angle_rad) const {
   std::vector<BallState> balls(ball_count());
   for (int b = 0; b < ball_count(); ++b) {
     const double phi = cage_angle_rad + base_azimuth_[b];
-    const Kinematics k = kinematics(std::cos(phi), std::sin(phi), groove_centre_z_[b], normal_z_[b],
-                                    deflection_offset_[b], groove_centre_radius_, cos_a0_, groove_centre_distance_,
+    const Kinematics k = kinematics(std::cos(phi), std::sin(phi), balls_.groove_centre_z[b], balls_.normal_z[b],
+                                    balls_.deflection_offset[b], groove_centre_radius_, cos_a0_, groove_centre_distance_,
                                     config_.clearance_m, moving_sign_, q.data());
     BallState& s = balls[b];
     s.row = row_[b];

@@ -27,12 +27,25 @@ struct BallState {
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // contact line, inner to outer
 };
 
+// Per-ball constants in the structure-of-arrays layout of the vectorized force loop;
+// either every ball of the bearing or a subset of them.
+struct BallArrays {
+  std::vector<int> ball;  // index into the bearing's balls
+  std::vector<double> cos_base, sin_base;  // of the azimuth at cage angle 0
+  std::vector<double> groove_centre_z;     // axial coordinate of the outer-groove centre
+  std::vector<double> normal_z;            // c_r sin a0
+  std::vector<double> deflection_offset;   // extra deflection (waviness, defects), m
+  std::size_t size() const { return ball.size(); }
+  void clear();
+  void push_back(const BallArrays& from, std::size_t i);
+};
+
 class BearingModel {
  public:
   explicit BearingModel(BearingConfig config);
 
   const BearingConfig& config() const { return config_; }
-  int ball_count() const { return static_cast<int>(cos_base_.size()); }
+  int ball_count() const { return static_cast<int>(balls_.size()); }
   int balls_per_row() const { return config_.balls_per_row; }
   int rows() const { return config_.rows; }
 
@@ -53,10 +66,26 @@ class BearingModel {
 
   // Extra contact deflection per ball (waviness, defects); zero by default.
   void set_deflection_offsets(const std::vector<double>& offsets_m);
-  const std::vector<double>& deflection_offsets() const { return deflection_offset_; }
+  const std::vector<double>& deflection_offsets() const { return balls_.deflection_offset; }
+  const BallArrays& balls() const { return balls_; }
 
   // Contact forces and moments on the moving ring, with contact damping (hot path).
-  Vector5 contact_force(const Vector5& q, const Vector5& q_dot, double cage_angle_rad) const;
+  Vector5 contact_force(const Vector5& q, const Vector5& q_dot, double cage_angle_rad) const {
+    return contact_force(q, q_dot, cage_angle_rad, balls_);
+  }
+  // Same, over a subset of the balls (the others are known to be out of contact).
+  Vector5 contact_force(const Vector5& q, const Vector5& q_dot, double cage_angle_rad,
+                        const BallArrays& balls) const;
+  // Splits the balls into those whose deflection exceeds -margin_m at (q, cage angle)
+  // and the rest.
+  void split_by_deflection(const Vector5& q, double cage_angle_rad, double margin_m, BallArrays* near_contact,
+                           BallArrays* clear) const;
+  // Contact deflection of each ball of a subset.
+  void deflections(const Vector5& q, double cage_angle_rad, const BallArrays& balls, std::vector<double>* out) const;
+  // Largest contact deflection over a subset (negative: all clear).
+  double max_deflection(const Vector5& q, double cage_angle_rad, const BallArrays& balls) const;
+  // Largest distance of an outer-groove centre from the bearing axis origin, m.
+  double max_lever_arm_m() const { return max_lever_arm_; }
   // Same, without damping, and the stiffness K = -d(force)/dq (analytic).
   Vector5 contact_force_and_stiffness(const Vector5& q, double cage_angle_rad, Matrix5* stiffness) const;
   // Per-ball detail at a static configuration.
@@ -76,11 +105,10 @@ class BearingModel {
   double cos_a0_ = 1.0;
   double moving_sign_ = 1.0;
   // Per ball (structure of arrays, for the vectorized force loop).
+  double max_lever_arm_ = 0.0;
   std::vector<int> row_;
-  std::vector<double> base_azimuth_, cos_base_, sin_base_;
-  std::vector<double> groove_centre_z_;  // axial coordinate of the outer-groove centre
-  std::vector<double> normal_z_;         // c_r sin a0
-  std::vector<double> deflection_offset_;
+  std::vector<double> base_azimuth_;
+  BallArrays balls_;
 };
 
 // 6x6 Bushing stiffness (x, y, z, rx, ry, rz) with a zero row and column for rz.
