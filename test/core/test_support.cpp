@@ -45,16 +45,32 @@ BearingConfig single_row(int balls, double d_mm, double dm_mm, double contact_an
 }
 
 double dft_amplitude(const std::vector<double>& x, double sample_rate_hz, double f_hz) {
+  // Goertzel recurrence: one DFT term at an arbitrary frequency, mean removed.
   double m = 0.0;
   for (double v : x) m += v;
   m /= static_cast<double>(x.size());
-  double re = 0.0, im = 0.0;
-  const double w = 2.0 * kPi * f_hz / sample_rate_hz;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    re += (x[i] - m) * std::cos(w * static_cast<double>(i));
-    im -= (x[i] - m) * std::sin(w * static_cast<double>(i));
+  const double w = 2.0 * kPi * f_hz / sample_rate_hz, coeff = 2.0 * std::cos(w);
+  double s1 = 0.0, s2 = 0.0;
+  for (double v : x) {
+    const double s0 = (v - m) + coeff * s1 - s2;
+    s2 = s1;
+    s1 = s0;
   }
+  const double re = s1 - s2 * std::cos(w), im = s2 * std::sin(w);
   return 2.0 * std::hypot(re, im) / static_cast<double>(x.size());
+}
+
+double spectral_peak_hz(const std::vector<double>& x, double sample_rate_hz, double f_min_hz, double f_max_hz,
+                        double step_hz) {
+  double best = -1.0, best_f = 0.0;
+  for (double f = f_min_hz; f <= f_max_hz; f += step_hz) {
+    const double a = dft_amplitude(x, sample_rate_hz, f);
+    if (a > best) {
+      best = a;
+      best_f = f;
+    }
+  }
+  return best_f;
 }
 
 Vector5 load5(double fx, double fy, double fz, double mx, double my) {

@@ -29,6 +29,10 @@ BearingConfig single_row(int balls, double d_mm, double dm_mm, double contact_an
 // Amplitude spectrum |X(f)| of x (mean removed) at frequency f, by a direct DFT sum.
 double dft_amplitude(const std::vector<double>& x, double sample_rate_hz, double f_hz);
 
+// Frequency of the largest |X(f)| on a grid from f_min to f_max (DC excluded by f_min > 0).
+double spectral_peak_hz(const std::vector<double>& x, double sample_rate_hz, double f_min_hz, double f_max_hz,
+                        double step_hz);
+
 // Generalized load vector (Fx, Fy, Fz, Mx, My).
 Vector5 load5(double fx, double fy, double fz, double mx, double my);
 
