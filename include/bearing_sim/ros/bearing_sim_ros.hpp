@@ -1,0 +1,109 @@
+#pragma once
+// ROS front end of the bearing model: parameters, topics, dynamic_reconfigure and the
+// real-time simulation thread. The physics is all in the core (BearingDynamics).
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include <boost/thread/recursive_mutex.hpp>
+#include <dynamic_reconfigure/server.h>
+#include <geometry_msgs/WrenchStamped.h>
+#include <ros/ros.h>
+#include <std_msgs/Float64.h>
+
+#include "bearing_sim/BearingSimConfig.h"
+#include "bearing_sim/core/bearing_dynamics.hpp"
+#include "bearing_sim/core/vibration_level.hpp"
+#include "bearing_sim/ros/chunk_assembler.hpp"
+#include "bearing_sim/ros/input_validator.hpp"
+#include "bearing_sim/ros/node_diagnostics.hpp"
+#include "bearing_sim/ros/sample_divider.hpp"
+#include "bearing_sim/ros/sample_source.hpp"
+
+namespace bearing_sim {
+namespace ros_node {
+
+// Outputs that dynamic_reconfigure may change while running.
+struct OutputSettings {
+  std::size_t chunk_samples = 100;
+  double level_window_s = 1.0;
+  double level_rate_hz = 10.0;
+  double ball_loads_rate_hz = 30.0;
+};
+
+class BearingSimRos {
+ public:
+  // Reads the parameters and the bearing file, builds the model at the static
+  // equilibrium of the initial load. Throws (ConfigError, LoadNotCarriedError,
+  // std::runtime_error) when it cannot start.
+  BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh);
+  ~BearingSimRos();
+
+  void start();  // the simulation thread
+  void stop();
+
+ private:
+  struct Pending {  // handed from the ROS callbacks to the sim thread
+    std::optional<Vector5> load;
+    std::optional<double> ring_speed_rad_s;
+    std::optional<BearingModel> model;
+    std::optional<OutputSettings> settings;
+  };
+
+  void on_load(const geometry_msgs::WrenchStamped::ConstPtr& msg);
+  void on_speed(const std_msgs::Float64::ConstPtr& msg);
+  void on_reconfigure(BearingSimConfig& config, std::uint32_t level);
+  void reject_input(const std::string& reason);
+  void publish_model_state();
+
+  // Sim thread only.
+  void run();
+  void apply_pending();
+  void apply_settings(const OutputSettings& settings);
+  void publish_level(const SampleSource::Sample& sample);
+  void publish_ball_loads(const SampleSource::Sample& sample);
+  ros::Time stamp_of(std::uint64_t sample_index) const;
+
+  ros::NodeHandle nh_, pnh_;
+  // Parameters (fixed after construction).
+  double sample_rate_hz_ = 10000.0;
+  bool real_time_ = true;
+  bool publish_clock_ = false;
+  std::string frame_id_, bearing_frame_id_;
+  InputLimits limits_;
+
+  // ROS side (spinner thread only): the latest accepted inputs and model, for validation.
+  std::unique_ptr<BearingModel> validation_model_;
+  Vector5 accepted_load_ = Vector5::Zero();
+  double accepted_speed_rad_s_ = 0.0;
+  double accepted_max_pressure_Pa_ = 0.0;
+  int substeps_ = 0;
+
+  std::mutex pending_mutex_;
+  Pending pending_;
+  std::atomic<bool> pending_flag_{false};
+
+  // Sim thread state.
+  std::unique_ptr<SampleSource> source_;
+  std::unique_ptr<ChunkAssembler> assembler_;
+  std::unique_ptr<RunningRms> level_rms_;
+  std::unique_ptr<SampleDivider> level_divider_, ball_loads_divider_;
+  OutputSettings settings_;
+  ros::Time ros_start_;
+
+  ros::Publisher vibration_pub_, level_pub_, ball_loads_pub_, clock_pub_;
+  ros::Subscriber load_sub_, speed_sub_;
+  std::unique_ptr<NodeDiagnostics> diagnostics_;
+  ros::WallTimer diagnostics_timer_;
+  boost::recursive_mutex reconfigure_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<BearingSimConfig>> reconfigure_server_;
+
+  std::atomic<bool> stop_{false};
+  std::thread sim_thread_;
+};
+
+}  // namespace ros_node
+}  // namespace bearing_sim

@@ -1,0 +1,28 @@
+#pragma once
+// Checks of the load and speed inputs before they reach the dynamics (ROS-free).
+#include <string>
+
+#include "bearing_sim/core/bearing_model.hpp"
+
+namespace bearing_sim {
+namespace ros_node {
+
+struct InputLimits {
+  double max_force_N = 1.0e5;       // |(Fx, Fy, Fz)|
+  double max_moment_Nm = 5.0e4;     // |(Mx, My)|
+  double max_speed_rad_s = 100.0;   // |speed of the rotating ring|
+};
+
+struct InputCheck {
+  bool accepted = true;
+  std::string reason;  // why it was rejected
+  double max_contact_pressure_Pa = 0.0;  // of the static solution, when the load was solved
+};
+
+// Rejects non-finite values and magnitudes beyond the limits; if `model` is given, also a
+// load that the bearing cannot carry (no static equilibrium).
+InputCheck check_load(const Vector5& load, const InputLimits& limits, const BearingModel* model);
+InputCheck check_speed(double ring_speed_rad_s, const InputLimits& limits);
+
+}  // namespace ros_node
+}  // namespace bearing_sim

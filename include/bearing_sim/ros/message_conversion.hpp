@@ -1,0 +1,27 @@
+#pragma once
+// Conversions between the core's types and the ROS messages (no logic beyond layout).
+#include <vector>
+
+#include <geometry_msgs/Wrench.h>
+#include <ros/time.h>
+
+#include "bearing_sim/BallLoads.h"
+#include "bearing_sim/VibrationChunk.h"
+#include "bearing_sim/core/bearing_model.hpp"
+#include "bearing_sim/ros/chunk_assembler.hpp"
+
+namespace bearing_sim {
+namespace ros_node {
+
+// (Fx, Fy, Fz, Mx, My); the torque about the axis is not a load (the speed is prescribed).
+Vector5 load_from_wrench(const geometry_msgs::Wrench& wrench);
+
+// Moves the chunk's arrays into the message.
+void fill_vibration_chunk(SampleChunk&& chunk, const ros::Time& first_sample_stamp, const std::string& frame_id,
+                          double sample_rate_hz, VibrationChunk* msg);
+
+void fill_ball_loads(const std::vector<BallState>& balls, int rows, int balls_per_row, double cage_angle_rad,
+                     BallLoads* msg);
+
+}  // namespace ros_node
+}  // namespace bearing_sim

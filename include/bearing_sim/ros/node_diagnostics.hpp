@@ -1,0 +1,74 @@
+#pragma once
+// /diagnostics of bearing_sim_node: real-time lag and overruns, rejected inputs, model
+// state. Recorders are thread-safe (sim thread and ROS callbacks); update() publishes.
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <string>
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/ros.h>
+
+#include "bearing_sim/core/bearing_model.hpp"
+#include "bearing_sim/ros/timing_stats.hpp"
+
+namespace bearing_sim {
+namespace ros_node {
+
+struct DiagnosticsSettings {
+  bool real_time = true;
+  double max_lag_s = 0.005;   // WARN above this lag of simulated behind wall time
+  double hold_s = 5.0;        // a rejected input (WARN) or divergence (ERROR) stays reported this long
+};
+
+struct ModelState {
+  std::string bearing_name;
+  Vector5 load = Vector5::Zero();
+  double ring_speed_rad_s = 0.0;
+  double clearance_m = 0.0;
+  double contact_damping_Ns_per_m = 0.0;
+  int substeps = 0;
+  double varying_compliance_hz = 0.0;
+  double static_max_contact_pressure_Pa = 0.0;
+};
+
+class NodeDiagnostics {
+ public:
+  NodeDiagnostics(ros::NodeHandle nh, ros::NodeHandle pnh, const std::string& hardware_id,
+                  const DiagnosticsSettings& settings);
+
+  // After each published chunk (sim thread). lateness_s: wall time minus the due time of
+  // the chunk's last sample; overrun: later than one chunk period.
+  void record_chunk(double lateness_s, bool overrun, std::uint64_t samples_published, double simulated_s,
+                    double wall_elapsed_s);
+  void record_rejected_input(const std::string& reason);
+  void record_divergence(const std::string& message);
+  void set_model_state(const ModelState& state);
+  void update();  // publish now
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  void realtime_task(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void inputs_task(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void model_task(diagnostic_updater::DiagnosticStatusWrapper& status);
+  bool within_hold(Clock::time_point t, bool ever) const;
+
+  DiagnosticsSettings settings_;
+  diagnostic_updater::Updater updater_;
+  std::mutex mutex_;
+  TimingStats lateness_;  // last minute of chunks at 100 Hz
+  double last_lateness_s_ = 0.0;
+  std::uint64_t overruns_ = 0, samples_published_ = 0;
+  double simulated_s_ = 0.0, wall_elapsed_s_ = 0.0;
+  Clock::time_point last_overrun_;
+  std::uint64_t rejected_inputs_ = 0;
+  std::string last_rejection_;
+  Clock::time_point last_rejection_time_;
+  std::uint64_t divergences_ = 0;
+  std::string last_divergence_;
+  Clock::time_point last_divergence_time_;
+  ModelState model_;
+};
+
+}  // namespace ros_node
+}  // namespace bearing_sim

@@ -1,0 +1,44 @@
+#pragma once
+// The stream of output samples from the dynamics, numbered from 0 (the initial static
+// equilibrium) with one dynamics step per further sample. A diverging step never
+// leaves this class: the model is reset to the static equilibrium and that finite
+// state is the sample (ROS-free).
+#include <cstdint>
+#include <string>
+
+#include "bearing_sim/core/bearing_dynamics.hpp"
+
+namespace bearing_sim {
+namespace ros_node {
+
+class SampleSource {
+ public:
+  explicit SampleSource(BearingDynamics dynamics);
+
+  struct Sample {
+    std::uint64_t index = 0;
+    double time_s = 0.0;  // index / sample rate
+    const DynamicSample* state = nullptr;  // valid until the next call
+    bool diverged = false;                 // the step diverged and the model was reset
+  };
+  Sample next();
+
+  // For inputs and model changes, between samples.
+  BearingDynamics& dynamics() { return dynamics_; }
+  const BearingDynamics& dynamics() const { return dynamics_; }
+  std::uint64_t next_index() const { return next_index_; }
+  std::uint64_t divergence_count() const { return divergence_count_; }
+  const std::string& last_divergence() const { return last_divergence_; }
+
+ private:
+  BearingDynamics dynamics_;
+  // Our own count: after a reset the core's sample counter does not advance, but the
+  // published sequence must.
+  std::uint64_t next_index_ = 0;
+  std::uint64_t divergence_count_ = 0;
+  std::string last_divergence_;
+  DynamicSample held_;
+};
+
+}  // namespace ros_node
+}  // namespace bearing_sim

@@ -1,0 +1,322 @@
+#include "bearing_sim/ros/bearing_sim_ros.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <rosgraph_msgs/Clock.h>
+
+#include "bearing_sim/BallLoads.h"
+#include "bearing_sim/VibrationChunk.h"
+#include "bearing_sim/VibrationLevel.h"
+#include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/frequencies.hpp"
+#include "bearing_sim/core/quasi_static.hpp"
+#include "bearing_sim/ros/message_conversion.hpp"
+#include "bearing_sim/ros/realtime_pacer.hpp"
+
+namespace bearing_sim {
+namespace ros_node {
+namespace {
+
+template <typename T>
+T param(const ros::NodeHandle& pnh, const std::string& name, const T& fallback) {
+  T value;
+  pnh.param(name, value, fallback);
+  return value;
+}
+
+std::size_t window_samples(double window_s, double sample_rate_hz) {
+  return static_cast<std::size_t>(std::max(1.0, std::round(window_s * sample_rate_hz)));
+}
+
+}  // namespace
+
+BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {
+  const std::string bearing_file = param<std::string>(pnh_, "bearing_file", "");
+  if (bearing_file.empty()) throw std::runtime_error("parameter ~bearing_file is not set");
+  BearingModel model(load_bearing_config(bearing_file));
+  if (!model.config().has_dynamics())
+    throw std::runtime_error("bearing file " + bearing_file + " has no rotating_mass_kg: no dynamics possible");
+
+  sample_rate_hz_ = param(pnh_, "sample_rate_hz", 10000.0);
+  const int substeps = param(pnh_, "substeps", 0);
+  real_time_ = param(pnh_, "real_time", true);
+  publish_clock_ = param(pnh_, "publish_clock", !real_time_);
+  const bool outer = model.config().rotating_ring == RotatingRing::Outer;
+  frame_id_ = param<std::string>(pnh_, "frame_id", outer ? "bearing_outer_ring" : "bearing_inner_ring");
+  bearing_frame_id_ = param<std::string>(pnh_, "bearing_frame_id", "bearing");
+  limits_.max_force_N = param(pnh_, "max_force_N", limits_.max_force_N);
+  limits_.max_moment_Nm = param(pnh_, "max_moment_Nm", limits_.max_moment_Nm);
+  limits_.max_speed_rad_s = param(pnh_, "max_speed_rad_s", limits_.max_speed_rad_s);
+  DiagnosticsSettings diag;
+  diag.real_time = real_time_;
+  diag.max_lag_s = param(pnh_, "max_lag_s", diag.max_lag_s);
+  diag.hold_s = param(pnh_, "diagnostic_hold_s", diag.hold_s);
+  const double diagnostic_period_s = param(pnh_, "diagnostic_period_s", 1.0);
+
+  Vector5 load;
+  load << param(pnh_, "initial_force_x_N", 0.0), param(pnh_, "initial_force_y_N", 0.0),
+      param(pnh_, "initial_force_z_N", 0.0), param(pnh_, "initial_moment_x_Nm", 0.0),
+      param(pnh_, "initial_moment_y_Nm", 0.0);
+  const double speed = param(pnh_, "initial_speed_rad_s", 0.0);
+  // The initial inputs obey the same rules as the topics, but a bad one stops the node.
+  const InputCheck load_check = check_load(load, limits_, &model);
+  if (!load_check.accepted) throw std::runtime_error("initial load: " + load_check.reason);
+  const InputCheck speed_check = check_speed(speed, limits_);
+  if (!speed_check.accepted) throw std::runtime_error("initial speed: " + speed_check.reason);
+  accepted_load_ = load;
+  accepted_speed_rad_s_ = speed;
+  accepted_max_pressure_Pa_ = load_check.max_contact_pressure_Pa;
+
+  validation_model_ = std::make_unique<BearingModel>(model);
+  source_ = std::make_unique<SampleSource>(
+      BearingDynamics(model, load, speed, DynamicsOptions{sample_rate_hz_, substeps}));
+  substeps_ = source_->dynamics().substeps();
+  assembler_ = std::make_unique<ChunkAssembler>(settings_.chunk_samples);
+  level_rms_ = std::make_unique<RunningRms>(window_samples(settings_.level_window_s, sample_rate_hz_));
+  level_divider_ = std::make_unique<SampleDivider>(settings_.level_rate_hz, sample_rate_hz_);
+  ball_loads_divider_ = std::make_unique<SampleDivider>(settings_.ball_loads_rate_hz, sample_rate_hz_);
+
+  vibration_pub_ = nh_.advertise<VibrationChunk>("vibration", 100);
+  level_pub_ = nh_.advertise<VibrationLevel>("vibration_level", 10);
+  ball_loads_pub_ = nh_.advertise<BallLoads>("ball_loads", 10);
+  if (publish_clock_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 100);
+
+  diagnostics_ = std::make_unique<NodeDiagnostics>(nh_, pnh_, "bearing_sim: " + model.config().name, diag);
+  publish_model_state();
+  diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(diagnostic_period_s),
+                                           [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
+
+  // dynamic_reconfigure: clearance and damping start from the bearing file unless the
+  // parameters were set explicitly (the server would otherwise impose the cfg defaults).
+  const bool clearance_given = pnh_.hasParam("clearance_um");
+  const bool damping_given = pnh_.hasParam("contact_damping_Ns_per_m");
+  reconfigure_server_ =
+      std::make_unique<dynamic_reconfigure::Server<BearingSimConfig>>(reconfigure_mutex_, pnh_);
+  BearingSimConfig initial;
+  initial.__fromServer__(pnh_);
+  if (!clearance_given) initial.clearance_um = model.config().clearance_m * 1e6;
+  if (!damping_given) initial.contact_damping_Ns_per_m = model.config().contact_damping_Ns_per_m;
+  reconfigure_server_->updateConfig(initial);
+  reconfigure_server_->setCallback(
+      [this](BearingSimConfig& config, std::uint32_t level) { on_reconfigure(config, level); });
+
+  load_sub_ = nh_.subscribe("load", 10, &BearingSimRos::on_load, this);
+  speed_sub_ = nh_.subscribe("speed", 10, &BearingSimRos::on_speed, this);
+  ROS_INFO("bearing_sim_node: '%s', %d balls, %.0f Hz output, %d RK4 substeps per sample, %s",
+           model.config().name.c_str(), model.ball_count(), sample_rate_hz_, substeps_,
+           real_time_ ? "real time" : "as fast as possible");
+}
+
+BearingSimRos::~BearingSimRos() { stop(); }
+
+void BearingSimRos::start() {
+  if (sim_thread_.joinable()) return;
+  stop_ = false;
+  sim_thread_ = std::thread([this] { run(); });
+}
+
+void BearingSimRos::stop() {
+  stop_ = true;
+  if (sim_thread_.joinable()) sim_thread_.join();
+}
+
+// ---------------------------------------------------------------------------------------
+// ROS callbacks (spinner thread)
+
+void BearingSimRos::reject_input(const std::string& reason) {
+  ROS_WARN_THROTTLE(1.0, "bearing_sim_node: input rejected, keeping the last good inputs: %s", reason.c_str());
+  diagnostics_->record_rejected_input(reason);
+}
+
+void BearingSimRos::on_load(const geometry_msgs::WrenchStamped::ConstPtr& msg) {
+  const Vector5 load = load_from_wrench(msg->wrench);
+  const InputCheck check = check_load(load, limits_, validation_model_.get());
+  if (!check.accepted) return reject_input(check.reason);
+  if (check.max_contact_pressure_Pa > kPermissibleContactPressurePa)
+    ROS_WARN_THROTTLE(5.0, "bearing_sim_node: static contact pressure %.0f MPa exceeds the ISO 76 limit of 4200 MPa",
+                      check.max_contact_pressure_Pa * 1e-6);
+  accepted_load_ = load;
+  accepted_max_pressure_Pa_ = check.max_contact_pressure_Pa;
+  {
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    pending_.load = load;
+  }
+  pending_flag_ = true;
+  publish_model_state();
+}
+
+void BearingSimRos::on_speed(const std_msgs::Float64::ConstPtr& msg) {
+  const InputCheck check = check_speed(msg->data, limits_);
+  if (!check.accepted) return reject_input(check.reason);
+  accepted_speed_rad_s_ = msg->data;
+  {
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    pending_.ring_speed_rad_s = msg->data;
+  }
+  pending_flag_ = true;
+  publish_model_state();
+}
+
+void BearingSimRos::on_reconfigure(BearingSimConfig& config, std::uint32_t /*level*/) {
+  const BearingConfig& old = validation_model_->config();
+  const double clearance_m = config.clearance_um * 1e-6;
+  std::optional<BearingModel> new_model;
+  if (clearance_m != old.clearance_m || config.contact_damping_Ns_per_m != old.contact_damping_Ns_per_m) {
+    BearingConfig changed = old;
+    changed.clearance_m = clearance_m;
+    changed.contact_damping_Ns_per_m = config.contact_damping_Ns_per_m;
+    BearingModel model(changed);
+    model.set_deflection_offsets(validation_model_->deflection_offsets());
+    const InputCheck check = check_load(accepted_load_, limits_, &model);
+    if (check.accepted) {
+      accepted_max_pressure_Pa_ = check.max_contact_pressure_Pa;
+      new_model = std::move(model);
+    } else {
+      // Refuse the change; the server publishes the reverted values.
+      reject_input("clearance " + std::to_string(config.clearance_um) + " um: " + check.reason);
+      config.clearance_um = old.clearance_m * 1e6;
+      config.contact_damping_Ns_per_m = old.contact_damping_Ns_per_m;
+    }
+  }
+  OutputSettings settings;
+  settings.chunk_samples = static_cast<std::size_t>(std::max(1, config.chunk_samples));
+  settings.level_window_s = config.level_window_s;
+  settings.level_rate_hz = config.level_rate_hz;
+  settings.ball_loads_rate_hz = config.ball_loads_rate_hz;
+  if (new_model) *validation_model_ = *new_model;
+  {
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    if (new_model) pending_.model = std::move(new_model);
+    pending_.settings = settings;
+  }
+  pending_flag_ = true;
+  publish_model_state();
+}
+
+void BearingSimRos::publish_model_state() {
+  ModelState s;
+  const BearingConfig& c = validation_model_->config();
+  s.bearing_name = c.name;
+  s.load = accepted_load_;
+  s.ring_speed_rad_s = accepted_speed_rad_s_;
+  s.clearance_m = c.clearance_m;
+  s.contact_damping_Ns_per_m = c.contact_damping_Ns_per_m;
+  s.substeps = substeps_;
+  s.varying_compliance_hz = bearing_frequencies(*validation_model_, accepted_speed_rad_s_).varying_compliance_hz;
+  s.static_max_contact_pressure_Pa = accepted_max_pressure_Pa_;
+  diagnostics_->set_model_state(s);
+}
+
+// ---------------------------------------------------------------------------------------
+// Simulation thread
+
+void BearingSimRos::apply_pending() {
+  Pending p;
+  {
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    p = std::move(pending_);
+    pending_ = Pending{};
+    pending_flag_ = false;
+  }
+  BearingDynamics& dynamics = source_->dynamics();
+  // Inputs were validated by the callbacks; the core only rejects non-finite values.
+  try {
+    if (p.model) dynamics.set_model(std::move(*p.model));
+    if (p.load) dynamics.set_load(*p.load);
+    if (p.ring_speed_rad_s) dynamics.set_ring_speed(*p.ring_speed_rad_s);
+  } catch (const InvalidInputError& e) {
+    diagnostics_->record_rejected_input(e.what());
+  }
+  if (p.settings) apply_settings(*p.settings);
+}
+
+void BearingSimRos::apply_settings(const OutputSettings& s) {
+  if (s.chunk_samples != settings_.chunk_samples) assembler_->set_chunk_samples(s.chunk_samples);
+  if (s.level_window_s != settings_.level_window_s)
+    level_rms_->resize(window_samples(s.level_window_s, sample_rate_hz_));
+  if (s.level_rate_hz != settings_.level_rate_hz) level_divider_->set_rate(s.level_rate_hz, sample_rate_hz_);
+  if (s.ball_loads_rate_hz != settings_.ball_loads_rate_hz)
+    ball_loads_divider_->set_rate(s.ball_loads_rate_hz, sample_rate_hz_);
+  settings_ = s;
+}
+
+ros::Time BearingSimRos::stamp_of(std::uint64_t sample_index) const {
+  const long double ns = static_cast<long double>(sample_index) * 1.0e9L / sample_rate_hz_;
+  ros::Duration offset;
+  offset.fromNSec(static_cast<std::int64_t>(std::llround(ns)));
+  return ros_start_ + offset;
+}
+
+void BearingSimRos::publish_level(const SampleSource::Sample& sample) {
+  VibrationLevel msg;
+  msg.header.stamp = stamp_of(sample.index);
+  msg.header.frame_id = frame_id_;
+  msg.accel_rms = level_rms_->rms();
+  msg.level_db = vibration_level_db(msg.accel_rms);
+  msg.window_s = static_cast<double>(level_rms_->size()) / sample_rate_hz_;
+  level_pub_.publish(msg);
+}
+
+void BearingSimRos::publish_ball_loads(const SampleSource::Sample& sample) {
+  if (ball_loads_pub_.getNumSubscribers() == 0) return;  // per-ball states cost a few microseconds per ball
+  const BearingModel& model = source_->dynamics().model();
+  BallLoads msg;
+  msg.header.stamp = stamp_of(sample.index);
+  msg.header.frame_id = bearing_frame_id_;
+  fill_ball_loads(model.ball_states(sample.state->displacement, sample.state->cage_angle_rad), model.rows(),
+                  model.balls_per_row(), sample.state->cage_angle_rad, &msg);
+  ball_loads_pub_.publish(msg);
+}
+
+void BearingSimRos::run() {
+  using Clock = RealtimePacer::Clock;
+  apply_pending();  // the initial dynamic_reconfigure settings
+  const Clock::time_point start = Clock::now();
+  // Real time: stamps on the ROS clock, sample 0 at start. Otherwise simulated time itself
+  // is the clock (published on /clock).
+  ros_start_ = real_time_ ? ros::Time::now() : ros::Time(0, 0);
+  const RealtimePacer pacer(sample_rate_hz_, start);
+  while (!stop_ && ros::ok()) {
+    if (pending_flag_.load(std::memory_order_acquire)) apply_pending();
+    const std::uint64_t last_index = assembler_->next_sample() + assembler_->current_target() - 1;
+    // Compute a chunk only once its last sample is due, so inputs received up to then apply.
+    if (real_time_ && !pacer.sleep_until_due(last_index, stop_)) break;
+    bool full = false;
+    while (!full) {
+      // New inputs take effect from the next sample.
+      if (pending_flag_.load(std::memory_order_acquire)) apply_pending();
+      const SampleSource::Sample sample = source_->next();
+      if (sample.diverged) {
+        ROS_ERROR_THROTTLE(1.0, "bearing_sim_node: %s; reset to the static equilibrium",
+                           source_->last_divergence().c_str());
+        diagnostics_->record_divergence(source_->last_divergence());
+      }
+      level_rms_->add(sample.state->acceleration[0]);
+      full = assembler_->add(sample.index, *sample.state);
+      if (level_divider_->due(sample.index)) publish_level(sample);
+      if (ball_loads_divider_->due(sample.index)) publish_ball_loads(sample);
+    }
+    SampleChunk chunk = assembler_->take();
+    const std::uint64_t chunk_size = chunk.size();
+    const ros::Time first_stamp = stamp_of(chunk.first_sample);
+    VibrationChunk msg;
+    fill_vibration_chunk(std::move(chunk), first_stamp, frame_id_, sample_rate_hz_, &msg);
+    vibration_pub_.publish(msg);
+    if (publish_clock_) {
+      rosgraph_msgs::Clock clock;
+      clock.clock = stamp_of(last_index);
+      clock_pub_.publish(clock);
+    }
+    const Clock::time_point now = Clock::now();
+    const double lateness_s = pacer.lateness_s(last_index, now);
+    const double chunk_period_s = static_cast<double>(chunk_size) / sample_rate_hz_;
+    diagnostics_->record_chunk(lateness_s, real_time_ && lateness_s > chunk_period_s, last_index + 1,
+                               static_cast<double>(last_index + 1) / sample_rate_hz_,
+                               std::chrono::duration<double>(now - start).count());
+  }
+}
+
+}  // namespace ros_node
+}  // namespace bearing_sim

@@ -1,0 +1,33 @@
+#include "bearing_sim/ros/sample_divider.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace bearing_sim {
+namespace ros_node {
+
+SampleDivider::SampleDivider(double output_rate_hz, double sample_rate_hz) {
+  set_rate(output_rate_hz, sample_rate_hz);
+  next_due_ = period_ - 1;  // first output after one full period (sample period-1 closes it)
+}
+
+void SampleDivider::set_rate(double output_rate_hz, double sample_rate_hz) {
+  if (!(output_rate_hz > 0.0) || !(sample_rate_hz > 0.0) || !std::isfinite(output_rate_hz))
+    throw std::invalid_argument("rates must be positive numbers of Hz");
+  period_ = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(sample_rate_hz / output_rate_hz)));
+  if (fired_) next_due_ = last_fired_ + period_;
+  else next_due_ = period_ - 1;
+}
+
+bool SampleDivider::due(std::uint64_t sample_index) {
+  if (sample_index < next_due_) return false;
+  last_fired_ = sample_index;
+  fired_ = true;
+  // Stay on the grid of the period (no drift), skipping grid points already passed.
+  while (next_due_ <= sample_index) next_due_ += period_;
+  return true;
+}
+
+}  // namespace ros_node
+}  // namespace bearing_sim
