@@ -1,11 +1,29 @@
+# bearing_tool: the command-line front end (src/tools), built into the devel space so
+# that `rosrun bearing_sim bearing_tool` finds it. One source file per subcommand.
 find_package(CLI11 REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 
 add_executable(bearing_tool
   src/tools/bearing_tool_main.cpp
+  src/tools/tool_common.cpp
+  src/tools/command_static.cpp
+  src/tools/command_frequencies.cpp
+  src/tools/command_simulate.cpp
 )
 target_link_libraries(bearing_tool PRIVATE bearing_sim_core CLI11::CLI11 nlohmann_json::nlohmann_json)
 bearing_sim_optimize(bearing_tool)
 set_target_properties(bearing_tool PROPERTIES
   RUNTIME_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_BIN_DESTINATION})
 install(TARGETS bearing_tool RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+
+if(CATKIN_ENABLE_TESTING)
+  # Runs the built binary and parses its JSON; compares with the core library directly.
+  catkin_add_gtest(test_bearing_tool test/tools/test_bearing_tool.cpp
+    WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR} TIMEOUT 600)
+  target_link_libraries(test_bearing_tool bearing_sim_core nlohmann_json::nlohmann_json)
+  target_compile_definitions(test_bearing_tool PRIVATE
+    BEARING_TOOL_PATH="$<TARGET_FILE:bearing_tool>"
+    BEARING_SIM_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
+  add_dependencies(test_bearing_tool bearing_tool)
+  bearing_sim_optimize(test_bearing_tool)
+endif()

@@ -1,0 +1,187 @@
+// bearing_tool simulate: a fixed-load, fixed-speed run of the dynamic model from the
+// static equilibrium (MODEL.md section 5), with an optional streamed CSV of the samples.
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+
+#include "bearing_sim/core/frequencies.hpp"
+#include "bearing_sim/core/quasi_static.hpp"
+#include "bearing_sim/core/simulation_run.hpp"
+#include "commands.hpp"
+#include "tool_common.hpp"
+
+namespace bearing_sim::tool {
+namespace {
+
+struct SimulateOptions {
+  std::string bearing;
+  std::vector<double> force{0.0, 0.0, 0.0};
+  std::vector<double> moment{0.0, 0.0};
+  double outer_rpm = 0.0;
+  double inner_rpm = 0.0;
+  double duration_s = 1.0;
+  double rate_hz = 10000.0;
+  int substeps = 0;
+  std::string csv;
+  bool json = false;
+};
+
+const char* const kCsvHeader =
+    "time_s,x_m,y_m,z_m,theta_x_rad,theta_y_rad,"
+    "ax_m_s2,ay_m_s2,az_m_s2,alpha_x_rad_s2,alpha_y_rad_s2";
+
+// Streams one line per sample; the file is closed (and checked) by close().
+class CsvWriter {
+ public:
+  explicit CsvWriter(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "w")) {
+    if (!file_) throw InputError("--csv: cannot open '" + path + "' for writing: " + std::strerror(errno));
+    std::fprintf(file_, "%s\n", kCsvHeader);
+  }
+  ~CsvWriter() {
+    if (file_) std::fclose(file_);
+  }
+  CsvWriter(const CsvWriter&) = delete;
+  CsvWriter& operator=(const CsvWriter&) = delete;
+
+  void write(const DynamicSample& s) {
+    std::fprintf(file_, "%.12g", s.time_s);
+    for (int i = 0; i < 5; ++i) std::fprintf(file_, ",%.10e", s.displacement[i]);
+    for (int i = 0; i < 5; ++i) std::fprintf(file_, ",%.10e", s.acceleration[i]);
+    std::fputc('\n', file_);
+  }
+  void close() {
+    const bool failed = std::ferror(file_) != 0;
+    const bool close_failed = std::fclose(file_) != 0;
+    file_ = nullptr;
+    if (failed || close_failed) throw std::runtime_error("--csv: error writing '" + path_ + "'");
+  }
+
+ private:
+  std::string path_;
+  std::FILE* file_;
+};
+
+// The speed of the configured rotating ring; the other ring must be still.
+double rotating_ring_speed_rad_s(const BearingModel& model, const SimulateOptions& o) {
+  const bool outer = model.config().rotating_ring == RotatingRing::Outer;
+  const double fixed_rpm = outer ? o.inner_rpm : o.outer_rpm;
+  if (fixed_rpm != 0.0) {
+    throw InputError(std::string("--") + (outer ? "inner" : "outer") + "-rpm " + general(fixed_rpm, 6) +
+                     ": the bearing file '" + o.bearing + "' has rotating_ring: " + rotating_ring_name(model) +
+                     ", and the dynamic model holds the " + (outer ? "inner" : "outer") +
+                     " ring fixed; give its speed as 0 (bearing_tool frequencies accepts both speeds)");
+  }
+  return rpm_to_rad_s(outer ? o.outer_rpm : o.inner_rpm);
+}
+
+void run(const SimulateOptions& o) {
+  const BearingModel model = load_model(o.bearing);
+  const Vector5 load = make_load(o.force, o.moment);
+  SimulationRequest request;
+  request.load = load;
+  request.ring_speed_rad_s = rotating_ring_speed_rad_s(model, o);
+  request.duration_s = o.duration_s;
+  request.sample_rate_hz = o.rate_hz;
+  request.substeps = o.substeps;
+
+  // The static equilibrium the run starts from (also reported, for comparison with the mean).
+  const StaticSolution equilibrium = solve_static(model, load);
+
+  std::unique_ptr<CsvWriter> csv;
+  if (!o.csv.empty()) csv = std::make_unique<CsvWriter>(o.csv);
+  std::function<void(const DynamicSample&)> on_sample;
+  if (csv) on_sample = [&csv](const DynamicSample& s) { csv->write(s); };
+  const SimulationSummary s = run_simulation(model, request, on_sample);
+  if (csv) csv->close();
+
+  const BearingFrequencies f = bearing_frequencies(model, request.ring_speed_rad_s);
+  if (o.json) {
+    print_json({{"bearing", bearing_json(model, o.bearing)},
+                {"load", to_json(load)},
+                {"ring_speed_rpm", model.config().rotating_ring == RotatingRing::Outer ? o.outer_rpm : o.inner_rpm},
+                {"duration_s", o.duration_s},
+                {"rate_hz", o.rate_hz},
+                {"samples", s.samples},
+                {"substeps", s.substeps},
+                {"internal_step_s", s.internal_step_s},
+                {"window", "second half of the run, mean removed"},
+                {"a_rms_x", s.a_rms_x},
+                {"a_rms_y", s.a_rms_y},
+                {"a_rms_z", s.a_rms_z},
+                {"L_dB", s.level_db},  // -infinity (a perfectly still ring) is written as null
+                {"mean_displacement", to_json(s.mean_displacement)},
+                {"static_displacement", to_json(equilibrium.displacement)},
+                {"varying_compliance_hz", f.varying_compliance_hz},
+                {"realtime_factor", s.realtime_factor},
+                {"csv", o.csv.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.csv)}});
+    return;
+  }
+
+  std::ostream& out = std::cout;
+  const auto& c = model.config();
+  out << "Bearing: " << c.name << " (" << o.bearing << "), rotating ring: " << rotating_ring_name(model) << " at "
+      << general(model.config().rotating_ring == RotatingRing::Outer ? o.outer_rpm : o.inner_rpm, 6) << " rpm\n"
+      << "Load: Fx=" << general(load[0], 6) << " N, Fy=" << general(load[1], 6) << " N, Fz=" << general(load[2], 6)
+      << " N, Mx=" << general(load[3], 6) << " N*m, My=" << general(load[4], 6) << " N*m\n\n";
+  KeyValueList run_info;
+  run_info.add("samples", std::to_string(s.samples) + " at " + general(o.rate_hz, 6) + " Hz (" +
+                              general(o.duration_s, 6) + " s)");
+  run_info.add("integration", std::to_string(s.substeps) + " RK4 steps per sample, step " +
+                                  general(s.internal_step_s * 1e6, 4) + " us");
+  run_info.add("realtime factor", general(s.realtime_factor, 4) + " (simulated s per wall s)");
+  run_info.add("varying compliance", fixed(f.varying_compliance_hz, 3) + " Hz");
+  if (csv) run_info.add("CSV", o.csv);
+  run_info.print(out);
+
+  out << "\nVibration (second half of the run, mean removed)\n";
+  Table v({"quantity", "value", "unit"}, {true, false, true});
+  v.add_row({"a_rms x", scientific(s.a_rms_x, 4), "m/s^2"});
+  v.add_row({"a_rms y", scientific(s.a_rms_y, 4), "m/s^2"});
+  v.add_row({"a_rms z", scientific(s.a_rms_z, 4), "m/s^2"});
+  v.add_row({"L (x, JB/T 5314, a0 = 9.81e-3 m/s^2)", fixed(s.level_db, 2), "dB"});
+  v.print(out);
+
+  out << "\nDisplacement (second half of the run)\n";
+  static const char* const names[5] = {"x", "y", "z", "theta_x", "theta_y"};
+  Table d({"dof", "mean", "static", "unit"}, {true, false, false, true});
+  for (int i = 0; i < 5; ++i)
+    d.add_row({names[i], fixed(s.mean_displacement[i] * 1e6, 4), fixed(equilibrium.displacement[i] * 1e6, 4),
+               i >= 3 ? "urad" : "um"});
+  d.print(out);
+}
+
+}  // namespace
+
+void register_simulate_command(CLI::App& app) {
+  auto o = std::make_shared<SimulateOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "simulate",
+      "Dynamic run from the static equilibrium at a fixed load and ring speed: RMS acceleration, "
+      "vibration level L, mean displacement; optional CSV of every sample");
+  add_bearing_option(cmd, &o->bearing);
+  add_vector_option(cmd, "--force", &o->force, {"FX", "FY", "FZ"},
+                    "Force on the moving ring in the bearing frame, N (z along the axis)");
+  add_vector_option(cmd, "--moment", &o->moment, {"MX", "MY"}, "Moment on the moving ring about x and y, N*m");
+  add_number_option(cmd, "--outer-rpm", &o->outer_rpm,
+                    "Outer ring speed, rpm (must be 0 unless the file has rotating_ring: outer)");
+  add_number_option(cmd, "--inner-rpm", &o->inner_rpm,
+                    "Inner ring speed, rpm (must be 0 unless the file has rotating_ring: inner)");
+  add_number_option(cmd, "--duration", &o->duration_s, "Simulated time, s")->check(CLI::PositiveNumber);
+  add_number_option(cmd, "--rate", &o->rate_hz, "Output sample rate, Hz (not the integration step)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--substeps", o->substeps, "Internal RK4 steps per sample (0: automatic)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--csv", o->csv,
+                  "Write every sample to this CSV file: time, displacements (5) and accelerations (5), "
+                  "header line with units")
+      ->type_name("FILE");
+  add_json_flag(cmd, &o->json);
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace bearing_sim::tool

@@ -1,0 +1,158 @@
+#include "tool_common.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "bearing_sim/core/bearing_config.hpp"
+
+namespace bearing_sim::tool {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+std::string join(const std::vector<std::string>& parts, const std::string& sep) {
+  std::string out;
+  for (const auto& p : parts) out += (out.empty() ? "" : sep) + p;
+  return out;
+}
+
+std::string format(const char* fmt, int digits, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, digits, v);
+  return buf;
+}
+}  // namespace
+
+const CLI::Validator& finite_number() {
+  static const CLI::Validator validator(
+      [](std::string& text) -> std::string {
+        double value = 0.0;
+        std::size_t used = 0;
+        try {
+          value = std::stod(text, &used);
+        } catch (const std::exception&) {
+          return "'" + text + "' is not a number";
+        }
+        if (used != text.size()) return "'" + text + "' is not a number";
+        if (!std::isfinite(value)) return "'" + text + "' is not a finite number";
+        return std::string();
+      },
+      "NUMBER");
+  return validator;
+}
+
+void add_json_flag(CLI::App* command, bool* json) {
+  command->add_flag("--json", *json, "Print machine-readable JSON on stdout instead of tables");
+}
+
+void add_bearing_option(CLI::App* command, std::string* path) {
+  command->add_option("--bearing", *path, "Bearing file (YAML, see MODEL.md section 8)")
+      ->required()
+      ->type_name("FILE");
+}
+
+CLI::Option* add_vector_option(CLI::App* command, const std::string& name, std::vector<double>* values,
+                               const std::vector<std::string>& components, const std::string& description) {
+  const int n = static_cast<int>(components.size());
+  std::string defaults;
+  for (double v : *values) defaults += (defaults.empty() ? "" : ",") + general(v, 6);
+  return command->add_option(name, *values, description + " [default: " + defaults + "]")
+      ->delimiter(',')
+      ->expected(n)
+      ->allow_extra_args(false)
+      ->type_name(join(components, ","))
+      ->check(finite_number());
+}
+
+CLI::Option* add_number_option(CLI::App* command, const std::string& name, double* value,
+                               const std::string& description) {
+  return command->add_option(name, *value, description)->check(finite_number())->capture_default_str();
+}
+
+BearingModel load_model(const std::string& path) { return BearingModel(load_bearing_config(path)); }
+
+Vector5 make_load(const std::vector<double>& force, const std::vector<double>& moment) {
+  if (force.size() != 3) throw InputError("--force: expected 3 values FX,FY,FZ");
+  if (moment.size() != 2) throw InputError("--moment: expected 2 values MX,MY");
+  Vector5 load;
+  load << force[0], force[1], force[2], moment[0], moment[1];
+  return load;
+}
+
+double rpm_to_rad_s(double rpm) { return rpm * 2.0 * kPi / 60.0; }
+double rad_to_deg(double rad) { return rad * 180.0 / kPi; }
+double deg_to_rad(double deg) { return deg * kPi / 180.0; }
+
+const char* rotating_ring_name(const BearingModel& model) {
+  return model.config().rotating_ring == RotatingRing::Outer ? "outer" : "inner";
+}
+
+nlohmann::json to_json(const Vector5& v) {
+  nlohmann::json a = nlohmann::json::array();
+  for (int i = 0; i < 5; ++i) a.push_back(v[i]);
+  return a;
+}
+
+nlohmann::json bearing_json(const BearingModel& model, const std::string& path) {
+  const auto& c = model.config();
+  return {{"file", path},
+          {"name", c.name},
+          {"rows", c.rows},
+          {"balls_per_row", c.balls_per_row},
+          {"contact_angle_deg", rad_to_deg(c.contact_angle_rad)},
+          {"rotating_ring", rotating_ring_name(model)}};
+}
+
+void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << '\n'; }
+
+std::string fixed(double v, int decimals) { return format("%.*f", decimals, v); }
+std::string general(double v, int digits) { return format("%.*g", digits, v); }
+std::string scientific(double v, int digits) { return format("%.*e", digits, v); }
+
+Table::Table(std::vector<std::string> headers, std::vector<bool> left_aligned)
+    : headers_(std::move(headers)), left_(std::move(left_aligned)) {
+  left_.resize(headers_.size(), false);
+}
+
+void Table::add_row(std::vector<std::string> cells) {
+  cells.resize(headers_.size());
+  rows_.push_back(std::move(cells));
+}
+
+void Table::print(std::ostream& out, const std::string& indent) const {
+  std::vector<std::size_t> width(headers_.size());
+  for (std::size_t c = 0; c < headers_.size(); ++c) {
+    width[c] = headers_[c].size();
+    for (const auto& row : rows_) width[c] = std::max(width[c], row[c].size());
+  }
+  auto line = [&](const std::vector<std::string>& cells) {
+    std::string s = indent;
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      const std::string pad(width[c] - cells[c].size(), ' ');
+      if (c > 0) s += "  ";
+      s += left_[c] ? cells[c] + pad : pad + cells[c];
+    }
+    while (!s.empty() && s.back() == ' ') s.pop_back();
+    out << s << '\n';
+  };
+  line(headers_);
+  std::vector<std::string> rule;
+  for (std::size_t w : width) rule.emplace_back(w, '-');
+  line(rule);
+  for (const auto& row : rows_) line(row);
+}
+
+void KeyValueList::add(std::string key, std::string value) { items_.emplace_back(std::move(key), std::move(value)); }
+
+void KeyValueList::print(std::ostream& out, const std::string& indent) const {
+  std::size_t w = 0;
+  for (const auto& kv : items_) w = std::max(w, kv.first.size());
+  for (const auto& kv : items_)
+    out << indent << kv.first << ':' << std::string(w - kv.first.size() + 1, ' ') << kv.second << '\n';
+}
+
+void warn(const std::string& message) { std::cerr << "bearing_tool: warning: " << message << '\n'; }
+
+}  // namespace bearing_sim::tool
