@@ -1,1 +1,18 @@
-# rostests (issue 3 onwards).
+# Tests of bearing_sim_node (issue 3): ROS-free unit tests of its helpers, and rostests
+# that start the node (via launch/ct_gantry.launch) and check its outputs.
+catkin_add_gtest(test_node_helpers test/ros/test_node_helpers.cpp TIMEOUT 300)
+target_link_libraries(test_node_helpers bearing_sim_ros_helpers bearing_sim_core)
+target_compile_definitions(test_node_helpers PRIVATE BEARING_SIM_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
+bearing_sim_optimize(test_node_helpers)
+
+find_package(rostest REQUIRED)
+# One gtest node per rostest; each links the core for its reference values.
+function(bearing_sim_node_rostest name)
+  add_rostest_gtest(${name} test/ros/${ARGN}.test test/ros/${name}.cpp)
+  add_dependencies(${name} ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS} bearing_sim_node)
+  target_include_directories(${name} PRIVATE ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_INCLUDE_DESTINATION})
+  target_link_libraries(${name} bearing_sim_core ${catkin_LIBRARIES})
+  bearing_sim_optimize(${name})
+endfunction()
+bearing_sim_node_rostest(test_node_steady_state node_steady_state)
+bearing_sim_node_rostest(test_node_inputs node_inputs)

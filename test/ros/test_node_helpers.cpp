@@ -1,0 +1,209 @@
+// ROS-free units of bearing_sim_node: pacer, chunk assembler, input validation, the
+// divergence-safe sample source, the sample-rate divider and the timing statistics.
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/quasi_static.hpp"
+#include "bearing_sim/ros/chunk_assembler.hpp"
+#include "bearing_sim/ros/input_validator.hpp"
+#include "bearing_sim/ros/realtime_pacer.hpp"
+#include "bearing_sim/ros/sample_divider.hpp"
+#include "bearing_sim/ros/sample_source.hpp"
+#include "bearing_sim/ros/timing_stats.hpp"
+
+using namespace bearing_sim;
+using namespace bearing_sim::ros_node;
+
+namespace {
+const std::string kCtBearing = std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/ct_gantry_lyc.yaml";
+
+Vector5 ct_load() {
+  Vector5 l;
+  l << 6800.0, 0.0, 0.0, 0.0, 2100.0;
+  return l;
+}
+constexpr double kCtSpeed = 180.0 * 2.0 * M_PI / 60.0;
+
+DynamicSample sample_with(double v) {
+  DynamicSample s;
+  s.acceleration.setConstant(v);
+  s.displacement.setConstant(v);
+  return s;
+}
+}  // namespace
+
+TEST(RealtimePacer, DeadlinesAreAbsoluteFromTheSampleIndex) {
+  const auto start = RealtimePacer::Clock::time_point(std::chrono::seconds(1000));
+  const RealtimePacer pacer(10000.0, start);
+  // 600,000 samples at 10 kHz are exactly 60 s after the start: no accumulated rounding.
+  EXPECT_EQ(pacer.due_time(600000) - start, std::chrono::seconds(60));
+  EXPECT_EQ(pacer.due_time(1) - start, std::chrono::microseconds(100));
+  EXPECT_NEAR(pacer.lateness_s(100, start + std::chrono::milliseconds(12)), 0.002, 1e-12);
+  // A non-integer period (3 kHz) still lands on the exact ns after many samples.
+  const RealtimePacer odd(3000.0, start);
+  EXPECT_EQ(odd.due_time(3000 * 3600) - start, std::chrono::hours(1));
+}
+
+TEST(RealtimePacer, SleepsUntilTheDeadlineAndStopsOnRequest) {
+  const auto start = RealtimePacer::Clock::now();
+  const RealtimePacer pacer(1000.0, start);
+  std::atomic<bool> stop{false};
+  ASSERT_TRUE(pacer.sleep_until_due(30, stop));  // 30 ms
+  const double woke_after_s = std::chrono::duration<double>(RealtimePacer::Clock::now() - start).count();
+  // Never early; late by at most a scheduling delay (20 ms: generous for a loaded 2-core machine).
+  EXPECT_GE(woke_after_s, 0.030);
+  EXPECT_LT(woke_after_s, 0.050);
+  stop = true;
+  const auto t0 = RealtimePacer::Clock::now();
+  EXPECT_FALSE(pacer.sleep_until_due(100000, stop));  // 100 s away, returns at once
+  EXPECT_LT(std::chrono::duration<double>(RealtimePacer::Clock::now() - t0).count(), 0.01);
+}
+
+TEST(ChunkAssembler, ChunksAreContiguousAndSizeChangesApplyToTheNextChunk) {
+  ChunkAssembler a(3);
+  EXPECT_FALSE(a.add(0, sample_with(0)));
+  EXPECT_FALSE(a.add(1, sample_with(1)));
+  a.set_chunk_samples(2);  // the chunk being filled keeps its size 3
+  EXPECT_TRUE(a.add(2, sample_with(2)));
+  SampleChunk c = a.take();
+  EXPECT_EQ(c.first_sample, 0u);
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_FLOAT_EQ(c.accel_x[2], 2.0f);
+  EXPECT_FLOAT_EQ(c.displacement_z[1], 1.0f);
+  EXPECT_FALSE(a.add(3, sample_with(3)));
+  EXPECT_TRUE(a.add(4, sample_with(4)));
+  c = a.take();
+  EXPECT_EQ(c.first_sample, 3u);
+  EXPECT_EQ(c.size(), 2u);
+  // A gap or a repeat is refused, so a published chunk can never hide one.
+  EXPECT_THROW(a.add(6, sample_with(6)), std::logic_error);
+  EXPECT_THROW(a.add(4, sample_with(4)), std::logic_error);
+  EXPECT_EQ(a.next_sample(), 5u);
+}
+
+TEST(InputValidator, RejectsNonFiniteAndOutOfLimitInputs) {
+  InputLimits limits;
+  limits.max_force_N = 1000.0;
+  limits.max_moment_Nm = 100.0;
+  limits.max_speed_rad_s = 10.0;
+  Vector5 ok;
+  ok << 600.0, 0.0, 0.0, 0.0, 50.0;
+  EXPECT_TRUE(check_load(ok, limits, nullptr).accepted);
+  Vector5 bad = ok;
+  bad[1] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(check_load(bad, limits, nullptr).accepted);
+  bad = ok;
+  bad[4] = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(check_load(bad, limits, nullptr).accepted);
+  bad = ok;
+  bad[0] = 800.0;  // |F| = 800 ok; with Fz = 700: |F| = 1063 > 1000
+  bad[2] = 700.0;
+  EXPECT_FALSE(check_load(bad, limits, nullptr).accepted);
+  bad = ok;
+  bad[3] = 80.0;  // |M| = sqrt(80^2 + 50^2) = 94 ok
+  EXPECT_TRUE(check_load(bad, limits, nullptr).accepted);
+  bad[3] = 90.0;  // |M| = 103 > 100
+  EXPECT_FALSE(check_load(bad, limits, nullptr).accepted);
+  EXPECT_TRUE(check_speed(-9.9, limits).accepted);
+  EXPECT_FALSE(check_speed(10.1, limits).accepted);
+  EXPECT_FALSE(check_speed(-std::numeric_limits<double>::infinity(), limits).accepted);
+  EXPECT_FALSE(check_speed(std::numeric_limits<double>::quiet_NaN(), limits).accepted);
+}
+
+TEST(InputValidator, RejectsALoadTheBearingCannotCarry) {
+  // Single-row angular contact bearing: its contacts push the moving (outer) ring towards
+  // +z (c_r sin a0 > 0), so only an external axial force towards -z can be balanced.
+  const BearingModel model(bearing_config_from_string(
+      "balls_per_row: 12\nball_diameter_mm: 8\npitch_diameter_mm: 40\ncontact_angle_deg: 25\n"
+      "inner_groove_curvature: 0.52\nouter_groove_curvature: 0.52\nrotating_mass_kg: 0.2\n"));
+  InputLimits limits;
+  Vector5 carried, not_carried;
+  carried << 0.0, 0.0, -500.0, 0.0, 0.0;
+  not_carried << 0.0, 0.0, 500.0, 0.0, 0.0;
+  const InputCheck good = check_load(carried, limits, &model);
+  EXPECT_TRUE(good.accepted) << good.reason;
+  EXPECT_GT(good.max_contact_pressure_Pa, 0.0);  // the static solution was computed
+  const InputCheck bad = check_load(not_carried, limits, &model);
+  EXPECT_FALSE(bad.accepted);
+  EXPECT_NE(bad.reason.find("not carried"), std::string::npos) << bad.reason;
+}
+
+TEST(SampleSource, NumbersSamplesFromTheInitialEquilibrium) {
+  const BearingModel model(load_bearing_config(kCtBearing));
+  const StaticSolution s = solve_static(model, ct_load());
+  SampleSource source(BearingDynamics(model, ct_load(), kCtSpeed));
+  const SampleSource::Sample first = source.next();
+  EXPECT_EQ(first.index, 0u);
+  EXPECT_DOUBLE_EQ(first.time_s, 0.0);
+  // Sample 0 is the static equilibrium itself (same solver, same load).
+  EXPECT_NEAR((first.state->displacement - s.displacement).norm(), 0.0, 1e-12);
+  for (std::uint64_t i = 1; i < 50; ++i) {
+    const SampleSource::Sample next = source.next();
+    EXPECT_EQ(next.index, i);
+    EXPECT_DOUBLE_EQ(next.time_s, static_cast<double>(i) / 10000.0);
+    EXPECT_FALSE(next.diverged);
+  }
+}
+
+TEST(SampleSource, ADivergingStateIsResetToTheEquilibriumAndNeverNaN) {
+  // One RK4 step per 2 kHz sample puts omega_max * h near 5 for the CT bearing, beyond
+  // RK4's stability limit (2.8): the state must run away.
+  const BearingModel model(load_bearing_config(kCtBearing));
+  const StaticSolution s = solve_static(model, ct_load());
+  SampleSource source(BearingDynamics(model, ct_load(), kCtSpeed, DynamicsOptions{2000.0, 1}));
+  std::uint64_t diverged = 0;
+  for (std::uint64_t i = 0; i < 4000; ++i) {
+    const SampleSource::Sample smp = source.next();
+    ASSERT_EQ(smp.index, i);
+    ASSERT_TRUE(smp.state->displacement.allFinite() && smp.state->acceleration.allFinite());
+    if (smp.diverged) {
+      ++diverged;
+      // The reset state is the static equilibrium of the load at the current cage angle, at
+      // rest (1e-9: the Newton solver converges to ~1e-12; the angle matters at 3e-6).
+      const StaticSolution here = solve_static(model, ct_load(), smp.state->cage_angle_rad);
+      EXPECT_NEAR((smp.state->displacement - here.displacement).norm(), 0.0, 1e-9 * s.displacement.norm());
+      EXPECT_EQ(smp.state->velocity.norm(), 0.0);
+    }
+  }
+  EXPECT_GT(diverged, 0u);
+  EXPECT_EQ(source.divergence_count(), diverged);
+  EXPECT_FALSE(source.last_divergence().empty());
+}
+
+TEST(SampleDivider, FiresOncePerPeriodOnTheSampleGrid) {
+  SampleDivider d(10.0, 10000.0);  // every 1000 samples
+  int fired = 0;
+  std::uint64_t first = 0;
+  for (std::uint64_t i = 0; i < 10000; ++i)
+    if (d.due(i)) {
+      if (fired++ == 0) first = i;
+    }
+  EXPECT_EQ(fired, 10);
+  EXPECT_EQ(first, 999u);
+  d.set_rate(30.0, 10000.0);  // 333 samples
+  EXPECT_EQ(d.period_samples(), 333u);
+  fired = 0;
+  for (std::uint64_t i = 10000; i < 20000; ++i) fired += d.due(i);
+  EXPECT_EQ(fired, 30);  // 10000 / 333 = 30.03
+}
+
+TEST(TimingStats, PercentilesOfTheRecentValues) {
+  TimingStats t(100);
+  for (int i = 1; i <= 300; ++i) t.add(i);  // only 201..300 kept
+  EXPECT_EQ(t.size(), 100u);
+  EXPECT_DOUBLE_EQ(t.percentile(0.5), 250.0);
+  EXPECT_DOUBLE_EQ(t.percentile(0.99), 299.0);
+  EXPECT_DOUBLE_EQ(t.max(), 300.0);
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

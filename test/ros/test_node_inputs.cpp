@@ -1,0 +1,200 @@
+// bearing_sim_node's inputs: a 2x load step, a speed change and a speed ramp from rest,
+// bad inputs, and dynamic_reconfigure, each checked against the core library.
+#include <cmath>
+#include <limits>
+
+#include <dynamic_reconfigure/Reconfigure.h>
+
+#include "bearing_sim/core/frequencies.hpp"
+#include "bearing_sim/core/quasi_static.hpp"
+#include "node_test_support.hpp"
+
+using namespace node_test;
+
+namespace {
+constexpr double kRate = 10000.0;
+
+struct Inputs {
+  ros::Publisher load, speed;
+};
+Inputs& inputs() {
+  static ros::NodeHandle nh;
+  static Inputs in{nh.advertise<geometry_msgs::WrenchStamped>("load", 10, true),
+                   nh.advertise<std_msgs::Float64>("speed", 10, true)};
+  return in;
+}
+
+// Publishes and returns the index of a sample the node had certainly not computed yet
+// when the message left (the latest received plus the 10 ms real-time lead of a chunk,
+// with margin): the input applies from a sample at or before that index + 0.1 s.
+std::uint64_t send_load(const Vector5& l) {
+  const std::uint64_t before = recorder().next_index();
+  inputs().load.publish(wrench(l));
+  return before;
+}
+std::uint64_t send_speed(double w) {
+  const std::uint64_t before = recorder().next_index();
+  inputs().speed.publish(speed(w));
+  return before;
+}
+
+void expect_mean_at_static(const Vector5& load, std::uint64_t from, std::uint64_t to, const std::string& what,
+                           const bearing_sim::BearingModel& model) {
+  const bearing_sim::StaticSolution s = bearing_sim::solve_static(model, load);
+  const double scale = s.displacement.head<3>().norm();
+  // 0.5 %: see test_node_steady_state (vibration < 1e-10 m, damped transients gone in ~10 ms).
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(recorder().mean_displacement(c, from, to), s.displacement[c], 0.005 * scale)
+        << what << ", axis " << c;
+}
+
+bool reconfigure(const std::string& name, double value, bool is_int = false) {
+  dynamic_reconfigure::Reconfigure srv;
+  if (is_int) {
+    dynamic_reconfigure::IntParameter p;
+    p.name = name;
+    p.value = static_cast<int>(value);
+    srv.request.config.ints.push_back(p);
+  } else {
+    dynamic_reconfigure::DoubleParameter p;
+    p.name = name;
+    p.value = value;
+    srv.request.config.doubles.push_back(p);
+  }
+  return ros::service::call("bearing_sim_node/set_parameters", srv);
+}
+}  // namespace
+
+class NodeInputs : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    inputs();
+    ASSERT_TRUE(recorder().wait_for_sample(0, 20.0)) << "no vibration samples";
+  }
+  void TearDown() override {
+    // Whatever happened, the stream stayed whole and finite.
+    EXPECT_EQ(recorder().gaps(), 0u);
+    EXPECT_EQ(recorder().repeats(), 0u);
+    EXPECT_EQ(recorder().non_finite(), 0u);
+  }
+  // Waits for `seconds` of simulated time after sample `from`.
+  void settle(std::uint64_t from, double seconds) {
+    ASSERT_TRUE(recorder().wait_for_sample(from + static_cast<std::uint64_t>(seconds * kRate), 10.0 + 2 * seconds));
+  }
+};
+
+TEST_F(NodeInputs, LoadStepOf2xReachesTheNewEquilibrium) {
+  const bearing_sim::BearingModel model = ct_model();
+  const Vector5 doubled = 2.0 * ct_load();
+  const std::uint64_t sent = send_load(doubled);
+  settle(sent, 1.0);
+  // The old and new equilibria differ by about 45 %: far beyond the 0.5 % tolerance.
+  expect_mean_at_static(doubled, sent + 5000, sent + 10000, "after the 2x load step", model);
+  // No blow-up on the way: every sample within 2x the largest static displacement.
+  const double x_new = bearing_sim::solve_static(model, doubled).displacement[0];
+  EXPECT_LT(recorder().max_abs_deviation(0, 0.0, sent, sent + 10000), 2.0 * x_new);
+  send_load(ct_load());
+}
+
+TEST_F(NodeInputs, SpeedChangeMovesTheVaryingCompliancePeak) {
+  const bearing_sim::BearingModel model = ct_model();
+  const double old_speed = kCtSpeed, new_speed = 120.0 * 2.0 * M_PI / 60.0;  // 180 -> 120 rpm
+  const double f_old = bearing_sim::bearing_frequencies(model, old_speed).varying_compliance_hz;  // 313 Hz
+  const double f_new = bearing_sim::bearing_frequencies(model, new_speed).varying_compliance_hz;  // 209 Hz
+  send_speed(old_speed);
+  const std::uint64_t start = recorder().next_index();
+  settle(start, 0.7);
+  const std::uint64_t sent = send_speed(new_speed);
+  settle(sent, 0.9);
+  // 0.5 s windows, before the change and 0.3 s after it (the change applies within 0.1 s).
+  const auto before = recorder().accel_x(sent - 5000, sent);
+  const auto after = recorder().accel_x(sent + 3000, sent + 8000);
+  // Offline the line at the ball-pass frequency stands 1e3..1e4 above the other one and
+  // above the spectral floor; 100x is a clear peak with margin.
+  EXPECT_GT(spectral_amplitude(before, f_old, kRate), 100.0 * spectral_amplitude(before, f_new, kRate));
+  EXPECT_GT(spectral_amplitude(after, f_new, kRate), 100.0 * spectral_amplitude(after, f_old, kRate));
+  EXPECT_GT(spectral_amplitude(after, f_new, kRate), 100.0 * spectral_amplitude(after, 0.5 * (f_old + f_new), kRate));
+  send_speed(kCtSpeed);
+}
+
+TEST_F(NodeInputs, SpeedRampFromRestTo180RpmStaysAtTheEquilibrium) {
+  const bearing_sim::BearingModel model = ct_model();
+  send_speed(0.0);
+  settle(recorder().next_index(), 0.3);
+  const std::uint64_t ramp_start = recorder().next_index();
+  // 0 -> 180 rpm in 1 s of 50 Hz steps.
+  for (int i = 0; i <= 50; ++i) {
+    inputs().speed.publish(speed(kCtSpeed * i / 50.0));
+    ros::WallDuration(0.02).sleep();
+  }
+  settle(recorder().next_index(), 0.5);
+  const std::uint64_t end = recorder().next_index();
+  const double x_static = bearing_sim::solve_static(model, ct_load()).displacement[0];
+  // Offline the ramp moves x by 1e-11 m (ball passing); 1 % of x (66 nm) means "no blow-up".
+  EXPECT_LT(recorder().max_abs_deviation(0, x_static, ramp_start, end), 0.01 * x_static);
+  diagnostic_msgs::DiagnosticStatus model_status;
+  ASSERT_TRUE(recorder().diagnostic("Model", &model_status));
+  EXPECT_EQ(Recorder::value(model_status, "divergences"), "0");
+  EXPECT_LT(recorder().worst_level("Model"), diagnostic_msgs::DiagnosticStatus::ERROR);
+  // The speed reached is in the diagnostics.
+  diagnostic_msgs::DiagnosticStatus in;
+  // Two diagnostics messages, so one was composed after the last speed message.
+  ASSERT_TRUE(recorder().wait_for_new_diagnostics(2, 5.0));
+  ASSERT_TRUE(recorder().diagnostic("Inputs", &in));
+  EXPECT_NEAR(std::stod(Recorder::value(in, "ring speed (rad/s)")), kCtSpeed, 1e-3);
+}
+
+TEST_F(NodeInputs, BadInputsAreRejectedAndTheNodeKeepsItsLastGoodInputs) {
+  const bearing_sim::BearingModel model = ct_model();
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  diagnostic_msgs::DiagnosticStatus in;
+  ASSERT_TRUE(recorder().wait_for_new_diagnostics(1, 5.0));
+  ASSERT_TRUE(recorder().diagnostic("Inputs", &in));
+  const int rejected_before = std::stoi(Recorder::value(in, "rejected inputs"));
+  Vector5 bad = ct_load();
+  bad[0] = nan;
+  send_load(bad);
+  bad = ct_load();
+  bad[4] = inf;
+  send_load(bad);
+  bad = ct_load();
+  bad[2] = 2.0e5;  // max_force_N = 1e5 in ct_gantry.launch
+  send_load(bad);
+  bad = ct_load();
+  bad[3] = 6.0e4;  // max_moment_Nm = 5e4
+  send_load(bad);
+  const std::uint64_t sent = send_speed(inf);
+  ros::WallDuration(0.05).sleep();
+  inputs().speed.publish(speed(200.0));  // max_speed_rad_s = 100
+  settle(sent, 1.0);
+  // Still publishing, at the equilibrium of the last good load.
+  expect_mean_at_static(ct_load(), sent, sent + 10000, "after bad inputs", model);
+  ASSERT_TRUE(recorder().wait_for_new_diagnostics(2, 5.0));  // composed after the inputs
+  ASSERT_TRUE(recorder().diagnostic("Inputs", &in));
+  EXPECT_EQ(std::stoi(Recorder::value(in, "rejected inputs")) - rejected_before, 6);
+  EXPECT_EQ(in.level, diagnostic_msgs::DiagnosticStatus::WARN);
+  EXPECT_NEAR(std::stod(Recorder::value(in, "ring speed (rad/s)")), kCtSpeed, 1e-3);
+}
+
+TEST_F(NodeInputs, ReconfigureClearanceAndChunkSizeLive) {
+  bearing_sim::BearingModel model = ct_model();
+  auto config = model.config();
+  config.clearance_m = 20e-6;
+  const bearing_sim::BearingModel loose(config);
+  ASSERT_TRUE(reconfigure("clearance_um", 20.0));
+  ASSERT_TRUE(reconfigure("chunk_samples", 50, true));
+  const std::uint64_t sent = recorder().next_index();
+  settle(sent, 1.0);
+  // 20 um clearance moves the equilibrium by about 20 um, so the 0.5 % check tells them apart.
+  expect_mean_at_static(ct_load(), sent + 5000, sent + 10000, "clearance 20 um", loose);
+  const auto chunks = recorder().chunks();
+  ASSERT_GT(chunks.size(), 10u);
+  EXPECT_EQ(chunks.back().size, 50u);
+  EXPECT_EQ(chunks[chunks.size() - 2].size, 50u);
+  ASSERT_TRUE(reconfigure("clearance_um", 0.0));
+  ASSERT_TRUE(reconfigure("chunk_samples", 100, true));
+  settle(recorder().next_index(), 0.5);
+  EXPECT_EQ(recorder().chunks().back().size, 100u);
+}
+
+NODE_TEST_MAIN("test_node_inputs")
