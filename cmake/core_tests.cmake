@@ -1,5 +1,7 @@
 # gtest suites of the ROS-free core. Each links only the core library.
 file(GLOB BEARING_SIM_CORE_TESTS ${CMAKE_CURRENT_SOURCE_DIR}/test/core/test_*.cpp)
+# test_support.cpp is the shared fixture, linked into every suite, not a suite itself.
+list(FILTER BEARING_SIM_CORE_TESTS EXCLUDE REGEX "/test_support\\.cpp$")
 foreach(test_source ${BEARING_SIM_CORE_TESTS})
   get_filename_component(test_name ${test_source} NAME_WE)
   catkin_add_gtest(${test_name} ${test_source} test/core/test_support.cpp

@@ -60,6 +60,9 @@ TEST(ContactAngle, UnloadedAngleIsNominal) {
   // With a vanishing load the loaded angle tends to a0 (here 35 deg, the CT bearing).
   const BearingModel model(ct_bearing());
   const StaticSolution s = solve_static(model, load5(0, 0, 1e-3, 0, 0));
-  for (const BallState& b : s.balls)
-    if (b.load_N > 0) EXPECT_NEAR(b.contact_angle_rad, 35.0 * kPi / 180.0, 1e-4);
+  for (const BallState& b : s.balls) {
+    if (b.load_N > 0) {
+      EXPECT_NEAR(b.contact_angle_rad, 35.0 * kPi / 180.0, 1e-4);
+    }
+  }
 }

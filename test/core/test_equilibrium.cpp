@@ -50,8 +50,11 @@ void check_residual(const BearingModel& model, const Vector5& load) {
     force += fq;
     moment += po.cross(fq);
     // Q = Kn delta^1.5 ball by ball.
-    if (b.deflection_m > 0) EXPECT_NEAR(b.load_N, model.contact_stiffness() * std::pow(b.deflection_m, 1.5), 1e-9 * b.load_N);
-    else EXPECT_EQ(b.load_N, 0.0);
+    if (b.deflection_m > 0) {
+      EXPECT_NEAR(b.load_N, model.contact_stiffness() * std::pow(b.deflection_m, 1.5), 1e-9 * b.load_N);
+    } else {
+      EXPECT_EQ(b.load_N, 0.0);
+    }
   }
   const double ftol = 1e-9 * scaled_norm(model, load) + 1e-9;
   EXPECT_NEAR(force.x(), -load[0], ftol);

@@ -1,0 +1,194 @@
+// Bearing file validation (MODEL.md section 8): every kind of bad file is a ConfigError
+// naming the source and the key; the shipped files load.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/errors.hpp"
+#include "test_support.hpp"
+
+using namespace bearing_sim;
+using namespace bearing_sim::test;
+
+namespace {
+const char* kSource = "unit_test_bearing.yaml";
+
+// A valid single-row file as (key, value) lines; overrides replace or add, "" removes.
+std::string yaml(const std::map<std::string, std::string>& overrides = {}) {
+  std::vector<std::pair<std::string, std::string>> lines = {
+      {"name", "test bearing"},          {"balls_per_row", "9"},
+      {"ball_diameter_mm", "7.94"},      {"pitch_diameter_mm", "39.04"},
+      {"inner_groove_curvature", "0.52"}, {"outer_groove_curvature", "0.52"},
+      {"contact_angle_deg", "15"},        {"rotating_mass_kg", "0.5"},
+      {"material", "{youngs_modulus_GPa: 208, poisson_ratio: 0.3}"},
+      {"damping", "{contact_damping_Ns_per_m: 10}"}};
+  std::string out;
+  std::map<std::string, std::string> rest = overrides;
+  for (auto& [k, v] : lines) {
+    auto it = rest.find(k);
+    if (it != rest.end()) {
+      if (!it->second.empty()) out += k + ": " + it->second + "\n";
+      rest.erase(it);
+    } else {
+      out += k + ": " + v + "\n";
+    }
+  }
+  for (auto& [k, v] : rest)
+    if (!v.empty()) out += k + ": " + v + "\n";
+  return out;
+}
+
+// Expects a ConfigError whose message names the source and every one of `words`.
+void expect_error(const std::string& text, const std::vector<std::string>& words) {
+  SCOPED_TRACE(text);
+  try {
+    bearing_config_from_string(text, kSource);
+    ADD_FAILURE() << "no ConfigError";
+  } catch (const ConfigError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(kSource), std::string::npos) << msg;
+    for (const auto& w : words) EXPECT_NE(msg.find(w), std::string::npos) << "'" << w << "' not in: " << msg;
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "wrong exception type: " << e.what();
+  }
+}
+}  // namespace
+
+TEST(ConfigErrors, BaseFileIsValid) {
+  const BearingConfig c = bearing_config_from_string(yaml(), kSource);
+  EXPECT_EQ(c.balls_per_row, 9);
+  EXPECT_NEAR(c.ball_diameter_m, 7.94e-3, 1e-15);
+  EXPECT_NEAR(c.contact_angle_rad, 15.0 * kPi / 180.0, 1e-15);
+  EXPECT_NEAR(c.material.youngs_modulus_Pa, 208e9, 1.0);
+  EXPECT_EQ(c.rows, 1);  // default
+  EXPECT_EQ(c.clearance_m, 0.0);
+}
+
+TEST(ConfigErrors, MissingRequiredKey) {
+  for (const char* k : {"balls_per_row", "ball_diameter_mm", "pitch_diameter_mm", "inner_groove_curvature",
+                        "outer_groove_curvature"})
+    expect_error(yaml({{k, ""}}), {k});
+  // Two rows need a row spacing.
+  expect_error(yaml({{"rows", "2"}}), {"row_spacing_mm"});
+}
+
+TEST(ConfigErrors, UnknownKey) {
+  expect_error(yaml({{"ball_diameter", "7.94"}}), {"ball_diameter"});
+  expect_error(yaml({{"material", "{youngs_modulus: 208}"}}), {"material", "youngs_modulus"});
+  expect_error(yaml({{"damping", "{contact_damping: 10}"}}), {"damping", "contact_damping"});
+}
+
+TEST(ConfigErrors, WrongType) {
+  expect_error(yaml({{"ball_diameter_mm", "seven"}}), {"ball_diameter_mm"});
+  expect_error(yaml({{"balls_per_row", "9.5"}}), {"balls_per_row"});
+  expect_error(yaml({{"rows", "two"}}), {"rows"});
+  expect_error(yaml({{"pitch_diameter_mm", "[39.04]"}}), {"pitch_diameter_mm"});
+  expect_error(yaml({{"material", "208"}}), {"material"});
+  expect_error(yaml({{"material", "{poisson_ratio: abc}"}}), {"poisson_ratio"});
+  expect_error(yaml({{"damping", "{contact_damping_Ns_per_m: lots}"}}), {"contact_damping_Ns_per_m"});
+  expect_error(yaml({{"rotating_ring", "both"}}), {"rotating_ring"});
+  expect_error(yaml({{"arrangement", "tandem"}}), {"arrangement"});
+}
+
+TEST(ConfigErrors, OutOfRange) {
+  expect_error(yaml({{"ball_diameter_mm", "0"}}), {"ball_diameter_mm"});
+  expect_error(yaml({{"ball_diameter_mm", "-7.94"}}), {"ball_diameter_mm"});
+  expect_error(yaml({{"pitch_diameter_mm", "0"}}), {"pitch_diameter_mm"});
+  expect_error(yaml({{"pitch_diameter_mm", "-39"}}), {"pitch_diameter_mm"});
+  expect_error(yaml({{"balls_per_row", "0"}}), {"balls_per_row"});
+  expect_error(yaml({{"balls_per_row", "-9"}}), {"balls_per_row"});
+  expect_error(yaml({{"inner_groove_curvature", "0.5"}}), {"inner_groove_curvature"});
+  expect_error(yaml({{"inner_groove_curvature", "0.45"}}), {"inner_groove_curvature"});
+  expect_error(yaml({{"outer_groove_curvature", "0.5"}}), {"outer_groove_curvature"});
+  expect_error(yaml({{"outer_groove_curvature", "-1"}}), {"outer_groove_curvature"});
+  expect_error(yaml({{"contact_angle_deg", "-1"}}), {"contact_angle_deg"});
+  expect_error(yaml({{"contact_angle_deg", "60"}}), {"contact_angle_deg"});
+  expect_error(yaml({{"contact_angle_deg", "75"}}), {"contact_angle_deg"});
+  expect_error(yaml({{"rows", "3"}}), {"rows"});
+  expect_error(yaml({{"rows", "0"}}), {"rows"});
+  expect_error(yaml({{"rows", "2"}, {"row_spacing_mm", "0"}}), {"row_spacing_mm"});
+  expect_error(yaml({{"rows", "2"}, {"row_spacing_mm", "-5"}}), {"row_spacing_mm"});
+  expect_error(yaml({{"material", "{poisson_ratio: 0.5}"}}), {"poisson_ratio"});
+  expect_error(yaml({{"material", "{poisson_ratio: -0.1}"}}), {"poisson_ratio"});
+  expect_error(yaml({{"material", "{youngs_modulus_GPa: 0}"}}), {"youngs_modulus_GPa"});
+  expect_error(yaml({{"material", "{density_kg_m3: -1}"}}), {"density_kg_m3"});
+  expect_error(yaml({{"damping", "{contact_damping_Ns_per_m: -1}"}}), {"contact_damping_Ns_per_m"});
+  expect_error(yaml({{"rotating_mass_kg", "0"}}), {"rotating_mass_kg"});
+  expect_error(yaml({{"rotating_mass_kg", "-1"}}), {"rotating_mass_kg"});
+  expect_error(yaml({{"tilt_inertia_kg_m2", "-1"}}), {"tilt_inertia_kg_m2"});
+  // Balls that do not fit on the pitch circle: 40 x 7.94 mm > pi x 39.04 mm.
+  expect_error(yaml({{"balls_per_row", "40"}}), {"balls_per_row"});
+  // Limits are open/closed as documented: 0 deg and just under 60 deg are accepted.
+  EXPECT_NO_THROW(bearing_config_from_string(yaml({{"contact_angle_deg", "0"}}), kSource));
+  EXPECT_NO_THROW(bearing_config_from_string(yaml({{"contact_angle_deg", "59.9"}}), kSource));
+  EXPECT_NO_THROW(bearing_config_from_string(yaml({{"inner_groove_curvature", "0.5001"}}), kSource));
+}
+
+TEST(ConfigErrors, NonFinite) {
+  for (const char* v : {".nan", ".NaN", ".inf", "-.inf"}) {
+    expect_error(yaml({{"ball_diameter_mm", v}}), {"ball_diameter_mm"});
+    expect_error(yaml({{"clearance_um", v}}), {"clearance_um"});
+    expect_error(yaml({{"material", std::string("{youngs_modulus_GPa: ") + v + "}"}}), {"youngs_modulus_GPa"});
+    expect_error(yaml({{"damping", std::string("{contact_damping_Ns_per_m: ") + v + "}"}}),
+                 {"contact_damping_Ns_per_m"});
+  }
+}
+
+TEST(ConfigErrors, MalformedYamlAndMissingFile) {
+  expect_error("balls_per_row: [9\nball_diameter_mm: 7.94\n", {});
+  expect_error("balls_per_row: 9\n  ball_diameter_mm: : 7.94\n", {});
+  expect_error("- just\n- a list\n", {});
+  expect_error("", {});
+  const std::string missing = std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/no_such_bearing.yaml";
+  try {
+    load_bearing_config(missing);
+    ADD_FAILURE() << "no ConfigError for a missing file";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("no_such_bearing.yaml"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ConfigErrors, ErrorFromAFileNamesTheFile) {
+  const std::string path = ::testing::TempDir() + "bad_bearing_test.yaml";
+  {
+    FILE* f = std::fopen(path.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    const std::string text = yaml({{"ball_diameter_mm", "-1"}});
+    std::fwrite(text.data(), 1, text.size(), f);
+    std::fclose(f);
+  }
+  try {
+    load_bearing_config(path);
+    ADD_FAILURE() << "no ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("ball_diameter_mm"), std::string::npos) << e.what();
+  }
+  std::remove(path.c_str());
+}
+
+TEST(ConfigErrors, ShippedFilesLoad) {
+  const BearingConfig ct = load_bearing_config(bearing_file("ct_gantry_lyc.yaml"));
+  EXPECT_EQ(ct.rows, 2);
+  EXPECT_EQ(ct.balls_per_row, 207);
+  EXPECT_NEAR(ct.ball_diameter_m, 12e-3, 1e-15);
+  EXPECT_NEAR(ct.pitch_diameter_m, 1.111, 1e-12);
+  EXPECT_NEAR(ct.row_spacing_m, 0.040, 1e-15);
+  EXPECT_NEAR(ct.contact_angle_rad, 35.0 * kPi / 180.0, 1e-15);
+  EXPECT_NEAR(ct.rotating_mass_kg, 46.3, 1e-12);
+  EXPECT_NEAR(ct.tilt_inertia_kg_m2, 7.9, 1e-12);
+  EXPECT_EQ(ct.rotating_ring, RotatingRing::Outer);
+  EXPECT_EQ(ct.arrangement, Arrangement::BackToBack);
+  const BearingConfig ins = load_bearing_config(bearing_file("ins_618_22_db.yaml"));
+  EXPECT_EQ(ins.rows, 2);
+  EXPECT_EQ(ins.balls_per_row, 10);
+  EXPECT_NEAR(ins.inner_groove_curvature, 0.528, 1e-15);
+  // Tilt inertia not given: derived from the envelope, m (3 (Ro^2 + Ri^2) + w^2) / 12 over
+  // the outer ring's side of the pitch circle (Ro = 17 mm, Ri = 14 mm, w = 14 mm).
+  EXPECT_FALSE(ins.tilt_inertia_given);
+  EXPECT_NEAR(ins.tilt_inertia_kg_m2, 0.1 * (3.0 * (0.017 * 0.017 + 0.014 * 0.014) + 0.014 * 0.014) / 12.0, 1e-12);
+}
