@@ -51,6 +51,11 @@ void NodeDiagnostics::set_model_state(const ModelState& state) {
   model_ = state;
 }
 
+void NodeDiagnostics::set_scheduling(const std::string& description) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  scheduling_ = description;
+}
+
 void NodeDiagnostics::update() { updater_.force_update(); }
 
 bool NodeDiagnostics::within_hold(Clock::time_point t, bool ever) const {
@@ -60,6 +65,7 @@ bool NodeDiagnostics::within_hold(Clock::time_point t, bool ever) const {
 void NodeDiagnostics::realtime_task(diagnostic_updater::DiagnosticStatusWrapper& status) {
   std::lock_guard<std::mutex> lock(mutex_);
   status.add("mode", settings_.real_time ? "real time" : "as fast as possible");
+  status.add("simulation thread scheduling", scheduling_);
   status.add("samples published", samples_published_);
   status.addf("simulated time (s)", "%.4f", simulated_s_);
   status.addf("real-time factor", "%.3f", wall_elapsed_s_ > 0.0 ? simulated_s_ / wall_elapsed_s_ : 0.0);

@@ -61,6 +61,7 @@ class BearingSimRos {
 
   // Sim thread only.
   void run();
+  void set_thread_scheduling();
   void apply_pending();
   void apply_settings(const OutputSettings& settings);
   void publish_level(const SampleSource::Sample& sample);
@@ -72,6 +73,7 @@ class BearingSimRos {
   double sample_rate_hz_ = 10000.0;
   bool real_time_ = true;
   bool publish_clock_ = false;
+  int realtime_priority_ = 0;  // SCHED_FIFO priority of the sim thread in real time; 0: normal
   std::string frame_id_, bearing_frame_id_;
   InputLimits limits_;
 

@@ -44,6 +44,7 @@ class NodeDiagnostics {
   void record_rejected_input(const std::string& reason);
   void record_divergence(const std::string& message);
   void set_model_state(const ModelState& state);
+  void set_scheduling(const std::string& description);
   void update();  // publish now
 
  private:
@@ -68,6 +69,7 @@ class NodeDiagnostics {
   std::string last_divergence_;
   Clock::time_point last_divergence_time_;
   ModelState model_;
+  std::string scheduling_;
 };
 
 }  // namespace ros_node
