@@ -34,6 +34,13 @@ int main(int argc, char** argv) {
       "Run 'bearing_tool <command> --help' for the options of a command.",
       "bearing_tool"};
   app.require_subcommand(1);
+  // Parse errors (missing or malformed options) in the same style as the other errors.
+  app.failure_message([](const CLI::App* failed, const CLI::Error& e) {
+    std::string where = "bearing_tool";
+    for (const CLI::App* sub : failed->get_subcommands()) where += " " + sub->get_name();
+    return "bearing_tool: invalid input: " + std::string(e.what()) + "\nRun '" + where +
+           " --help' for the options.\n";
+  });
   for (Register r : kCommands) r(app);
 
   try {

@@ -57,8 +57,8 @@ void register_frequencies_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "frequencies", "Cage, ball-pass (outer and inner race), ball-spin and varying-compliance frequencies");
   add_bearing_option(cmd, &o->bearing);
-  add_number_option(cmd, "--outer-rpm", &o->outer_rpm, "Outer ring speed, rpm (signed)");
-  add_number_option(cmd, "--inner-rpm", &o->inner_rpm, "Inner ring speed, rpm (signed)");
+  add_number_option(cmd, "--outer-rpm", &o->outer_rpm, "RPM", "Outer ring speed, rpm (signed)");
+  add_number_option(cmd, "--inner-rpm", &o->inner_rpm, "RPM", "Inner ring speed, rpm (signed)");
   add_json_flag(cmd, &o->json);
   cmd->callback([o] { run(*o); });
 }

@@ -166,14 +166,15 @@ void register_simulate_command(CLI::App& app) {
   add_vector_option(cmd, "--force", &o->force, {"FX", "FY", "FZ"},
                     "Force on the moving ring in the bearing frame, N (z along the axis)");
   add_vector_option(cmd, "--moment", &o->moment, {"MX", "MY"}, "Moment on the moving ring about x and y, N*m");
-  add_number_option(cmd, "--outer-rpm", &o->outer_rpm,
+  add_number_option(cmd, "--outer-rpm", &o->outer_rpm, "RPM",
                     "Outer ring speed, rpm (must be 0 unless the file has rotating_ring: outer)");
-  add_number_option(cmd, "--inner-rpm", &o->inner_rpm,
+  add_number_option(cmd, "--inner-rpm", &o->inner_rpm, "RPM",
                     "Inner ring speed, rpm (must be 0 unless the file has rotating_ring: inner)");
-  add_number_option(cmd, "--duration", &o->duration_s, "Simulated time, s")->check(CLI::PositiveNumber);
-  add_number_option(cmd, "--rate", &o->rate_hz, "Output sample rate, Hz (not the integration step)")
+  add_number_option(cmd, "--duration", &o->duration_s, "S", "Simulated time, s")->check(CLI::PositiveNumber);
+  add_number_option(cmd, "--rate", &o->rate_hz, "HZ", "Output sample rate, Hz (not the integration step)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--substeps", o->substeps, "Internal RK4 steps per sample (0: automatic)")
+      ->type_name("N")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--csv", o->csv,

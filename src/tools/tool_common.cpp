@@ -39,7 +39,7 @@ const CLI::Validator& finite_number() {
         if (!std::isfinite(value)) return "'" + text + "' is not a finite number";
         return std::string();
       },
-      "NUMBER");
+      "");
   return validator;
 }
 
@@ -58,7 +58,9 @@ CLI::Option* add_vector_option(CLI::App* command, const std::string& name, std::
   const int n = static_cast<int>(components.size());
   std::string defaults;
   for (double v : *values) defaults += (defaults.empty() ? "" : ",") + general(v, 6);
-  return command->add_option(name, *values, description + " [default: " + defaults + "]")
+  return command
+      ->add_option(name, *values,
+                   description + "; " + std::to_string(n) + " comma-separated numbers [default: " + defaults + "]")
       ->delimiter(',')
       ->expected(n)
       ->allow_extra_args(false)
@@ -67,8 +69,11 @@ CLI::Option* add_vector_option(CLI::App* command, const std::string& name, std::
 }
 
 CLI::Option* add_number_option(CLI::App* command, const std::string& name, double* value,
-                               const std::string& description) {
-  return command->add_option(name, *value, description)->check(finite_number())->capture_default_str();
+                               const std::string& type_name, const std::string& description) {
+  return command->add_option(name, *value, description)
+      ->type_name(type_name)
+      ->check(finite_number())
+      ->capture_default_str();
 }
 
 BearingModel load_model(const std::string& path) { return BearingModel(load_bearing_config(path)); }
@@ -107,7 +112,12 @@ nlohmann::json bearing_json(const BearingModel& model, const std::string& path) 
 
 void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << '\n'; }
 
-std::string fixed(double v, int decimals) { return format("%.*f", decimals, v); }
+std::string fixed(double v, int decimals) {
+  std::string s = format("%.*f", decimals, v);
+  // "-0.0000": a value that rounds to zero is shown without a sign.
+  if (s[0] == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
+  return s;
+}
 std::string general(double v, int digits) { return format("%.*g", digits, v); }
 std::string scientific(double v, int digits) { return format("%.*e", digits, v); }
 

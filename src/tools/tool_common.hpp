@@ -42,9 +42,10 @@ void add_bearing_option(CLI::App* command, std::string* path);
 CLI::Option* add_vector_option(CLI::App* command, const std::string& name, std::vector<double>* values,
                                const std::vector<std::string>& components, const std::string& description);
 
-// A single finite number; `check` adds a range validator (e.g. CLI::NonNegativeNumber).
+// A single finite number, shown in --help as `type_name` (e.g. "RPM") with its default.
+// Chain ->check(...) for a range (e.g. CLI::PositiveNumber).
 CLI::Option* add_number_option(CLI::App* command, const std::string& name, double* value,
-                               const std::string& description);
+                               const std::string& type_name, const std::string& description);
 
 // Validator: a finite number (rejects nan, inf and non-numbers).
 const CLI::Validator& finite_number();
