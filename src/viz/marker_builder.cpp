@@ -152,7 +152,10 @@ visualization_msgs::MarkerArray build_markers(const BearingScene& scene, const S
     label.pose.position = point(at + Eigen::Vector3d(0.0, 0.06 * ro, 0.0));
     label.scale.z = 0.05 * ro;
     label.color = arrow.color;
-    label.text = format("F_r = %.0f N", radial_force.norm());
+    // rviz's text font has no underscore: plain symbols.
+    label.text = format("Fr = %.0f N", radial_force.norm());
+    const Eigen::Vector2d moment(extras.applied_moment_Nm.x(), extras.applied_moment_Nm.y());
+    if (moment.norm() > 0.0) label.text += format(", M = %.0f N m", moment.norm());
     out.markers.push_back(label);
   } else {
     out.markers.push_back(deleted(frames.bearing, stamp, "applied_load", 0));
@@ -171,7 +174,7 @@ visualization_msgs::MarkerArray build_markers(const BearingScene& scene, const S
   // Colour bar in front of the bearing (-y side), 0 .. full scale, labelled at its ends.
   Marker bar = base_marker(frames.bearing, stamp, "colour_bar", 0, Marker::CUBE_LIST);
   const int steps = 20;
-  const double bar_length = 1.2 * ro, cell = bar_length / steps, y_bar = -1.3 * ro;
+  const double bar_length = 1.2 * ro, cell = bar_length / steps, y_bar = -1.2 * ro;
   bar.scale.x = cell;
   bar.scale.y = 0.05 * ro;
   bar.scale.z = 0.01 * ro;

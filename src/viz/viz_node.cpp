@@ -137,7 +137,11 @@ void VizNode::on_speed(const std_msgs::Float64::ConstPtr& msg) {
 
 void VizNode::on_load(const geometry_msgs::WrenchStamped::ConstPtr& msg) {
   const Eigen::Vector3d f(msg->wrench.force.x, msg->wrench.force.y, msg->wrench.force.z);
-  if (f.allFinite()) extras_.applied_force_N = f;
+  const Eigen::Vector3d m(msg->wrench.torque.x, msg->wrench.torque.y, msg->wrench.torque.z);
+  if (f.allFinite() && m.allFinite()) {
+    extras_.applied_force_N = f;
+    extras_.applied_moment_Nm = m;
+  }
 }
 
 void VizNode::on_timer(const ros::TimerEvent&) {
