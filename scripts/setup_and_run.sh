@@ -6,5 +6,7 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 "$here/install_deps.sh"
 "$here/build.sh"
 source "$here/env.sh"
+set +u  # catkin's setup hooks read unset variables
 source "$BEARING_SIM_BUILD/devel/setup.bash"
+set -u
 exec roslaunch bearing_sim ct_gantry.launch "$@"

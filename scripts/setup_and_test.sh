@@ -7,7 +7,9 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 "$here/build.sh" || exit 1
 source "$here/env.sh"
 "$here/build.sh" tests || exit 1
+set +u  # catkin's setup hooks read unset variables
 source "$BEARING_SIM_BUILD/devel/setup.bash"
+set -u
 rm -rf "$BEARING_SIM_BUILD/test_results"
 cmake --build "$BEARING_SIM_BUILD" -- -j1 run_tests 2>&1 | tee "$BEARING_SIM_BUILD/run_tests.log" \
   | grep -E '^\[ *(RUN|OK|FAILED|PASSED) |^\[ROSTEST\]|^(SUMMARY|  \* RESULT|FAILURE)|Failure|Error' || true

@@ -6,92 +6,13 @@
 #include <sstream>
 
 #include "bearing_sim/core/errors.hpp"
+#include "yaml_reader.hpp"
 
 namespace bearing_sim {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-class Reader {
- public:
-  Reader(const YAML::Node& map, std::string source, std::string prefix)
-      : map_(map), source_(std::move(source)), prefix_(std::move(prefix)) {}
-
-  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-    throw ConfigError(source_ + ": key '" + prefix_ + key + "': " + what);
-  }
-
-  void check_keys(const std::set<std::string>& known) const {
-    for (const auto& kv : map_) {
-      const std::string key = kv.first.as<std::string>();
-      if (!known.count(key)) {
-        std::string list;
-        for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-        fail(key, "unknown key (known keys: " + list + ")");
-      }
-    }
-  }
-
-  bool has(const std::string& key) const { return static_cast<bool>(map_[key]); }
-
-  double number(const std::string& key, double fallback, bool required = false) const {
-    const YAML::Node node = map_[key];
-    if (!node) {
-      if (required) fail(key, "is required but missing");
-      return fallback;
-    }
-    if (!node.IsScalar()) fail(key, "expected a number");
-    double value = 0.0;
-    try {
-      value = node.as<double>();
-    } catch (const YAML::Exception&) {
-      fail(key, "expected a number, got '" + node.Scalar() + "'");
-    }
-    if (!std::isfinite(value)) fail(key, "must be finite, got '" + node.Scalar() + "'");
-    return value;
-  }
-
-  int integer(const std::string& key, int fallback, bool required = false) const {
-    const YAML::Node node = map_[key];
-    if (!node) {
-      if (required) fail(key, "is required but missing");
-      return fallback;
-    }
-    long value = 0;
-    try {
-      if (!node.IsScalar()) throw YAML::Exception(YAML::Mark(), "");
-      value = node.as<long>();
-    } catch (const YAML::Exception&) {
-      fail(key, "expected an integer, got '" + (node.IsScalar() ? node.Scalar() : std::string("a non-scalar")) + "'");
-    }
-    if (value < -1000000 || value > 1000000) fail(key, "integer out of range");
-    return static_cast<int>(value);
-  }
-
-  std::string text(const std::string& key, const std::string& fallback) const {
-    const YAML::Node node = map_[key];
-    if (!node) return fallback;
-    if (!node.IsScalar()) fail(key, "expected a string");
-    return node.Scalar();
-  }
-
-  YAML::Node map(const std::string& key) const {
-    const YAML::Node node = map_[key];
-    if (node && !node.IsMap()) fail(key, "expected a mapping");
-    return node;
-  }
-
-  void require(bool ok, const std::string& key, const std::string& what) const {
-    if (!ok) fail(key, what);
-  }
-
-  const std::string& source() const { return source_; }
-
- private:
-  YAML::Node map_;
-  std::string source_;
-  std::string prefix_;
-};
+using detail::Reader;
 
 }  // namespace
 
@@ -102,7 +23,7 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
                 "pitch_diameter_mm", "row_spacing_mm", "row_phase_deg", "contact_angle_deg",
                 "inner_groove_curvature", "outer_groove_curvature", "clearance_um",
                 "outer_diameter_mm", "inner_diameter_mm", "width_mm", "rotating_ring", "material",
-                "rotating_mass_kg", "tilt_inertia_kg_m2", "damping"});
+                "rotating_mass_kg", "tilt_inertia_kg_m2", "damping", "imperfections", "defects"});
 
   BearingConfig c;
   c.name = r.text("name", "unnamed bearing");
@@ -196,6 +117,7 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
     c.contact_damping_Ns_per_m = dr.number("contact_damping_Ns_per_m", 0.0);
     dr.require(c.contact_damping_Ns_per_m >= 0.0, "contact_damping_Ns_per_m", "must be >= 0");
   }
+  c.imperfections = parse_imperfections(root["imperfections"], root["defects"], source);
   return c;
 }
 

@@ -21,14 +21,19 @@ BearingDynamics::BearingDynamics(BearingModel model, const Vector5& load, double
   set_ring_speed(ring_speed_rad_s);
   substeps_ = options_.substeps > 0 ? options_.substeps
                                     : choose_substeps(model_, load_, options_.sample_rate_hz);
+  slowest_mode_rad_s_ = natural_frequencies_rad_s(model_, load_).minCoeff();
   reset_to_equilibrium();
 }
 
-int BearingDynamics::choose_substeps(const BearingModel& model, const Vector5& load, double sample_rate_hz) {
+Vector5 BearingDynamics::natural_frequencies_rad_s(const BearingModel& model, const Vector5& load) {
   const StaticSolution s = solve_static(model, load);
   const Vector5 inv_sqrt_m = model.mass_diagonal().cwiseSqrt().cwiseInverse();
   const Matrix5 a = inv_sqrt_m.asDiagonal() * s.stiffness * inv_sqrt_m.asDiagonal();
-  const double omega_max = std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Matrix5>(a).eigenvalues().maxCoeff()));
+  return Eigen::SelfAdjointEigenSolver<Matrix5>(a).eigenvalues().cwiseMax(0.0).cwiseSqrt();
+}
+
+int BearingDynamics::choose_substeps(const BearingModel& model, const Vector5& load, double sample_rate_hz) {
+  const double omega_max = natural_frequencies_rad_s(model, load).maxCoeff();
   const double h_sample = 1.0 / sample_rate_hz;
   return std::max(1, static_cast<int>(std::ceil(omega_max * h_sample / kStepTimesOmegaMax)));
 }
@@ -48,9 +53,9 @@ void BearingDynamics::set_ring_speed(double ring_speed_rad_s) {
 }
 
 void BearingDynamics::update_cage_speed() {
-  double wi = 0.0, wo = 0.0;
-  model_.ring_speeds(ring_speed_, &wi, &wo);
-  cage_speed_ = model_.cage_speed_rad_s(wi, wo);
+  model_.ring_speeds(ring_speed_, &inner_speed_, &outer_speed_);
+  cage_speed_ = model_.cage_speed_rad_s(inner_speed_, outer_speed_);
+  spin_speed_ = model_.ball_spin_speed_rad_s(inner_speed_, outer_speed_);
 }
 
 void BearingDynamics::set_model(BearingModel model) {
@@ -63,43 +68,65 @@ void BearingDynamics::set_model(BearingModel model) {
   samples_since_split_ = 0;  // the contact margin depends on the inputs
 }
 
+void BearingDynamics::add_spall(Spall spall) {
+  spall.created_at_s = phase_.time_s;
+  model_.add_spall(spall);
+  acceleration_current_ = false;
+  samples_since_split_ = 0;
+}
+
+void BearingDynamics::clear_spalls() {
+  model_.clear_spalls();
+  acceleration_current_ = false;
+  samples_since_split_ = 0;
+}
+
 void BearingDynamics::reset_to_equilibrium() {
   const Vector5 guess = current_.displacement;
   const bool have_guess = sample_index_ > 0 && guess.allFinite();
-  const StaticSolution s = solve_static(model_, load_, current_.cage_angle_rad, {}, have_guess ? &guess : nullptr);
+  const StaticSolution s = solve_static(model_, load_, phase_, {}, have_guess ? &guess : nullptr);
   current_.displacement = s.displacement;
   current_.velocity.setZero();
-  current_.acceleration =
-      acceleration(current_.displacement, current_.velocity, current_.cage_angle_rad, model_.balls());
+  current_.acceleration = acceleration(current_.displacement, current_.velocity, phase_, model_.balls());
   acceleration_current_ = true;
   samples_since_split_ = 0;
 }
 
-Vector5 BearingDynamics::acceleration(const Vector5& q, const Vector5& q_dot, double cage_angle,
+Vector5 BearingDynamics::acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
                                       const BallArrays& balls) const {
-  return (load_ + model_.contact_force(q, q_dot, cage_angle, balls)).cwiseProduct(inverse_mass_);
+  return (load_ + model_.contact_force(q, q_dot, phase, balls)).cwiseProduct(inverse_mass_);
+}
+
+RollingPhase BearingDynamics::advanced(const RollingPhase& p, double dt) const {
+  return RollingPhase{p.cage + cage_speed_ * dt, p.inner_ring + inner_speed_ * dt, p.outer_ring + outer_speed_ * dt,
+                      p.ball_spin + spin_speed_ * dt, p.time_s + dt};
 }
 
 double BearingDynamics::contact_margin_m(const Vector5& q, const Vector5& v, const Vector5& a) const {
-  // Bound on how far any ball's deflection can move until the next split: ring motion
-  // (velocity and acceleration over that time, with a factor 2 on the latter since the
-  // acceleration oscillates) plus the balls' travel in azimuth, where
-  // |d delta / d phi| <= 2|t| + 3|theta| * lever arm. Doubled for safety.
+  // How far any ball's deflection may move until the next split, doubled: ring motion,
+  // the balls' travel in azimuth (|d delta / d phi| <= 2|t| + 3|theta| * lever arm) and
+  // the imperfections passing under them. The ring motion is the smaller of the kinematic
+  // bound and twice the amplitude of the slowest ring mode (the ring vibrates, it does not
+  // run off). A ball that touches all the same is caught by the check after the sample.
   const double h = kSamplesPerBallSplit / options_.sample_rate_hz;
   const double lever = model_.max_lever_arm_m();
-  const double motion = (v.head<3>().norm() + v.tail<2>().norm() * lever) * h +
-                        (a.head<3>().norm() + a.tail<2>().norm() * lever) * h * h;
+  const double speed = v.head<3>().norm() + v.tail<2>().norm() * lever;
+  const double accel = a.head<3>().norm() + a.tail<2>().norm() * lever;
+  const double kinematic = speed * h + accel * h * h;
+  const double w = slowest_mode_rad_s_;
+  const double oscillation = w > 0.0 ? 2.0 * std::hypot(accel / (w * w), speed / w) : kinematic;
   const double travel =
       std::abs(cage_speed_) * h * (2.0 * q.head<3>().norm() + 3.0 * q.tail<2>().norm() * lever);
-  return 2.0 * (motion + travel) + 1e-10;
+  const double imperfections = model_.max_offset_change_m(inner_speed_, outer_speed_, h);
+  return 2.0 * (std::min(kinematic, oscillation) + travel + imperfections) + 1e-10;
 }
 
-void BearingDynamics::integrate_sample(Vector5& q, Vector5& v, double& angle, const Vector5& a_start,
+void BearingDynamics::integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
                                        const BallArrays& balls) const {
   const double h = 1.0 / (options_.sample_rate_hz * substeps_);
   for (int i = 0; i < substeps_; ++i) {
-    const double mid = angle + 0.5 * h * cage_speed_, end = angle + h * cage_speed_;
-    const Vector5 a1 = i == 0 ? a_start : acceleration(q, v, angle, balls);
+    const RollingPhase mid = advanced(phase, 0.5 * h), end = advanced(phase, h);
+    const Vector5 a1 = i == 0 ? a_start : acceleration(q, v, phase, balls);
     const Vector5 v2 = v + 0.5 * h * a1, q2 = q + 0.5 * h * v;
     const Vector5 a2 = acceleration(q2, v2, mid, balls);
     const Vector5 v3 = v + 0.5 * h * a2, q3 = q + 0.5 * h * v2;
@@ -108,42 +135,42 @@ void BearingDynamics::integrate_sample(Vector5& q, Vector5& v, double& angle, co
     const Vector5 a4 = acceleration(q4, v4, end, balls);
     q += h / 6.0 * (v + 2.0 * v2 + 2.0 * v3 + v4);
     v += h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
-    angle = end;
+    phase = end;
   }
 }
 
 DynamicSample BearingDynamics::step() {
   const Vector5& q0 = current_.displacement;
   const Vector5& v0 = current_.velocity;
-  const double angle0 = current_.cage_angle_rad;
   // The last sample's acceleration is the first stage, unless an input changed since.
-  const Vector5 a_start = acceleration_current_ ? current_.acceleration : acceleration(q0, v0, angle0, model_.balls());
+  const Vector5 a_start = acceleration_current_ ? current_.acceleration : acceleration(q0, v0, phase_, model_.balls());
   // Only the balls that can touch during the next kSamplesPerBallSplit samples take part
   // in the integration; the others carry no load now, so a_start holds for either set.
   if (samples_since_split_ == 0) {
     const double margin = options_.skip_clear_balls ? contact_margin_m(q0, v0, a_start)
                                                     : std::numeric_limits<double>::infinity();
-    model_.split_by_deflection(q0, angle0, margin, &active_balls_, &clear_balls_);
+    model_.split_by_deflection(q0, phase_, margin, &active_balls_, &clear_balls_);
   }
   samples_since_split_ = (samples_since_split_ + 1) % kSamplesPerBallSplit;
   const BallArrays* balls = &active_balls_;
   Vector5 q = q0, v = v0;
-  double angle = angle0;
-  integrate_sample(q, v, angle, a_start, *balls);
-  if (clear_balls_.size() > 0 && q.allFinite() && model_.max_deflection(q, angle, clear_balls_) > 0.0) {
+  RollingPhase phase = phase_;
+  integrate_sample(q, v, phase, a_start, *balls);
+  if (clear_balls_.size() > 0 && q.allFinite() && model_.max_deflection(q, phase, clear_balls_) > 0.0) {
     // A ball outside the margin came into contact: redo the sample with every ball.
     ++full_sample_retries_;
     samples_since_split_ = 0;
     balls = &model_.balls();
     q = q0;
     v = v0;
-    angle = angle0;
-    integrate_sample(q, v, angle, a_start, *balls);
+    phase = phase_;
+    integrate_sample(q, v, phase, a_start, *balls);
   }
-  return commit_sample(q, v, acceleration(q, v, angle, *balls), angle);
+  return commit_sample(q, v, acceleration(q, v, phase, *balls), phase);
 }
 
-DynamicSample BearingDynamics::commit_sample(const Vector5& q, const Vector5& v, const Vector5& a, double angle) {
+DynamicSample BearingDynamics::commit_sample(const Vector5& q, const Vector5& v, const Vector5& a,
+                                             const RollingPhase& phase) {
   const double translation = q.head<3>().norm();
   const double tilt = q.tail<2>().norm() * model_.pitch_radius_m();
   if (!q.allFinite() || !v.allFinite() || !a.allFinite() || translation > displacement_limit_m_ ||
@@ -154,8 +181,14 @@ DynamicSample BearingDynamics::commit_sample(const Vector5& q, const Vector5& v,
     throw DivergenceError(os.str());
   }
   ++sample_index_;
-  current_.time_s = static_cast<double>(sample_index_) / options_.sample_rate_hz;
-  current_.cage_angle_rad = std::remainder(angle, 2.0 * 3.14159265358979323846);
+  // Angles wrapped once per sample keep their precision over long runs.
+  constexpr double kTwoPi = 6.28318530717958647692;
+  phase_ = RollingPhase{std::remainder(phase.cage, kTwoPi), std::remainder(phase.inner_ring, kTwoPi),
+                        std::remainder(phase.outer_ring, kTwoPi), std::remainder(phase.ball_spin, kTwoPi),
+                        static_cast<double>(sample_index_) / options_.sample_rate_hz};
+  current_.time_s = phase_.time_s;
+  current_.cage_angle_rad = phase_.cage;
+  current_.ring_angle_rad = model_.config().rotating_ring == RotatingRing::Outer ? phase_.outer_ring : phase_.inner_ring;
   current_.displacement = q;
   current_.velocity = v;
   current_.acceleration = a;

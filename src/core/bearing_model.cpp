@@ -1,6 +1,7 @@
 #include "bearing_sim/core/bearing_model.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -29,6 +30,7 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
   row_.resize(n);
   base_azimuth_.resize(n);
   balls_.ball.resize(n);
+  balls_.base_azimuth.resize(n);
   balls_.cos_base.resize(n);
   balls_.sin_base.resize(n);
   balls_.groove_centre_z.resize(n);
@@ -40,8 +42,10 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
     for (int j = 0; j < c.balls_per_row; ++j) {
       const int b = r * c.balls_per_row + j;
       row_[b] = r;
-      base_azimuth_[b] = 2.0 * kPi * j / c.balls_per_row + (r == 1 ? c.row_phase_rad : 0.0);
+      const double azimuth = std::fmod(2.0 * kPi * j / c.balls_per_row + (r == 1 ? c.row_phase_rad : 0.0), 2.0 * kPi);
+      base_azimuth_[b] = azimuth < 0.0 ? azimuth + 2.0 * kPi : azimuth;  // in [0, 2 pi)
       balls_.ball[b] = b;
+      balls_.base_azimuth[b] = base_azimuth_[b];
       balls_.cos_base[b] = std::cos(base_azimuth_[b]);
       balls_.sin_base[b] = std::sin(base_azimuth_[b]);
       balls_.groove_centre_z[b] = gz;
@@ -49,10 +53,43 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
     }
     max_lever_arm_ = std::max(max_lever_arm_, std::hypot(groove_centre_radius_, gz));
   }
+
+  Imperfections::Geometry g;
+  g.balls_per_row = c.balls_per_row;
+  g.rows = c.rows;
+  g.ball_diameter_m = d;
+  g.outer_race_radius_m = c.pitch_diameter_m / 2.0 + d / 2.0 * cos_a0_;
+  g.inner_race_radius_m = c.pitch_diameter_m / 2.0 - d / 2.0 * cos_a0_;
+  g.base_azimuth = base_azimuth_;
+  try {
+    imperfections_ = Imperfections(c.imperfections, g);
+  } catch (const InvalidInputError& e) {
+    throw ConfigError(c.name + ": " + e.what());
+  }
+  balls_.deflection_offset = imperfections_.ball_diameter_deviation();
+  stamp_ = next_stamp();
+}
+
+std::uint64_t BearingModel::next_stamp() {
+  static std::atomic<std::uint64_t> counter{0};
+  return ++counter;
+}
+
+void BearingModel::add_spall(const Spall& spall) {
+  imperfections_.add_spall(spall);
+  stamp_ = next_stamp();
+}
+
+void BearingModel::clear_spalls() {
+  imperfections_.clear_spalls();
+  stamp_ = next_stamp();
 }
 
 void BallArrays::clear() {
+  static std::atomic<std::uint64_t> generations{0};
+  generation = ++generations;
   ball.clear();
+  base_azimuth.clear();
   cos_base.clear();
   sin_base.clear();
   groove_centre_z.clear();
@@ -62,6 +99,7 @@ void BallArrays::clear() {
 
 void BallArrays::push_back(const BallArrays& from, std::size_t i) {
   ball.push_back(from.ball[i]);
+  base_azimuth.push_back(from.base_azimuth[i]);
   cos_base.push_back(from.cos_base[i]);
   sin_base.push_back(from.sin_base[i]);
   groove_centre_z.push_back(from.groove_centre_z[i]);
@@ -95,6 +133,7 @@ void BearingModel::set_deflection_offsets(const std::vector<double>& offsets_m) 
   for (double o : offsets_m)
     if (!std::isfinite(o)) throw InvalidInputError("deflection offsets: non-finite value");
   balls_.deflection_offset = offsets_m;
+  stamp_ = next_stamp();
 }
 
 // The loops below share this kinematics (MODEL.md section 2); it is written once and
@@ -125,9 +164,44 @@ inline Kinematics kinematics(double cphi, double sphi, double gz, double nz, dou
 }
 }  // namespace
 
-Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, double cage_angle_rad,
+const double* BearingModel::offsets_at(const RollingPhase& phase, const BallArrays& balls, bool include_spalls) const {
+  if (!imperfections_.time_varying()) return balls.deflection_offset.data();
+  // The RK4 stages of a sample share phases (mid stages, step ends), and the subsets of one
+  // split share a phase with the full set: compute every ball's offset once per phase.
+  struct Cache {
+    std::uint64_t stamp = 0;
+    RollingPhase phase;
+    bool include_spalls = false;
+    std::vector<double> all, subset;
+    const BallArrays* subset_of = nullptr;
+    std::uint64_t subset_generation = 0;
+  };
+  thread_local Cache cache;
+  const bool same = cache.stamp == stamp_ && cache.include_spalls == include_spalls &&
+                    cache.phase.cage == phase.cage && cache.phase.inner_ring == phase.inner_ring &&
+                    cache.phase.outer_ring == phase.outer_ring && cache.phase.ball_spin == phase.ball_spin &&
+                    cache.phase.time_s == phase.time_s;
+  if (!same) {
+    cache.all = balls_.deflection_offset;
+    imperfections_.add_offsets(phase, cache.all.data(), include_spalls);
+    cache.stamp = stamp_;
+    cache.phase = phase;
+    cache.include_spalls = include_spalls;
+    cache.subset_of = nullptr;
+  }
+  if (&balls == &balls_) return cache.all.data();
+  if (cache.subset_of != &balls || cache.subset_generation != balls.generation) {
+    cache.subset.resize(balls.size());
+    for (std::size_t b = 0; b < balls.size(); ++b) cache.subset[b] = cache.all[balls.ball[b]];
+    cache.subset_of = &balls;
+    cache.subset_generation = balls.generation;
+  }
+  return cache.subset.data();
+}
+
+Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
                                     const BallArrays& balls) const {
-  const double cc = std::cos(cage_angle_rad), sc = std::sin(cage_angle_rad);
+  const double cc = std::cos(phase.cage), sc = std::sin(phase.cage);
   const double rho = groove_centre_radius_, ca = cos_a0_, A = groove_centre_distance_;
   const double g0 = config_.clearance_m, sign = moving_sign_, kn = contact_stiffness_;
   const double cn = config_.contact_damping_Ns_per_m;
@@ -137,7 +211,7 @@ Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, doub
   const double* sb = balls.sin_base.data();
   const double* gzs = balls.groove_centre_z.data();
   const double* nzs = balls.normal_z.data();
-  const double* off = balls.deflection_offset.data();
+  const double* off = offsets_at(phase, balls);
   const int n = static_cast<int>(balls.size());
   double fx = 0, fy = 0, fz = 0, mx = 0, my = 0;
 #pragma omp simd reduction(+ : fx, fy, fz, mx, my)
@@ -166,8 +240,10 @@ Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, doub
   return f;
 }
 
-Vector5 BearingModel::contact_force_and_stiffness(const Vector5& q, double cage_angle_rad, Matrix5* stiffness) const {
-  const double cc = std::cos(cage_angle_rad), sc = std::sin(cage_angle_rad);
+Vector5 BearingModel::contact_force_and_stiffness(const Vector5& q, const RollingPhase& phase,
+                                                  Matrix5* stiffness) const {
+  const double cc = std::cos(phase.cage), sc = std::sin(phase.cage);
+  const double* off = offsets_at(phase, balls_);
   const double A = groove_centre_distance_, g0 = config_.clearance_m, sign = moving_sign_;
   const double kn = contact_stiffness_;
   Vector5 f = Vector5::Zero();
@@ -175,8 +251,8 @@ Vector5 BearingModel::contact_force_and_stiffness(const Vector5& q, double cage_
   for (int b = 0; b < ball_count(); ++b) {
     const double cphi = cc * balls_.cos_base[b] - sc * balls_.sin_base[b];
     const double sphi = sc * balls_.cos_base[b] + cc * balls_.sin_base[b];
-    const Kinematics k = kinematics(cphi, sphi, balls_.groove_centre_z[b], balls_.normal_z[b],
-                                    balls_.deflection_offset[b], groove_centre_radius_, cos_a0_, A, g0, sign, q.data());
+    const Kinematics k = kinematics(cphi, sphi, balls_.groove_centre_z[b], balls_.normal_z[b], off[b],
+                                    groove_centre_radius_, cos_a0_, A, g0, sign, q.data());
     if (k.deflection <= 0.0) continue;
     const double load = kn * k.deflection * std::sqrt(k.deflection);
     const Eigen::Vector3d e(k.vx / k.norm, k.vy / k.norm, k.vz / k.norm);
@@ -196,9 +272,9 @@ Vector5 BearingModel::contact_force_and_stiffness(const Vector5& q, double cage_
   return f;
 }
 
-void BearingModel::deflections(const Vector5& q, double cage_angle_rad, const BallArrays& balls,
-                               std::vector<double>* out) const {
-  const double cc = std::cos(cage_angle_rad), sc = std::sin(cage_angle_rad);
+void BearingModel::deflections(const Vector5& q, const RollingPhase& phase, const BallArrays& balls,
+                               std::vector<double>* out, bool include_spalls) const {
+  const double cc = std::cos(phase.cage), sc = std::sin(phase.cage);
   const double rho = groove_centre_radius_, ca = cos_a0_, A = groove_centre_distance_;
   const double g0 = config_.clearance_m, sign = moving_sign_;
   const double* qp = q.data();
@@ -206,7 +282,7 @@ void BearingModel::deflections(const Vector5& q, double cage_angle_rad, const Ba
   const double* sb = balls.sin_base.data();
   const double* gzs = balls.groove_centre_z.data();
   const double* nzs = balls.normal_z.data();
-  const double* off = balls.deflection_offset.data();
+  const double* off = offsets_at(phase, balls, include_spalls);
   const int n = static_cast<int>(balls.size());
   out->resize(n);
   double* d = out->data();
@@ -218,30 +294,32 @@ void BearingModel::deflections(const Vector5& q, double cage_angle_rad, const Ba
   }
 }
 
-void BearingModel::split_by_deflection(const Vector5& q, double cage_angle_rad, double margin_m,
+void BearingModel::split_by_deflection(const Vector5& q, const RollingPhase& phase, double margin_m,
                                        BallArrays* near_contact, BallArrays* clear) const {
   thread_local std::vector<double> deflection;
-  deflections(q, cage_angle_rad, balls_, &deflection);
+  // Without the spalls' dips: an upper bound of the deflection, which the margin tracks.
+  deflections(q, phase, balls_, &deflection, false);
   near_contact->clear();
   clear->clear();
   for (std::size_t b = 0; b < balls_.size(); ++b)
     (deflection[b] > -margin_m ? near_contact : clear)->push_back(balls_, b);
 }
 
-double BearingModel::max_deflection(const Vector5& q, double cage_angle_rad, const BallArrays& balls) const {
+double BearingModel::max_deflection(const Vector5& q, const RollingPhase& phase, const BallArrays& balls) const {
   thread_local std::vector<double> deflection;
-  deflections(q, cage_angle_rad, balls, &deflection);
+  deflections(q, phase, balls, &deflection);
   double worst = -std::numeric_limits<double>::infinity();
   for (double d : deflection) worst = std::max(worst, d);
   return worst;
 }
 
-std::vector<BallState> BearingModel::ball_states(const Vector5& q, double cage_angle_rad) const {
+std::vector<BallState> BearingModel::ball_states(const Vector5& q, const RollingPhase& phase) const {
   std::vector<BallState> balls(ball_count());
+  const double* off = offsets_at(phase, balls_);
   for (int b = 0; b < ball_count(); ++b) {
-    const double phi = cage_angle_rad + base_azimuth_[b];
+    const double phi = phase.cage + base_azimuth_[b];
     const Kinematics k = kinematics(std::cos(phi), std::sin(phi), balls_.groove_centre_z[b], balls_.normal_z[b],
-                                    balls_.deflection_offset[b], groove_centre_radius_, cos_a0_, groove_centre_distance_,
+                                    off[b], groove_centre_radius_, cos_a0_, groove_centre_distance_,
                                     config_.clearance_m, moving_sign_, q.data());
     BallState& s = balls[b];
     s.row = row_[b];
@@ -260,6 +338,18 @@ std::vector<BallState> BearingModel::ball_states(const Vector5& q, double cage_a
 double BearingModel::cage_speed_rad_s(double inner_rad_s, double outer_rad_s) const {
   const double gamma = config_.ball_diameter_m * cos_a0_ / config_.pitch_diameter_m;
   return inner_rad_s * (1.0 - gamma) / 2.0 + outer_rad_s * (1.0 + gamma) / 2.0;
+}
+
+double BearingModel::ball_spin_speed_rad_s(double inner_rad_s, double outer_rad_s) const {
+  const double gamma = config_.ball_diameter_m * cos_a0_ / config_.pitch_diameter_m;
+  return config_.pitch_diameter_m / (2.0 * config_.ball_diameter_m) * (1.0 - gamma * gamma) *
+         std::abs(inner_rad_s - outer_rad_s);
+}
+
+double BearingModel::max_offset_change_m(double inner_rad_s, double outer_rad_s, double dt) const {
+  const double wc = cage_speed_rad_s(inner_rad_s, outer_rad_s);
+  return imperfections_.max_offset_change_m((wc - outer_rad_s) * dt, (wc - inner_rad_s) * dt,
+                                            ball_spin_speed_rad_s(inner_rad_s, outer_rad_s) * dt);
 }
 
 void BearingModel::ring_speeds(double rotating_ring_rad_s, double* inner_rad_s, double* outer_rad_s) const {

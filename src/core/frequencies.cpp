@@ -10,14 +10,13 @@ constexpr double kTwoPi = 6.28318530717958647692;
 BearingFrequencies bearing_frequencies(const BearingModel& model, double inner_rad_s, double outer_rad_s) {
   const auto& c = model.config();
   const double z = c.balls_per_row;
-  const double gamma = c.ball_diameter_m * std::cos(c.contact_angle_rad) / c.pitch_diameter_m;
   const double wc = model.cage_speed_rad_s(inner_rad_s, outer_rad_s);
   BearingFrequencies f;
   f.cage_hz = wc / kTwoPi;
   f.ball_pass_outer_race_hz = z * std::abs(outer_rad_s - wc) / kTwoPi;
   f.ball_pass_inner_race_hz = z * std::abs(inner_rad_s - wc) / kTwoPi;
   f.relative_ring_hz = std::abs(inner_rad_s - outer_rad_s) / kTwoPi;
-  f.ball_spin_hz = c.pitch_diameter_m / (2.0 * c.ball_diameter_m) * (1.0 - gamma * gamma) * f.relative_ring_hz;
+  f.ball_spin_hz = model.ball_spin_speed_rad_s(inner_rad_s, outer_rad_s) / kTwoPi;
   f.varying_compliance_hz = z * std::abs(wc) / kTwoPi;
   return f;
 }

@@ -26,10 +26,10 @@ std::string describe(const Vector5& load) {
 
 }  // namespace
 
-StaticSolution solve_static(const BearingModel& model, const Vector5& load, double cage_angle_rad,
+StaticSolution solve_static(const BearingModel& model, const Vector5& load, const RollingPhase& phase,
                             const StaticSolverOptions& options, const Vector5* initial_guess) {
   if (!load.allFinite()) throw InvalidInputError("static load is not finite: " + describe(load));
-  if (!std::isfinite(cage_angle_rad)) throw InvalidInputError("cage angle is not finite");
+  if (!std::isfinite(phase.cage)) throw InvalidInputError("cage angle is not finite");
 
   const Vector5 s = scales(model);
   const double d = model.config().ball_diameter_m;
@@ -51,7 +51,7 @@ StaticSolution solve_static(const BearingModel& model, const Vector5& load, doub
   }
 
   Matrix5 k;
-  auto residual = [&](const Vector5& qq, Matrix5* kk) { return Vector5(load + model.contact_force_and_stiffness(qq, cage_angle_rad, kk)); };
+  auto residual = [&](const Vector5& qq, Matrix5* kk) { return Vector5(load + model.contact_force_and_stiffness(qq, phase, kk)); };
   auto scaled_norm = [&](const Vector5& r) { return (r.array() / s.array()).matrix().norm(); };
 
   Vector5 r = residual(q, &k);
@@ -109,8 +109,8 @@ StaticSolution solve_static(const BearingModel& model, const Vector5& load, doub
 
   StaticSolution sol;
   sol.displacement = q;
-  model.contact_force_and_stiffness(q, cage_angle_rad, &sol.stiffness);
-  sol.balls = model.ball_states(q, cage_angle_rad);
+  model.contact_force_and_stiffness(q, phase, &sol.stiffness);
+  sol.balls = model.ball_states(q, phase);
   for (const auto& b : sol.balls) {
     sol.max_ball_load_N = std::max(sol.max_ball_load_N, b.load_N);
     sol.max_contact_pressure_Pa = std::max(sol.max_contact_pressure_Pa, b.pressure_Pa);

@@ -4,6 +4,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "bearing_sim/core/imperfections.hpp"
+
 namespace bearing_sim {
 
 enum class Arrangement { BackToBack, FaceToFace };
@@ -38,6 +40,8 @@ struct BearingConfig {
   double tilt_inertia_kg_m2 = 0.0;   // after loading: given or derived from the envelope
   bool tilt_inertia_given = false;
   double contact_damping_Ns_per_m = 0.0;
+  // Extension of MODEL.md section 8: `imperfections:` and `defects:` (docs/bearing_file.md).
+  ImperfectionSpec imperfections;
 
   bool has_dynamics() const { return rotating_mass_kg > 0.0; }
 };

@@ -10,6 +10,7 @@ namespace bearing_sim {
 struct DynamicSample {
   double time_s = 0.0;
   double cage_angle_rad = 0.0;
+  double ring_angle_rad = 0.0;  // of the rotating ring
   Vector5 displacement = Vector5::Zero();  // x, y, z, theta_x, theta_y
   Vector5 velocity = Vector5::Zero();
   Vector5 acceleration = Vector5::Zero();
@@ -40,10 +41,15 @@ class BearingDynamics {
   // Advance one output sample. Throws DivergenceError on a non-finite or runaway state;
   // the state is then unchanged from before the call.
   DynamicSample step();
+  // Spalls at runtime; a new spall starts growing now. add_spall throws InvalidInputError
+  // for a defect that does not fit the bearing.
+  void add_spall(Spall spall);
+  void clear_spalls();
   // Back to the static equilibrium of the current load, at rest, keeping time and cage angle.
   void reset_to_equilibrium();
 
   const DynamicSample& current() const { return current_; }
+  const RollingPhase& phase() const { return phase_; }
   const BearingModel& model() const { return model_; }
   const Vector5& load() const { return load_; }
   double ring_speed_rad_s() const { return ring_speed_; }
@@ -57,16 +63,21 @@ class BearingDynamics {
   std::size_t active_ball_count() const { return active_balls_.size(); }
   std::uint64_t full_sample_retries() const { return full_sample_retries_; }
 
+  // Natural frequencies of the ring on the linearized contacts at the static equilibrium.
+  static Vector5 natural_frequencies_rad_s(const BearingModel& model, const Vector5& load);
   // Internal steps per sample so that omega_max * h <= kStepTimesOmegaMax.
   static int choose_substeps(const BearingModel& model, const Vector5& load, double sample_rate_hz);
   static constexpr double kStepTimesOmegaMax = 0.5;
 
  private:
-  Vector5 acceleration(const Vector5& q, const Vector5& q_dot, double cage_angle, const BallArrays& balls) const;
+  Vector5 acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
+                       const BallArrays& balls) const;
+  RollingPhase advanced(const RollingPhase& phase, double dt) const;
   // RK4 over one output sample, in substeps_ steps, from the acceleration a_start.
-  void integrate_sample(Vector5& q, Vector5& v, double& angle, const Vector5& a_start, const BallArrays& balls) const;
+  void integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
+                        const BallArrays& balls) const;
   double contact_margin_m(const Vector5& q, const Vector5& v, const Vector5& a) const;
-  DynamicSample commit_sample(const Vector5& q, const Vector5& v, const Vector5& a, double angle);
+  DynamicSample commit_sample(const Vector5& q, const Vector5& v, const Vector5& a, const RollingPhase& phase);
   void update_cage_speed();
 
   BearingModel model_;
@@ -74,9 +85,11 @@ class BearingDynamics {
   Vector5 load_ = Vector5::Zero();
   Vector5 inverse_mass_ = Vector5::Zero();
   double ring_speed_ = 0.0;
-  double cage_speed_ = 0.0;
+  double cage_speed_ = 0.0, inner_speed_ = 0.0, outer_speed_ = 0.0, spin_speed_ = 0.0;
+  RollingPhase phase_;
   int substeps_ = 1;
   double displacement_limit_m_ = 0.0;
+  double slowest_mode_rad_s_ = 0.0;  // for the contact margin
   std::uint64_t sample_index_ = 0;
   DynamicSample current_;
   bool acceleration_current_ = false;

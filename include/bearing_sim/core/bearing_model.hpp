@@ -1,12 +1,14 @@
 #pragma once
 // Geometry, Hertz constants and contact forces of one bearing (MODEL.md sections 2-4).
 // Everything derived from the bearing file is computed here, once.
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Dense>
 
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/hertz_contact.hpp"
+#include "bearing_sim/core/imperfections.hpp"
 
 namespace bearing_sim {
 
@@ -31,10 +33,12 @@ struct BallState {
 // either every ball of the bearing or a subset of them.
 struct BallArrays {
   std::vector<int> ball;  // index into the bearing's balls
-  std::vector<double> cos_base, sin_base;  // of the azimuth at cage angle 0
+  std::vector<double> base_azimuth;        // azimuth at cage angle 0, rad
+  std::vector<double> cos_base, sin_base;  // of base_azimuth
   std::vector<double> groove_centre_z;     // axial coordinate of the outer-groove centre
   std::vector<double> normal_z;            // c_r sin a0
-  std::vector<double> deflection_offset;   // extra deflection (waviness, defects), m
+  std::vector<double> deflection_offset;   // constant extra deflection (ball size), m
+  std::uint64_t generation = 0;           // changes whenever the subset changes
   std::size_t size() const { return ball.size(); }
   void clear();
   void push_back(const BallArrays& from, std::size_t i);
@@ -64,32 +68,52 @@ class BearingModel {
   // Mass matrix diag(m, m, m, J, J) of the moving ring.
   Vector5 mass_diagonal() const;
 
-  // Extra contact deflection per ball (waviness, defects); zero by default.
+  // Constant extra contact deflection per ball (ball diameter variation by default).
   void set_deflection_offsets(const std::vector<double>& offsets_m);
   const std::vector<double>& deflection_offsets() const { return balls_.deflection_offset; }
   const BallArrays& balls() const { return balls_; }
 
-  // Contact forces and moments on the moving ring, with contact damping (hot path).
-  Vector5 contact_force(const Vector5& q, const Vector5& q_dot, double cage_angle_rad) const {
-    return contact_force(q, q_dot, cage_angle_rad, balls_);
-  }
-  // Same, over a subset of the balls (the others are known to be out of contact).
-  Vector5 contact_force(const Vector5& q, const Vector5& q_dot, double cage_angle_rad,
+  // Waviness, roughness and spalls; their offsets move with the rolling phase.
+  const Imperfections& imperfections() const { return imperfections_; }
+  void add_spall(const Spall& spall);  // throws InvalidInputError
+  void clear_spalls();
+
+  // Contact forces and moments on the moving ring, with contact damping (hot path),
+  // over every ball or a subset (the others known to be out of contact).
+  Vector5 contact_force(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
                         const BallArrays& balls) const;
-  // Splits the balls into those whose deflection exceeds -margin_m at (q, cage angle)
-  // and the rest.
-  void split_by_deflection(const Vector5& q, double cage_angle_rad, double margin_m, BallArrays* near_contact,
-                           BallArrays* clear) const;
-  // Contact deflection of each ball of a subset.
-  void deflections(const Vector5& q, double cage_angle_rad, const BallArrays& balls, std::vector<double>* out) const;
-  // Largest contact deflection over a subset (negative: all clear).
-  double max_deflection(const Vector5& q, double cage_angle_rad, const BallArrays& balls) const;
-  // Largest distance of an outer-groove centre from the bearing axis origin, m.
-  double max_lever_arm_m() const { return max_lever_arm_; }
+  Vector5 contact_force(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase) const {
+    return contact_force(q, q_dot, phase, balls_);
+  }
+  Vector5 contact_force(const Vector5& q, const Vector5& q_dot, double cage_angle_rad) const {
+    return contact_force(q, q_dot, RollingPhase{cage_angle_rad}, balls_);
+  }
   // Same, without damping, and the stiffness K = -d(force)/dq (analytic).
-  Vector5 contact_force_and_stiffness(const Vector5& q, double cage_angle_rad, Matrix5* stiffness) const;
+  Vector5 contact_force_and_stiffness(const Vector5& q, const RollingPhase& phase, Matrix5* stiffness) const;
+  Vector5 contact_force_and_stiffness(const Vector5& q, double cage_angle_rad, Matrix5* stiffness) const {
+    return contact_force_and_stiffness(q, RollingPhase{cage_angle_rad}, stiffness);
+  }
   // Per-ball detail at a static configuration.
-  std::vector<BallState> ball_states(const Vector5& q, double cage_angle_rad) const;
+  std::vector<BallState> ball_states(const Vector5& q, const RollingPhase& phase) const;
+  std::vector<BallState> ball_states(const Vector5& q, double cage_angle_rad) const {
+    return ball_states(q, RollingPhase{cage_angle_rad});
+  }
+  // Contact deflection of each ball of a subset (without the spalls' dips: an upper bound).
+  void deflections(const Vector5& q, const RollingPhase& phase, const BallArrays& balls, std::vector<double>* out,
+                   bool include_spalls = true) const;
+  // Splits the balls into those whose deflection, spalls left out, exceeds -margin_m and
+  // the rest (spalls only remove deflection, so the rest stays clear of contact).
+  void split_by_deflection(const Vector5& q, const RollingPhase& phase, double margin_m, BallArrays* near_contact,
+                           BallArrays* clear) const;
+  // Largest contact deflection over a subset (negative: all clear).
+  double max_deflection(const Vector5& q, const RollingPhase& phase, const BallArrays& balls) const;
+  // Largest distance of an outer-groove centre from the bearing centre, m.
+  double max_lever_arm_m() const { return max_lever_arm_; }
+  // Bound on how much any ball's imperfection offset (spalls left out) can change in dt
+  // at these ring speeds, m.
+  double max_offset_change_m(double inner_rad_s, double outer_rad_s, double dt) const;
+  // Spin speed of the balls relative to the cage, rad/s.
+  double ball_spin_speed_rad_s(double inner_rad_s, double outer_rad_s) const;
 
   // Nominal cage speed for the given ring speeds (MODEL.md section 5).
   double cage_speed_rad_s(double inner_rad_s, double outer_rad_s) const;
@@ -109,6 +133,12 @@ class BearingModel {
   std::vector<int> row_;
   std::vector<double> base_azimuth_;
   BallArrays balls_;
+  Imperfections imperfections_;
+  // Identifies the per-ball offsets' content, for the cache of offsets_at.
+  std::uint64_t stamp_ = 0;
+  static std::uint64_t next_stamp();
+  // Total constant and time-varying offsets of a subset at a phase, in a reused buffer.
+  const double* offsets_at(const RollingPhase& phase, const BallArrays& balls, bool include_spalls = true) const;
 };
 
 // 6x6 Bushing stiffness (x, y, z, rx, ry, rz) with a zero row and column for rz.

@@ -30,7 +30,11 @@ struct StaticSolverOptions {
 // `load` is (Fx, Fy, Fz, Mx, My) on the moving ring, N and N*m.
 // Throws LoadNotCarriedError when no equilibrium exists, InvalidInputError for a
 // non-finite load.
-StaticSolution solve_static(const BearingModel& model, const Vector5& load, double cage_angle_rad = 0.0,
+StaticSolution solve_static(const BearingModel& model, const Vector5& load, const RollingPhase& phase,
                             const StaticSolverOptions& options = {}, const Vector5* initial_guess = nullptr);
+inline StaticSolution solve_static(const BearingModel& model, const Vector5& load, double cage_angle_rad = 0.0,
+                                   const StaticSolverOptions& options = {}, const Vector5* initial_guess = nullptr) {
+  return solve_static(model, load, RollingPhase{cage_angle_rad}, options, initial_guess);
+}
 
 }  // namespace bearing_sim

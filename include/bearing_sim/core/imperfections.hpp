@@ -1,0 +1,121 @@
+#pragma once
+// Distributed imperfections and localised defects (MODEL.md section 6). Each one changes
+// the contact deflection of the ball concerned at its current position.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+namespace bearing_sim {
+
+enum class Surface { OuterRace, InnerRace, Ball };
+const char* surface_name(Surface s);
+Surface parse_surface(const std::string& name);  // throws InvalidInputError
+
+struct Waviness {
+  Surface surface = Surface::OuterRace;
+  int order = 1;              // lobes per revolution (of the race, or of the ball)
+  double amplitude_m = 0.0;   // of the radius
+  double phase_rad = 0.0;
+};
+
+// A spall: the ball loses contact depth while over it (half-sine profile).
+struct Spall {
+  Surface surface = Surface::OuterRace;
+  double position_rad = 0.0;  // centre, in the race's own frame (ball: angle on the ball)
+  int ball = 0;               // for a ball spall: index, row-major
+  double width_m = 0.0;       // arc length along the rolling direction
+  double depth_m = 0.0;
+  double width_growth_m_per_s = 0.0;
+  double depth_growth_m_per_s = 0.0;
+  double created_at_s = 0.0;  // growth counts from here
+};
+
+struct ImperfectionSpec {
+  std::uint64_t seed = 1;
+  std::vector<Waviness> waviness;
+  double ball_diameter_variation_m = 0.0;  // standard deviation of the ball diameters
+  double roughness_rms_m = 0.0;            // RMS of a random profile on each race
+  std::vector<Spall> spalls;
+  bool empty() const {
+    return waviness.empty() && ball_diameter_variation_m == 0.0 && roughness_rms_m == 0.0 && spalls.empty();
+  }
+};
+
+// Parses the `imperfections:` and `defects:` sections of a bearing file (either may be
+// a null node). Throws ConfigError naming the source and key.
+ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML::Node& defects,
+                                     const std::string& source);
+
+// Angles of the moving parts at one instant, rad.
+struct RollingPhase {
+  double cage = 0.0;
+  double inner_ring = 0.0;
+  double outer_ring = 0.0;
+  double ball_spin = 0.0;  // spin of the balls relative to the cage
+  double time_s = 0.0;
+};
+
+// Precomputed race profiles and per-ball terms for one bearing.
+class Imperfections {
+ public:
+  struct Geometry {
+    int balls_per_row = 0;
+    int rows = 1;
+    double ball_diameter_m = 0.0;
+    double outer_race_radius_m = 0.0;  // at the contact, for arc lengths
+    double inner_race_radius_m = 0.0;
+    std::vector<double> base_azimuth;  // of every ball at cage angle 0, in [0, 2 pi)
+  };
+  Imperfections() = default;
+  // Throws InvalidInputError for an imperfection or defect that does not fit the bearing.
+  Imperfections(const ImperfectionSpec& spec, const Geometry& geometry);
+
+  bool time_varying() const {
+    return !race_waviness_.empty() || has_roughness_ || !ball_waviness_.empty() || !spalls_.empty();
+  }
+  // Constant per-ball deflection change (ball diameter variation), m.
+  const std::vector<double>& ball_diameter_deviation() const { return ball_diameter_deviation_; }
+  // Adds the time-varying deflection change of every ball to out[0..ball count).
+  // Spalls only ever remove deflection, so leaving them out gives an upper bound.
+  void add_offsets(const RollingPhase& phase, double* out, bool include_spalls = true) const;
+
+  void add_spall(const Spall& spall);  // validates; throws InvalidInputError
+  void clear_spalls() { spalls_.clear(); }
+  const std::vector<Spall>& spalls() const { return spalls_; }
+  const ImperfectionSpec& spec() const { return spec_; }
+  // Bound on the change of a ball's deflection offset (spalls left out) when it travels
+  // the given angles over the outer race, the inner race and its own surface (spin), for
+  // the contact margin of the dynamics, m.
+  double max_offset_change_m(double outer_race_angle, double inner_race_angle, double spin_angle) const;
+
+ private:
+  void validate(const Spall& s) const;
+  // Width and effective depth of a spall at time t.
+  void spall_size(const Spall& s, double time_s, double* angular_width, double* depth) const;
+
+  ImperfectionSpec spec_;
+  Geometry geometry_;
+  static constexpr int kProfilePoints = 1 << 14;
+  // One harmonic seen by every ball: amplitude * cos(order * angle + phase_b), where the
+  // angle is that of the race frame (races) or the spin angle (balls).
+  struct Harmonic {
+    Surface surface;
+    int order;
+    double amplitude_m;
+    std::vector<double> cos_phase, sin_phase;  // per ball
+  };
+  std::vector<Harmonic> race_waviness_, ball_waviness_;
+  bool has_roughness_ = false;
+  std::vector<double> roughness_profile_[2];  // 0 outer, 1 inner: radius deviation, m
+  std::vector<double> ball_diameter_deviation_;
+  std::vector<double> ball_phase_;  // random initial spin angle of each ball
+  std::vector<Spall> spalls_;
+  // Per surface (outer race, inner race, ball): largest slope (m/rad) and largest
+  // peak-to-peak change (m) of the offsets, spalls left out.
+  double slope_[3] = {0.0, 0.0, 0.0};
+  double peak_to_peak_[3] = {0.0, 0.0, 0.0};
+};
+
+}  // namespace bearing_sim

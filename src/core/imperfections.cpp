@@ -1,0 +1,292 @@
+#include "bearing_sim/core/imperfections.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <random>
+
+#include <unsupported/Eigen/FFT>
+
+#include "bearing_sim/core/errors.hpp"
+#include "yaml_reader.hpp"
+
+namespace bearing_sim {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kTwoPi = 2.0 * kPi;
+
+// Depth a ball of diameter d can reach in a spall of length w: it drops until it rests
+// on both edges, w^2 / (4 d) for w << d, never more than the spall is deep.
+double effective_depth(double width_m, double depth_m, double ball_diameter_m) {
+  return std::min(depth_m, width_m * width_m / (4.0 * ball_diameter_m));
+}
+
+// Half-sine dip of a spall centred at 0 of angular width w, at angle x (|x| < w/2).
+inline double spall_dip(double x, double angular_width, double depth) {
+  return std::abs(x) < 0.5 * angular_width ? depth * std::cos(kPi * x / angular_width) : 0.0;
+}
+}  // namespace
+
+const char* surface_name(Surface s) {
+  switch (s) {
+    case Surface::OuterRace: return "outer_race";
+    case Surface::InnerRace: return "inner_race";
+    case Surface::Ball: return "ball";
+  }
+  return "?";
+}
+
+Surface parse_surface(const std::string& name) {
+  if (name == "outer_race") return Surface::OuterRace;
+  if (name == "inner_race") return Surface::InnerRace;
+  if (name == "ball") return Surface::Ball;
+  throw InvalidInputError("surface must be outer_race, inner_race or ball, got '" + name + "'");
+}
+
+ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML::Node& defects,
+                                     const std::string& source) {
+  ImperfectionSpec spec;
+  auto surface_of = [&](const detail::Reader& r, const std::string& key) {
+    try {
+      return parse_surface(r.text(key, "outer_race"));
+    } catch (const InvalidInputError& e) {
+      r.fail(key, e.what());
+    }
+  };
+  if (imperfections) {
+    if (!imperfections.IsMap()) throw ConfigError(source + ": key 'imperfections': expected a mapping");
+    detail::Reader r(imperfections, source, "imperfections.");
+    r.check_keys({"seed", "waviness", "ball_diameter_variation_um", "roughness_rms_um"});
+    const int seed = r.integer("seed", 1);
+    r.require(seed >= 0, "seed", "must be >= 0");
+    spec.seed = static_cast<std::uint64_t>(seed);
+    spec.ball_diameter_variation_m = r.number("ball_diameter_variation_um", 0.0) * 1e-6;
+    r.require(spec.ball_diameter_variation_m >= 0.0, "ball_diameter_variation_um", "must be >= 0");
+    spec.roughness_rms_m = r.number("roughness_rms_um", 0.0) * 1e-6;
+    r.require(spec.roughness_rms_m >= 0.0, "roughness_rms_um", "must be >= 0");
+    const YAML::Node list = imperfections["waviness"];
+    if (list) {
+      if (!list.IsSequence()) r.fail("waviness", "expected a list of {surface, order, amplitude_um, phase_deg}");
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        if (!list[i].IsMap()) r.fail("waviness[" + std::to_string(i) + "]", "expected a mapping");
+        detail::Reader w(list[i], source, "imperfections.waviness[" + std::to_string(i) + "].");
+        w.check_keys({"surface", "order", "amplitude_um", "phase_deg"});
+        Waviness wv;
+        wv.surface = surface_of(w, "surface");
+        wv.order = w.integer("order", 0, true);
+        w.require(wv.order >= 1 && wv.order <= 2000, "order", "must be between 1 and 2000");
+        wv.amplitude_m = w.number("amplitude_um", 0.0, true) * 1e-6;
+        w.require(wv.amplitude_m >= 0.0 && wv.amplitude_m < 50e-6, "amplitude_um", "must be in [0, 50) um");
+        wv.phase_rad = w.number("phase_deg", 0.0) * kPi / 180.0;
+        spec.waviness.push_back(wv);
+      }
+    }
+  }
+  if (defects) {
+    if (!defects.IsSequence())
+      throw ConfigError(source + ": key 'defects': expected a list of {surface, position_deg, width_mm, depth_um, ...}");
+    for (std::size_t i = 0; i < defects.size(); ++i) {
+      const std::string prefix = "defects[" + std::to_string(i) + "].";
+      if (!defects[i].IsMap()) throw ConfigError(source + ": key '" + prefix + "': expected a mapping");
+      detail::Reader d(defects[i], source, prefix);
+      d.check_keys({"surface", "position_deg", "ball", "width_mm", "depth_um", "width_growth_mm_per_hour",
+                    "depth_growth_um_per_hour"});
+      Spall s;
+      s.surface = surface_of(d, "surface");
+      s.position_rad = d.number("position_deg", 0.0) * kPi / 180.0;
+      s.ball = d.integer("ball", 0);
+      s.width_m = d.number("width_mm", 0.0, true) * 1e-3;
+      s.depth_m = d.number("depth_um", 0.0, true) * 1e-6;
+      s.width_growth_m_per_s = d.number("width_growth_mm_per_hour", 0.0) * 1e-3 / 3600.0;
+      s.depth_growth_m_per_s = d.number("depth_growth_um_per_hour", 0.0) * 1e-6 / 3600.0;
+      d.require(s.width_m > 0.0, "width_mm", "must be > 0");
+      d.require(s.depth_m > 0.0, "depth_um", "must be > 0");
+      d.require(s.width_growth_m_per_s >= 0.0, "width_growth_mm_per_hour", "must be >= 0");
+      d.require(s.depth_growth_m_per_s >= 0.0, "depth_growth_um_per_hour", "must be >= 0");
+      spec.spalls.push_back(s);
+    }
+  }
+  return spec;
+}
+
+Imperfections::Imperfections(const ImperfectionSpec& spec, const Geometry& g) : spec_(spec), geometry_(g) {
+  const int n_balls = g.rows * g.balls_per_row;
+  if (static_cast<int>(g.base_azimuth.size()) != n_balls)
+    throw InvalidInputError("imperfections: one base azimuth per ball expected");
+  std::mt19937_64 rng(spec.seed);
+
+  ball_diameter_deviation_.assign(n_balls, 0.0);
+  if (spec.ball_diameter_variation_m > 0.0) {
+    std::normal_distribution<double> normal(0.0, spec.ball_diameter_variation_m);
+    for (double& dev : ball_diameter_deviation_) dev = normal(rng);
+  }
+  ball_phase_.resize(n_balls);
+  std::uniform_real_distribution<double> uniform_angle(0.0, kTwoPi);
+  for (double& p : ball_phase_) p = uniform_angle(rng);
+
+  for (const Waviness& w : spec.waviness) {
+    Harmonic h{w.surface, w.order, w.amplitude_m, {}, {}};
+    if (w.surface == Surface::Ball) {
+      // The diameter along the contact line changes by r(psi) + r(psi + pi): 2 a cos(k psi + p)
+      // for even orders, nothing for odd ones.
+      if (w.order % 2 != 0) continue;
+      h.amplitude_m = 2.0 * w.amplitude_m;
+    }
+    for (int b = 0; b < n_balls; ++b) {
+      const double angle = w.surface == Surface::Ball ? ball_phase_[b] : g.base_azimuth[b];
+      h.cos_phase.push_back(std::cos(w.order * angle + w.phase_rad));
+      h.sin_phase.push_back(std::sin(w.order * angle + w.phase_rad));
+    }
+    const int surface = static_cast<int>(w.surface);
+    slope_[surface] += h.amplitude_m * w.order;
+    peak_to_peak_[surface] += 2.0 * h.amplitude_m;
+    (w.surface == Surface::Ball ? ball_waviness_ : race_waviness_).push_back(std::move(h));
+  }
+
+  // Roughness: random-phase harmonics of equal amplitude between orders Z and N/4 on each
+  // race, scaled to the RMS asked for, tabulated for linear interpolation.
+  if (spec.roughness_rms_m > 0.0) {
+    has_roughness_ = true;
+    const int k_min = std::max(2, g.balls_per_row), k_max = kProfilePoints / 4;
+    for (int race = 0; race < 2; ++race) {
+      std::vector<std::complex<double>> spectrum(kProfilePoints, 0.0);
+      for (int k = k_min; k <= k_max; ++k) {
+        spectrum[k] = std::polar(1.0, uniform_angle(rng));
+        spectrum[kProfilePoints - k] = std::conj(spectrum[k]);
+      }
+      std::vector<double> profile;
+      Eigen::FFT<double> fft;
+      fft.inv(profile, spectrum);
+      double sum_sq = 0.0;
+      for (double v : profile) sum_sq += v * v;
+      const double scale = spec.roughness_rms_m / std::sqrt(sum_sq / kProfilePoints);
+      for (double& v : profile) v *= scale;
+      double slope = 0.0;
+      for (int i = 0; i < kProfilePoints; ++i)
+        slope = std::max(slope, std::abs(profile[(i + 1) % kProfilePoints] - profile[i]) * kProfilePoints / kTwoPi);
+      const auto [lo, hi] = std::minmax_element(profile.begin(), profile.end());
+      slope_[race] += slope;
+      peak_to_peak_[race] += *hi - *lo;
+      roughness_profile_[race] = std::move(profile);
+    }
+  }
+  for (const Spall& s : spec.spalls) add_spall(s);
+}
+
+void Imperfections::validate(const Spall& s) const {
+  const auto& g = geometry_;
+  if (!std::isfinite(s.position_rad) || !std::isfinite(s.width_m) || !std::isfinite(s.depth_m))
+    throw InvalidInputError("defect: position, width and depth must be finite");
+  if (!(s.depth_m > 0.0) || s.depth_m > 0.25 * g.ball_diameter_m)
+    throw InvalidInputError("defect: depth must be > 0 and at most a quarter of the ball diameter (" +
+                            std::to_string(0.25 * g.ball_diameter_m * 1e6) + " um)");
+  if (s.surface == Surface::Ball) {
+    if (s.ball < 0 || s.ball >= g.rows * g.balls_per_row)
+      throw InvalidInputError("defect: ball index " + std::to_string(s.ball) + " is not in [0, " +
+                              std::to_string(g.rows * g.balls_per_row) + ")");
+    if (!(s.width_m > 0.0) || s.width_m > 0.25 * kPi * g.ball_diameter_m)
+      throw InvalidInputError("defect: a ball spall must be wider than 0 and at most a quarter of the ball "
+                              "circumference (" + std::to_string(0.25 * kPi * g.ball_diameter_m * 1e3) + " mm)");
+  } else {
+    const double r = s.surface == Surface::OuterRace ? g.outer_race_radius_m : g.inner_race_radius_m;
+    if (!(s.width_m > 0.0) || s.width_m > 0.5 * kPi * r)
+      throw InvalidInputError("defect: a race spall must be wider than 0 and at most a quarter of the raceway (" +
+                              std::to_string(0.5 * kPi * r * 1e3) + " mm)");
+  }
+  if (s.width_growth_m_per_s < 0.0 || s.depth_growth_m_per_s < 0.0)
+    throw InvalidInputError("defect: growth rates must be >= 0");
+}
+
+void Imperfections::add_spall(const Spall& spall) {
+  validate(spall);
+  spalls_.push_back(spall);
+}
+
+void Imperfections::spall_size(const Spall& s, double time_s, double* angular_width, double* depth) const {
+  const double age = std::max(0.0, time_s - s.created_at_s);
+  const double width = s.width_m + s.width_growth_m_per_s * age;
+  *depth = effective_depth(width, s.depth_m + s.depth_growth_m_per_s * age, geometry_.ball_diameter_m);
+  const double radius = s.surface == Surface::Ball        ? 0.5 * geometry_.ball_diameter_m
+                        : s.surface == Surface::OuterRace ? geometry_.outer_race_radius_m
+                                                          : geometry_.inner_race_radius_m;
+  *angular_width = width / radius;
+}
+
+double Imperfections::max_offset_change_m(double outer_race_angle, double inner_race_angle, double spin_angle) const {
+  const double angles[3] = {std::abs(outer_race_angle), std::abs(inner_race_angle), std::abs(spin_angle)};
+  double change = 0.0;
+  for (int i = 0; i < 3; ++i) change += std::min(slope_[i] * angles[i], peak_to_peak_[i]);
+  return change;
+}
+
+void Imperfections::add_offsets(const RollingPhase& phase, double* out, bool include_spalls) const {
+  const int n = static_cast<int>(ball_phase_.size());
+  const double* base = geometry_.base_azimuth.data();
+  for (const Harmonic& h : race_waviness_) {
+    // Race-frame angle of ball b: base_b + cage - ring.
+    const double shift = h.order * (phase.cage - (h.surface == Surface::OuterRace ? phase.outer_ring : phase.inner_ring));
+    const double c = h.amplitude_m * std::cos(shift), s = h.amplitude_m * std::sin(shift);
+    const double* cp = h.cos_phase.data();
+    const double* sp = h.sin_phase.data();
+#pragma omp simd
+    for (int b = 0; b < n; ++b) out[b] += c * cp[b] - s * sp[b];
+  }
+  for (const Harmonic& h : ball_waviness_) {
+    const double c = h.amplitude_m * std::cos(h.order * phase.ball_spin);
+    const double s = h.amplitude_m * std::sin(h.order * phase.ball_spin);
+    const double* cp = h.cos_phase.data();
+    const double* sp = h.sin_phase.data();
+#pragma omp simd
+    for (int b = 0; b < n; ++b) out[b] += c * cp[b] - s * sp[b];
+  }
+  if (has_roughness_) {
+    constexpr double kScale = kProfilePoints / kTwoPi;
+    constexpr long kMask = kProfilePoints - 1;
+    const double* outer = roughness_profile_[0].data();
+    const double* inner = roughness_profile_[1].data();
+    // Race-frame shifts wrapped to [0, 2 pi), so that the table index stays positive.
+    const double to_outer = std::fmod(std::fmod(phase.cage - phase.outer_ring, kTwoPi) + 2.0 * kTwoPi, kTwoPi);
+    const double to_inner = std::fmod(std::fmod(phase.cage - phase.inner_ring, kTwoPi) + 2.0 * kTwoPi, kTwoPi);
+#pragma omp simd
+    for (int b = 0; b < n; ++b) {
+      const double xo = (base[b] + to_outer) * kScale, xi = (base[b] + to_inner) * kScale;
+      const long io = static_cast<long>(xo), ii = static_cast<long>(xi);  // x >= 0: truncation is floor
+      const double fo = xo - static_cast<double>(io), fi = xi - static_cast<double>(ii);
+      const double po = outer[io & kMask], po1 = outer[(io + 1) & kMask];
+      const double pi = inner[ii & kMask], pi1 = inner[(ii + 1) & kMask];
+      out[b] += po + fo * (po1 - po) + pi + fi * (pi1 - pi);
+    }
+  }
+  if (!include_spalls) return;
+  for (const Spall& s : spalls_) {
+    double angular_width = 0.0, depth = 0.0;
+    spall_size(s, phase.time_s, &angular_width, &depth);
+    if (s.surface == Surface::Ball) {
+      // The spot faces the outer and the inner race once each per spin turn.
+      const double x = std::remainder(phase.ball_spin + ball_phase_[s.ball] - s.position_rad, kPi);
+      out[s.ball] -= spall_dip(x, angular_width, depth);
+    } else {
+      // Only the few balls within half a width of the spall centre: find them by index,
+      // since the balls of a row are evenly spaced.
+      const double ring = s.surface == Surface::OuterRace ? phase.outer_ring : phase.inner_ring;
+      const double start = phase.cage - ring - s.position_rad;
+      const int z = geometry_.balls_per_row;
+      const double pitch = kTwoPi / z;
+      const int reach = static_cast<int>(std::ceil(0.5 * angular_width / pitch)) + 1;
+      for (int row = 0; row < geometry_.rows; ++row) {
+        const double row_phase = base[row * z];
+        const long centre = std::lround(-(start + row_phase) / pitch);
+        const long first = 2 * reach + 1 < z ? centre - reach : 0;
+        const long last = 2 * reach + 1 < z ? centre + reach : z - 1;  // a spall wider than the row: every ball once
+        for (long k = first; k <= last; ++k) {
+          const int j = static_cast<int>(((k % z) + z) % z);
+          double x = std::fmod(base[row * z + j] + start, kTwoPi);  // to (-pi, pi]
+          x += x > kPi ? -kTwoPi : (x <= -kPi ? kTwoPi : 0.0);
+          out[row * z + j] -= spall_dip(x, angular_width, depth);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace bearing_sim
