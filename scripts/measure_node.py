@@ -86,9 +86,10 @@ def main():
         start = len(arrivals)
     time.sleep(args.duration)
     cpu1, t1 = cpu_seconds(pid), time.time()
-    time.sleep(1.2)  # one more diagnostics message
     with lock:
         run = arrivals[start:]
+    time.sleep(1.2)  # one more diagnostics message
+    with lock:
         d = dict(diag)
     if len(run) < 10:
         sys.exit('too few chunks received (%d)' % len(run))
