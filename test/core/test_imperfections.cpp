@@ -1,0 +1,195 @@
+// Distributed imperfections and spalls (MODEL.md section 6) against the classic waviness
+// rules, closed-form deflection changes and the determinism the datasets rely on.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "bearing_sim/core/bearing_dynamics.hpp"
+#include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/frequencies.hpp"
+#include "bearing_sim/core/quasi_static.hpp"
+#include "test_support.hpp"
+
+namespace bearing_sim {
+namespace {
+
+using test::kPi;
+
+// 6205-size deep groove bearing, inner ring rotating, 0.5 kg on it.
+constexpr int kBalls = 9;
+const std::string kDynamics =
+    "rotating_ring: inner\n"
+    "rotating_mass_kg: 0.5\n"
+    "tilt_inertia_kg_m2: 1.0e-4\n"
+    "damping: {contact_damping_Ns_per_m: 150.0}\n";
+constexpr double kInnerRpm = 1800.0;
+constexpr double kSampleRateHz = 20000.0;
+
+BearingConfig deep_groove(const std::string& extra, double clearance_um = 0.0) {
+  return test::single_row(kBalls, 7.94, 39.04, 0.0, 0.52, 0.52, clearance_um, kDynamics + extra);
+}
+
+// Radial (x) acceleration over the second half of a run under a radial load along x.
+std::vector<double> radial_acceleration(const BearingConfig& config, double duration_s, double radial_load_N = 1000.0) {
+  const BearingModel model(config);
+  BearingDynamics dynamics(model, test::load5(radial_load_N, 0, 0, 0, 0), kInnerRpm * 2.0 * kPi / 60.0,
+                           DynamicsOptions{kSampleRateHz, 0});
+  const int n = static_cast<int>(duration_s * kSampleRateHz);
+  std::vector<double> ax;
+  for (int i = 0; i < n; ++i) {
+    const DynamicSample s = dynamics.step();
+    if (i >= n / 2) ax.push_back(s.acceleration[0]);
+  }
+  return ax;
+}
+
+std::string inner_waviness(int order, double amplitude_um) {
+  return "imperfections:\n  waviness:\n    - {surface: inner_race, order: " + std::to_string(order) +
+         ", amplitude_um: " + std::to_string(amplitude_um) + "}\n";
+}
+
+// The waviness response alone: the run with waviness minus the smooth run (both are
+// deterministic, so the varying-compliance lines cancel).
+std::vector<double> waviness_response(int order, double clearance_um = 0.0, double radial_load_N = 1000.0) {
+  const std::vector<double> smooth = radial_acceleration(deep_groove("", clearance_um), 0.5, radial_load_N);
+  std::vector<double> wavy =
+      radial_acceleration(deep_groove(inner_waviness(order, 0.5), clearance_um), 0.5, radial_load_N);
+  for (std::size_t i = 0; i < wavy.size(); ++i) wavy[i] -= smooth[i];
+  return wavy;
+}
+
+TEST(Waviness, InnerRaceOrdersZPlusMinusOneExciteThePredictedRadialFrequencies) {
+  const BearingModel model(deep_groove(""));
+  const double fi = kInnerRpm / 60.0;
+  const double fc = bearing_frequencies(model, fi * 2.0 * kPi, 0.0).cage_hz;
+  // MODEL.md section 6: q = kZ - 1 at |kZ (f_c - f_r) + f_r|, q = kZ + 1 at |kZ (f_c - f_r) - f_r|.
+  const double expected_minus = std::abs(kBalls * (fc - fi) + fi);  // q = Z - 1: 132.4 Hz
+  const double expected_plus = std::abs(kBalls * (fc - fi) - fi);   // q = Z + 1: 192.4 Hz
+  // The 0.25 s window resolves 4 Hz; the peak search grid is 1 Hz, so 4 Hz is one bin.
+  const double peak_minus = test::spectral_peak_hz(waviness_response(kBalls - 1), kSampleRateHz, 20.0, 1000.0, 1.0);
+  const double peak_plus = test::spectral_peak_hz(waviness_response(kBalls + 1), kSampleRateHz, 20.0, 1000.0, 1.0);
+  EXPECT_NEAR(peak_minus, expected_minus, 4.0);
+  EXPECT_NEAR(peak_plus, expected_plus, 4.0);
+}
+
+TEST(Waviness, WithEveryBallLoadedOrdersOtherThanZPlusMinusOneGiveNoRadialForce) {
+  // The rule assumes every ball is loaded alike: 5 um preload and a light 100 N radial
+  // load. (In a half-loaded bearing the load zone's own harmonics let other orders through.)
+  // q = Z + 3 is not kZ +- 1, so the ball forces cancel around the row; its would-be line,
+  // carried by the 2nd harmonic of the load distribution, is |Z (f_c - f_r) - 3 f_r|.
+  const double fi = kInnerRpm / 60.0;
+  const BearingModel model(deep_groove(""));
+  const double fc = bearing_frequencies(model, fi * 2.0 * kPi, 0.0).cage_hz;
+  const std::vector<double> plus_one = waviness_response(kBalls + 1, -5.0, 100.0);
+  const std::vector<double> plus_three = waviness_response(kBalls + 3, -5.0, 100.0);
+  const double line_plus_one = test::dft_amplitude(plus_one, kSampleRateHz, std::abs(kBalls * (fc - fi) - fi));
+  const double line_plus_three = test::dft_amplitude(plus_three, kSampleRateHz, std::abs(kBalls * (fc - fi) - 3 * fi));
+  // Same amplitude on the race; only the small unevenness of the preloaded ball loads
+  // leaks a radial force for q = Z + 3: require it 10x weaker.
+  EXPECT_LT(line_plus_three, 0.1 * line_plus_one);
+}
+
+TEST(Spall, ABallOverARaceSpallLosesTheEffectiveDepth) {
+  // Outer race spall 2 mm wide, 5 um deep, centred under ball 0 (azimuth 0, load side).
+  BearingConfig healthy = deep_groove("");
+  BearingConfig spalled = deep_groove("defects:\n  - {surface: outer_race, position_deg: 0, width_mm: 2.0, depth_um: 5}\n");
+  const BearingModel a(healthy), b(spalled);
+  const Vector5 q = solve_static(a, test::load5(1000.0, 0, 0, 0, 0)).displacement;
+  const std::vector<BallState> before = a.ball_states(q, 0.0), after = b.ball_states(q, 0.0);
+  // At the same ring position only the ball over the spall changes, by the full depth:
+  // the half-sine dip is at its maximum at the centre, and 5 um < w^2/(4d) = 126 um.
+  EXPECT_NEAR(before[0].deflection_m - after[0].deflection_m, 5e-6, 1e-12);
+  for (int j = 1; j < kBalls; ++j) EXPECT_DOUBLE_EQ(before[j].deflection_m, after[j].deflection_m);
+}
+
+TEST(Spall, AShallowWideSpallIsLimitedByHowFarTheBallCanDrop) {
+  // A 0.5 mm wide, 50 um deep spall: the ball rests on both edges, w^2 / (4 d) = 7.87 um.
+  const BearingModel a(deep_groove(""));
+  const BearingModel b(deep_groove("defects:\n  - {surface: outer_race, position_deg: 0, width_mm: 0.5, depth_um: 50}\n"));
+  const Vector5 q = solve_static(a, test::load5(1000.0, 0, 0, 0, 0)).displacement;
+  const double drop = a.ball_states(q, 0.0)[0].deflection_m - b.ball_states(q, 0.0)[0].deflection_m;
+  EXPECT_NEAR(drop, 0.5e-3 * 0.5e-3 / (4.0 * 7.94e-3), 1e-12);
+}
+
+TEST(Spall, DefectsThatDoNotFitTheBearingAreRejected) {
+  const BearingModel model(deep_groove(""));
+  BearingDynamics dynamics(model, test::load5(1000.0, 0, 0, 0, 0), 0.0, DynamicsOptions{kSampleRateHz, 0});
+  Spall too_deep{Surface::OuterRace, 0.0, 0, 1e-3, 3e-3};  // deeper than d/4 = 1.985 mm
+  EXPECT_THROW(dynamics.add_spall(too_deep), InvalidInputError);
+  Spall no_such_ball{Surface::Ball, 0.0, kBalls, 0.5e-3, 10e-6};
+  EXPECT_THROW(dynamics.add_spall(no_such_ball), InvalidInputError);
+  Spall too_wide{Surface::InnerRace, 0.0, 0, 0.05, 10e-6};  // 50 mm on a 31 mm race
+  EXPECT_THROW(dynamics.add_spall(too_wide), InvalidInputError);
+  // A bad defect in a bearing file is a ConfigError naming the key.
+  try {
+    deep_groove("defects:\n  - {surface: outer_race, width_mm: 1.0, depth_um: 10, size: 3}\n");
+    FAIL() << "an unknown defect key must be rejected";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("defects[0].size"), std::string::npos) << e.what();
+  }
+  try {
+    deep_groove("imperfections:\n  waviness:\n    - {surface: cage, order: 3, amplitude_um: 0.1}\n");
+    FAIL() << "an unknown surface must be rejected";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("waviness[0].surface"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Spall, InjectedAndClearedAtRuntime) {
+  const BearingModel model(deep_groove(""));
+  const Vector5 load = test::load5(1000.0, 0, 0, 0, 0);
+  BearingDynamics healthy(model, load, kInnerRpm * 2.0 * kPi / 60.0, DynamicsOptions{kSampleRateHz, 0});
+  BearingDynamics spalled(model, load, kInnerRpm * 2.0 * kPi / 60.0, DynamicsOptions{kSampleRateHz, 0});
+  spalled.add_spall(Spall{Surface::InnerRace, 0.0, 0, 1e-3, 20e-6});
+  double healthy_peak = 0.0, spalled_peak = 0.0;
+  for (int i = 0; i < 2000; ++i) {
+    healthy_peak = std::max(healthy_peak, std::abs(healthy.step().acceleration[0]));
+    spalled_peak = std::max(spalled_peak, std::abs(spalled.step().acceleration[0]));
+  }
+  // Balls dropping 20 um into the spall under ~300 N give impacts far above the smooth
+  // bearing's varying-compliance vibration.
+  EXPECT_GT(spalled_peak, 10.0 * healthy_peak);
+  spalled.clear_spalls();
+  spalled.reset_to_equilibrium();
+  healthy.reset_to_equilibrium();
+  double difference = 0.0;
+  for (int i = 0; i < 200; ++i) difference = std::max(difference, std::abs(spalled.step().acceleration[0] - healthy.step().acceleration[0]));
+  // Cleared: both at rest at the same equilibrium; only the cage phase differs (same speed, same
+  // number of samples), so the two runs coincide.
+  EXPECT_LT(difference, 1e-9 * healthy_peak + 1e-12);
+}
+
+TEST(Imperfections, DeterministicPerSeedAndDifferentAcrossSeeds) {
+  auto run = [](int seed) {
+    return radial_acceleration(deep_groove("imperfections:\n  seed: " + std::to_string(seed) +
+                                           "\n  roughness_rms_um: 0.05\n  ball_diameter_variation_um: 0.2\n"),
+                               0.05);
+  };
+  const std::vector<double> a = run(7), b = run(7), c = run(8);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << "sample " << i;
+  double max_difference = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) max_difference = std::max(max_difference, std::abs(a[i] - c[i]));
+  EXPECT_GT(max_difference, 0.0);
+}
+
+TEST(Imperfections, BallDiameterVariationHasTheConfiguredSpread) {
+  const BearingModel model(bearing_config_from_string(
+      "balls_per_row: 400\nball_diameter_mm: 5\npitch_diameter_mm: 1000\ninner_groove_curvature: 0.52\n"
+      "outer_groove_curvature: 0.52\nimperfections: {seed: 3, ball_diameter_variation_um: 0.3}\n"));
+  double sum = 0.0, sum_sq = 0.0;
+  for (double d : model.deflection_offsets()) {
+    sum += d;
+    sum_sq += d * d;
+  }
+  const double n = model.ball_count();
+  const double sd = std::sqrt(sum_sq / n - (sum / n) * (sum / n));
+  // The sample standard deviation of 400 normal draws is within 4 standard errors
+  // (sd / sqrt(2n) = 3.5%) of the true one with near certainty.
+  EXPECT_NEAR(sd, 0.3e-6, 4.0 * 0.3e-6 / std::sqrt(2.0 * n));
+}
+
+}  // namespace
+}  // namespace bearing_sim
