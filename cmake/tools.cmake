@@ -9,6 +9,7 @@ add_executable(bearing_tool
   src/tools/command_static.cpp
   src/tools/command_frequencies.cpp
   src/tools/command_simulate.cpp
+  src/tools/command_analyze.cpp
 )
 target_link_libraries(bearing_tool PRIVATE bearing_sim_core CLI11::CLI11 nlohmann_json::nlohmann_json)
 bearing_sim_optimize(bearing_tool)
@@ -26,4 +27,11 @@ if(CATKIN_ENABLE_TESTING)
     BEARING_SIM_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
   add_dependencies(test_bearing_tool bearing_tool)
   bearing_sim_optimize(test_bearing_tool)
+  # bearing_tool analyze on a simulate --csv file, against the core library.
+  catkin_add_gtest(test_bearing_tool_analyze test/tools/test_bearing_tool_analyze.cpp
+    WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR} TIMEOUT 600)
+  target_link_libraries(test_bearing_tool_analyze bearing_sim_core nlohmann_json::nlohmann_json)
+  target_compile_definitions(test_bearing_tool_analyze PRIVATE BEARING_TOOL_PATH="$<TARGET_FILE:bearing_tool>")
+  add_dependencies(test_bearing_tool_analyze bearing_tool)
+  bearing_sim_optimize(test_bearing_tool_analyze)
 endif()

@@ -18,6 +18,7 @@ constexpr Register kCommands[] = {
     bearing_sim::tool::register_static_command,
     bearing_sim::tool::register_frequencies_command,
     bearing_sim::tool::register_simulate_command,
+    bearing_sim::tool::register_analyze_command,
 };
 
 int fail(int code, const char* kind, const std::exception& e) {

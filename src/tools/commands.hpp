@@ -10,5 +10,6 @@ namespace bearing_sim::tool {
 void register_static_command(CLI::App& app);
 void register_frequencies_command(CLI::App& app);
 void register_simulate_command(CLI::App& app);
+void register_analyze_command(CLI::App& app);
 
 }  // namespace bearing_sim::tool

@@ -1,0 +1,104 @@
+#pragma once
+// Condition indicators of a vibration window and a diagnosis (MODEL.md section 6; docs/health.md):
+// RMS, peak, crest factor, kurtosis, L, velocity RMS with its ISO 20816-3 zone, and the
+// envelope spectrum at the fault frequencies.
+#include <string>
+#include <vector>
+
+#include "bearing_sim/core/frequencies.hpp"
+#include "bearing_sim/core/signal_statistics.hpp"
+#include "bearing_sim/core/spectrum.hpp"
+
+namespace bearing_sim {
+
+// Velocity RMS zone boundaries, mm/s. Default: ISO 10816-3 / ISO 20816-3, machine group 2
+// (15 kW - 300 kW, shaft height 160-315 mm) on a RIGID foundation. Other common sets:
+// group 2 flexible 2.3 / 4.5 / 7.1; group 1 (300 kW - 50 MW) rigid 2.3 / 4.5 / 7.1,
+// flexible 3.5 / 7.1 / 11.0.
+struct VelocityZoneBoundaries {
+  double ab_mm_s = 1.4;  // A: newly commissioned | B: unrestricted long-term operation
+  double bc_mm_s = 2.8;  // C: restricted operation, plan maintenance
+  double cd_mm_s = 4.5;  // D: vibration severe enough to cause damage
+};
+
+enum class VelocityZone { A, B, C, D };
+const char* velocity_zone_name(VelocityZone zone);  // "A" .. "D"
+VelocityZone velocity_zone(double velocity_rms_mm_s, const VelocityZoneBoundaries& b);
+
+enum class HealthLevel { Ok, Warn, Error };  // same order as diagnostic_msgs OK/WARN/ERROR
+const char* health_level_name(HealthLevel level);  // "OK", "WARN", "ERROR"
+
+struct DiagnosisThresholds {
+  double fault_snr_db = 10.0;    // envelope peak this far over the noise floor: defect suspected -> WARN
+  double kurtosis_warn = 6.0;    // impulsive signal -> WARN (Gaussian noise: 3); <= 0 disables
+  VelocityZone warn_zone = VelocityZone::C;   // velocity zone at or above: WARN
+  VelocityZone error_zone = VelocityZone::D;  // ... ERROR
+};
+
+struct AnalysisOptions {
+  // Analyse the last window_s seconds of the signal (0: all of it). The window is then
+  // shortened to an FFT-friendly length (2^a 3^b 5^c samples, a few percent at most).
+  double window_s = 0.0;
+  // Envelope band: centred on resonance_hz (the sensor's transmission-path resonance,
+  // typically 3-5 kHz) with envelope_band_width_hz; when resonance_hz is 0, from
+  // 4 x the highest fault frequency (at least 500 Hz) up to 0.4 x the sample rate.
+  double resonance_hz = 0.0;
+  double envelope_band_width_hz = 2000.0;
+  // Velocity band of ISO 20816-3 for machines above 600 rpm.
+  double velocity_low_hz = 10.0;
+  double velocity_high_hz = 1000.0;
+  VelocityZoneBoundaries zones;
+  PeakSearchOptions peak_search;
+  // Envelope-spectrum floor per bin, m/s^2: SNRs are taken against at least this, so that
+  // a near-perfect (simulated, noise-free) signal's tiny lines are not called defects.
+  // 1e-5 m/s^2 is below the per-bin floor of a good IEPE accelerometer (about 0.5 mg
+  // broadband over 10 kHz gives 5e-5 m/s^2 in a 1 Hz bin).
+  double envelope_floor_m_s2 = 1e-5;
+  DiagnosisThresholds thresholds;
+};
+
+enum class FaultKind { OuterRace, InnerRace, Ball, Cage };
+const char* fault_kind_name(FaultKind kind);  // "outer race", "inner race", "ball", "cage"
+const char* fault_frequency_label(FaultKind kind);  // "BPFO", "BPFI", "2xBSF", "FTF"
+
+struct FaultIndicator {
+  FaultKind kind = FaultKind::OuterRace;
+  SpectralPeak envelope_peak;  // searched at the fault frequency (amplitude in m/s^2)
+  // Line amplitude over the mean of the envelope: near 1 for a spall's impact train,
+  // well below for the weak periodicity of distributed roughness (informative only).
+  double modulation = 0.0;
+  bool suspected = false;      // a local maximum with snr_db >= thresholds.fault_snr_db
+};
+
+struct Diagnosis {
+  HealthLevel level = HealthLevel::Ok;
+  std::string reason;  // one line for a maintenance engineer
+};
+
+struct ConditionIndicators {
+  std::size_t samples = 0;  // analysed (after windowing)
+  double window_s = 0.0;
+  double sample_rate_hz = 0.0;
+  SignalStatistics acceleration;  // m/s^2: rms, peak, crest factor, kurtosis
+  double level_db = 0.0;          // L = 20 lg(a_rms / 9.81e-3 m/s^2), JB/T 5314
+  double velocity_rms_mm_s = 0.0; // in [velocity_low_hz, velocity_high_hz]
+  VelocityZone zone = VelocityZone::A;
+  double envelope_low_hz = 0.0, envelope_high_hz = 0.0;
+  double envelope_mean_m_s2 = 0.0;  // mean of the band envelope (the demodulated level)
+  Spectrum envelope;  // envelope spectrum, m/s^2
+  std::vector<FaultIndicator> faults;  // outer race, inner race, ball, cage in that order
+  Diagnosis diagnosis;
+};
+
+// Throws InvalidInputError for bad input (too few samples, non-finite, a band outside
+// the sample rate).
+ConditionIndicators analyze_vibration(const std::vector<double>& accel_m_s2, double sample_rate_hz,
+                                      const BearingFrequencies& frequencies, const AnalysisOptions& options = {});
+
+// The fault frequency searched for a kind: BPFO, BPFI, 2 x ball spin, |cage|.
+double fault_frequency_hz(const BearingFrequencies& f, FaultKind kind);
+
+// The diagnosis from indicators already computed (analyze_vibration calls it).
+Diagnosis diagnose(const ConditionIndicators& indicators, const DiagnosisThresholds& thresholds);
+
+}  // namespace bearing_sim

@@ -1,0 +1,32 @@
+#pragma once
+// Time-domain statistics of a vibration signal (MODEL.md section 6, condition indicators).
+// All of them are taken about the mean of the samples: an accelerometer is AC-coupled,
+// and an offset (gravity, a DC drift) says nothing about the bearing.
+#include <cstddef>
+#include <vector>
+
+namespace bearing_sim {
+
+struct SignalStatistics {
+  std::size_t samples = 0;
+  double mean = 0.0;
+  double rms = 0.0;           // about the mean
+  double peak = 0.0;          // largest |x - mean|
+  double crest_factor = 0.0;  // peak / rms (sqrt 2 for a sine); 0 for a constant signal
+  double kurtosis = 0.0;      // m4 / m2^2, NOT the excess: 3 for Gaussian noise, 1.5 for a sine
+};
+
+// Over samples [begin, end) of x; throws InvalidInputError for an empty range or a
+// non-finite sample.
+SignalStatistics signal_statistics(const std::vector<double>& x, std::size_t begin, std::size_t end);
+inline SignalStatistics signal_statistics(const std::vector<double>& x) {
+  return signal_statistics(x, 0, x.size());
+}
+
+// Shorthands over the whole vector (about the mean).
+double signal_rms(const std::vector<double>& x);
+double signal_peak(const std::vector<double>& x);
+double crest_factor(const std::vector<double>& x);
+double kurtosis(const std::vector<double>& x);
+
+}  // namespace bearing_sim

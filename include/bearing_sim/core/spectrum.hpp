@@ -1,0 +1,76 @@
+#pragma once
+// FFT helpers for vibration analysis (Eigen's kissfft backend, header-only): amplitude
+// spectrum, band-pass by FFT masking, Hilbert envelope, velocity by frequency-domain
+// integration, and a peak search with a signal-to-noise ratio.
+//
+// Lengths: any length works; kissfft is fast when the length has only small prime
+// factors (see fft_friendly_length), slow (O(n p)) for a large prime factor p.
+#include <cstddef>
+#include <vector>
+
+namespace bearing_sim {
+
+// A single-sided amplitude spectrum: bin k at k * resolution_hz, k = 0 .. n/2.
+struct Spectrum {
+  double resolution_hz = 0.0;
+  std::vector<double> amplitude;
+  double frequency_hz(std::size_t bin) const { return static_cast<double>(bin) * resolution_hz; }
+};
+
+// Largest m <= n of the form 2^a 3^b 5^c (m >= 1 for n >= 1); analyses keep the last m
+// samples so that no FFT meets a large prime factor (at most a few percent are dropped).
+std::size_t fft_friendly_length(std::size_t n);
+
+// Mean removed, Hann window, scaled by the window's coherent gain: a sine of amplitude A
+// at a bin centre reads A there (up to 1.42 dB less between bins).
+Spectrum amplitude_spectrum(const std::vector<double>& x, double sample_rate_hz);
+
+// Zero-phase band-pass by FFT masking: the bins outside [low_hz, high_hz] are zeroed.
+std::vector<double> band_pass(const std::vector<double>& x, double sample_rate_hz, double low_hz, double high_hz);
+
+// |analytic signal| of x (the Hilbert envelope), mean of x removed.
+std::vector<double> hilbert_envelope(const std::vector<double>& x);
+
+// Envelope of x band-passed to [low_hz, high_hz], in one FFT pair (band mask and
+// analytic signal together): the demodulation step of envelope analysis.
+std::vector<double> band_envelope(const std::vector<double>& x, double sample_rate_hz, double low_hz, double high_hz);
+
+// Amplitude spectrum (as amplitude_spectrum) of band_envelope: the envelope spectrum.
+Spectrum envelope_spectrum(const std::vector<double>& x, double sample_rate_hz, double low_hz, double high_hz);
+
+// Velocity (m/s) from acceleration (m/s^2) by dividing each bin by j omega, keeping only
+// [low_hz, high_hz]; no window, so the ends of the record carry some leakage.
+std::vector<double> integrate_to_velocity(const std::vector<double>& accel, double sample_rate_hz, double low_hz,
+                                          double high_hz);
+
+// RMS velocity (m/s) in [low_hz, high_hz] from the Hann-windowed acceleration spectrum by
+// Parseval, sum over the band of |A_k|^2 / omega_k^2 with the window's energy correction.
+// The window keeps a strong tone outside the band from leaking in (which, divided by a
+// small omega, would dominate a low-frequency band).
+double band_velocity_rms(const std::vector<double>& accel, double sample_rate_hz, double low_hz, double high_hz);
+
+// Peak search around an expected frequency.
+struct PeakSearchOptions {
+  double tolerance_rel = 0.01;     // search expected * (1 +- tolerance_rel) ...
+  int tolerance_min_bins = 2;      // ... but at least +- this many bins
+  int noise_half_width_bins = 30;  // noise floor from the bins within +- this of the peak ...
+  int noise_exclude_bins = 3;      // ... leaving out the peak's own Hann main lobe (+- this)
+};
+
+struct SpectralPeak {
+  bool searched = false;        // false: the expected frequency is not inside the spectrum
+  bool local_maximum = false;   // the largest bin is a peak of the spectrum, not the flank
+                                // of a line outside the search range
+  double expected_hz = 0.0;
+  double frequency_hz = 0.0;    // of the largest bin, refined by Gaussian interpolation
+  double amplitude = 0.0;       // of the largest bin
+  double noise_floor = 0.0;     // MEDIAN of the neighbouring bins (robust to other lines)
+  double snr_db = 0.0;          // 20 lg(amplitude / max(noise_floor, absolute_floor))
+};
+
+// absolute_floor: the SNR is taken against at least this (e.g. the sensor's noise floor
+// per bin), so that numerically tiny lines of a near-perfect signal do not count.
+SpectralPeak find_peak(const Spectrum& spectrum, double expected_hz, const PeakSearchOptions& options = {},
+                       double absolute_floor = 0.0);
+
+}  // namespace bearing_sim

@@ -1,0 +1,180 @@
+#include "bearing_sim/core/condition_indicators.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/vibration_level.hpp"
+
+namespace bearing_sim {
+namespace {
+std::string fmt(double v, int decimals) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(decimals);
+  s << v;
+  return s.str();
+}
+}  // namespace
+
+const char* velocity_zone_name(VelocityZone zone) {
+  switch (zone) {
+    case VelocityZone::A: return "A";
+    case VelocityZone::B: return "B";
+    case VelocityZone::C: return "C";
+    case VelocityZone::D: return "D";
+  }
+  return "?";
+}
+
+VelocityZone velocity_zone(double v, const VelocityZoneBoundaries& b) {
+  if (v < b.ab_mm_s) return VelocityZone::A;
+  if (v < b.bc_mm_s) return VelocityZone::B;
+  if (v < b.cd_mm_s) return VelocityZone::C;
+  return VelocityZone::D;
+}
+
+const char* health_level_name(HealthLevel level) {
+  switch (level) {
+    case HealthLevel::Ok: return "OK";
+    case HealthLevel::Warn: return "WARN";
+    case HealthLevel::Error: return "ERROR";
+  }
+  return "?";
+}
+
+const char* fault_kind_name(FaultKind kind) {
+  switch (kind) {
+    case FaultKind::OuterRace: return "outer race";
+    case FaultKind::InnerRace: return "inner race";
+    case FaultKind::Ball: return "ball";
+    case FaultKind::Cage: return "cage";
+  }
+  return "?";
+}
+
+const char* fault_frequency_label(FaultKind kind) {
+  switch (kind) {
+    case FaultKind::OuterRace: return "BPFO";
+    case FaultKind::InnerRace: return "BPFI";
+    case FaultKind::Ball: return "2xBSF";
+    case FaultKind::Cage: return "FTF";
+  }
+  return "?";
+}
+
+double fault_frequency_hz(const BearingFrequencies& f, FaultKind kind) {
+  switch (kind) {
+    case FaultKind::OuterRace: return f.ball_pass_outer_race_hz;
+    case FaultKind::InnerRace: return f.ball_pass_inner_race_hz;
+    case FaultKind::Ball: return 2.0 * f.ball_spin_hz;  // the spall meets both races once per spin turn
+    case FaultKind::Cage: return std::abs(f.cage_hz);
+  }
+  return 0.0;
+}
+
+Diagnosis diagnose(const ConditionIndicators& c, const DiagnosisThresholds& t) {
+  // Collect the findings, worst level wins; the reason lists the findings, worst first.
+  struct Finding {
+    HealthLevel level;
+    double weight;  // orders findings of one level (larger first)
+    std::string text;
+  };
+  std::vector<Finding> findings;
+  const std::string velocity = "vibration velocity " + fmt(c.velocity_rms_mm_s, 2) + " mm/s RMS (zone " +
+                               velocity_zone_name(c.zone) + ")";
+  if (c.zone >= t.error_zone)
+    findings.push_back({HealthLevel::Error, 1e9, velocity + ": damaging vibration, stop and inspect"});
+  else if (c.zone >= t.warn_zone)
+    findings.push_back({HealthLevel::Warn, 1e9, velocity + ": restricted operation, plan maintenance"});
+  for (const FaultIndicator& f : c.faults) {
+    if (!f.suspected) continue;
+    const SpectralPeak& p = f.envelope_peak;
+    const std::string what = f.kind == FaultKind::Cage ? "cage defect (or a ball defect's cage-rate modulation)"
+                                                       : std::string(fault_kind_name(f.kind)) + " defect";
+    findings.push_back({HealthLevel::Warn, p.snr_db,
+                        what + " suspected: envelope peak at " +
+                            fmt(p.frequency_hz, 1) + " Hz (" + fault_frequency_label(f.kind) + " " +
+                            fmt(p.expected_hz, 1) + " Hz), " + fmt(p.snr_db, 0) + " dB over noise"});
+  }
+  if (t.kurtosis_warn > 0.0 && c.acceleration.kurtosis >= t.kurtosis_warn)
+    findings.push_back({HealthLevel::Warn, 0.0,
+                        "impulsive vibration: kurtosis " + fmt(c.acceleration.kurtosis, 1) + " (Gaussian noise 3), "
+                        "typical of a localised defect"});
+  Diagnosis d;
+  if (findings.empty()) {
+    d.reason = "no defect indication: " + velocity + ", kurtosis " + fmt(c.acceleration.kurtosis, 1) +
+               ", no envelope peak " + fmt(t.fault_snr_db, 0) + " dB over noise at the fault frequencies";
+    return d;
+  }
+  std::stable_sort(findings.begin(), findings.end(), [](const Finding& a, const Finding& b) {
+    if (a.level != b.level) return a.level > b.level;
+    return a.weight > b.weight;
+  });
+  d.level = findings.front().level;
+  for (std::size_t i = 0; i < findings.size(); ++i) d.reason += (i ? "; " : "") + findings[i].text;
+  return d;
+}
+
+ConditionIndicators analyze_vibration(const std::vector<double>& accel, double fs, const BearingFrequencies& freq,
+                                      const AnalysisOptions& o) {
+  if (!(fs > 0.0) || !std::isfinite(fs)) throw InvalidInputError("analysis: the sample rate must be > 0 Hz");
+  if (!(o.window_s >= 0.0) || !std::isfinite(o.window_s)) throw InvalidInputError("analysis: window_s must be >= 0");
+  if (!(o.velocity_low_hz > 0.0) || !(o.velocity_high_hz > o.velocity_low_hz))
+    throw InvalidInputError("analysis: the velocity band must satisfy 0 < low < high");
+  std::size_t n = accel.size();
+  if (o.window_s > 0.0) n = std::min(n, static_cast<std::size_t>(std::llround(o.window_s * fs)));
+  n = fft_friendly_length(n);
+  if (n < 64) throw InvalidInputError("analysis: at least 64 samples are needed in the window");
+  const std::vector<double> x(accel.end() - static_cast<long>(n), accel.end());
+
+  ConditionIndicators c;
+  c.samples = n;
+  c.sample_rate_hz = fs;
+  c.window_s = static_cast<double>(n) / fs;
+  c.acceleration = signal_statistics(x);
+  c.level_db = vibration_level_db(c.acceleration.rms);
+  const double nyquist = 0.5 * fs;
+  c.velocity_rms_mm_s =
+      o.velocity_low_hz < nyquist
+          ? 1e3 * band_velocity_rms(x, fs, o.velocity_low_hz, std::min(o.velocity_high_hz, nyquist))
+          : 0.0;
+  c.zone = velocity_zone(c.velocity_rms_mm_s, o.zones);
+
+  // Envelope band.
+  static constexpr FaultKind kKinds[] = {FaultKind::OuterRace, FaultKind::InnerRace, FaultKind::Ball,
+                                         FaultKind::Cage};
+  double highest_fault_hz = 0.0;
+  for (FaultKind k : kKinds) highest_fault_hz = std::max(highest_fault_hz, fault_frequency_hz(freq, k));
+  if (o.resonance_hz > 0.0) {
+    if (!(o.envelope_band_width_hz > 0.0)) throw InvalidInputError("analysis: the envelope band width must be > 0");
+    c.envelope_low_hz = std::max(0.0, o.resonance_hz - 0.5 * o.envelope_band_width_hz);
+    c.envelope_high_hz = o.resonance_hz + 0.5 * o.envelope_band_width_hz;
+  } else {
+    // Well above the fault lines themselves, so that the band holds the resonances they
+    // excite rather than the lines (and their low harmonics).
+    c.envelope_low_hz = std::max(500.0, 4.0 * highest_fault_hz);
+    c.envelope_high_hz = 0.4 * fs;
+  }
+  if (!(c.envelope_high_hz <= nyquist) || !(c.envelope_low_hz < c.envelope_high_hz))
+    throw InvalidInputError("analysis: envelope band " + fmt(c.envelope_low_hz, 0) + "-" + fmt(c.envelope_high_hz, 0) +
+                            " Hz does not fit below the Nyquist frequency " + fmt(nyquist, 0) +
+                            " Hz (raise the sample rate or give resonance_hz)");
+  const std::vector<double> envelope = band_envelope(x, fs, c.envelope_low_hz, c.envelope_high_hz);
+  c.envelope_mean_m_s2 = signal_statistics(envelope).mean;
+  c.envelope = amplitude_spectrum(envelope, fs);
+  for (FaultKind k : kKinds) {
+    FaultIndicator f;
+    f.kind = k;
+    f.envelope_peak = find_peak(c.envelope, fault_frequency_hz(freq, k), o.peak_search, o.envelope_floor_m_s2);
+    f.modulation = c.envelope_mean_m_s2 > 0.0 ? f.envelope_peak.amplitude / c.envelope_mean_m_s2 : 0.0;
+    f.suspected = f.envelope_peak.searched && f.envelope_peak.local_maximum &&
+                  f.envelope_peak.snr_db >= o.thresholds.fault_snr_db;
+    c.faults.push_back(f);
+  }
+  c.diagnosis = diagnose(c, o.thresholds);
+  return c;
+}
+
+}  // namespace bearing_sim

@@ -1,0 +1,225 @@
+#include "bearing_sim/core/spectrum.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <string>
+
+#include <unsupported/Eigen/FFT>
+
+#include "bearing_sim/core/errors.hpp"
+
+namespace bearing_sim {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+using Complex = std::complex<double>;
+
+void check_signal(const std::vector<double>& x, double sample_rate_hz, const char* what) {
+  if (x.size() < 4) throw InvalidInputError(std::string(what) + ": at least 4 samples are needed");
+  if (!(sample_rate_hz > 0.0) || !std::isfinite(sample_rate_hz))
+    throw InvalidInputError(std::string(what) + ": the sample rate must be a positive number of Hz");
+  for (double v : x)
+    if (!std::isfinite(v)) throw InvalidInputError(std::string(what) + ": the signal has a non-finite sample");
+}
+
+void check_band(double low_hz, double high_hz, const char* what) {
+  if (!(low_hz >= 0.0) || !(high_hz > low_hz) || !std::isfinite(high_hz))
+    throw InvalidInputError(std::string(what) + ": the band must satisfy 0 <= low < high");
+}
+
+double mean_of(const std::vector<double>& x) {
+  long double s = 0.0L;
+  for (double v : x) s += v;
+  return static_cast<double>(s / static_cast<long double>(x.size()));
+}
+
+// Full complex spectrum of x with its mean removed.
+std::vector<Complex> forward(const std::vector<double>& x) {
+  const double m = mean_of(x);
+  std::vector<double> centred(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) centred[i] = x[i] - m;
+  std::vector<Complex> spectrum;
+  Eigen::FFT<double> fft;
+  fft.fwd(spectrum, centred);
+  return spectrum;
+}
+
+bool in_band(double f, double low_hz, double high_hz) { return f >= low_hz && f <= high_hz; }
+
+// Analytic signal of x restricted to a band: 2 X_k for the positive frequencies in the
+// band, 0 elsewhere (the DC and Nyquist bins are never in a band that excludes them).
+std::vector<Complex> analytic_band(const std::vector<double>& x, double fs, double low_hz, double high_hz) {
+  std::vector<Complex> spectrum = forward(x);
+  const std::size_t n = spectrum.size();
+  const double df = fs / static_cast<double>(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const bool positive = k >= 1 && 2 * k < n;
+    const bool keep = positive && in_band(k * df, low_hz, high_hz);
+    spectrum[k] = keep ? 2.0 * spectrum[k] : Complex(0.0, 0.0);
+  }
+  std::vector<Complex> z;
+  Eigen::FFT<double> fft;
+  fft.inv(z, spectrum);  // scaled by 1/n
+  return z;
+}
+
+std::vector<double> hann(std::size_t n) {
+  std::vector<double> w(n);
+  for (std::size_t i = 0; i < n; ++i) w[i] = 0.5 - 0.5 * std::cos(2.0 * kPi * i / static_cast<double>(n));
+  return w;  // periodic form: exact coherent gain 1/2 and energy 3/8
+}
+}  // namespace
+
+std::size_t fft_friendly_length(std::size_t n) {
+  if (n == 0) return 0;
+  std::size_t best = 1;
+  for (std::size_t a = 1; a <= n; a *= 2)
+    for (std::size_t b = a; b <= n; b *= 3)
+      for (std::size_t c = b; c <= n; c *= 5) best = std::max(best, c);
+  return best;
+}
+
+Spectrum amplitude_spectrum(const std::vector<double>& x, double sample_rate_hz) {
+  check_signal(x, sample_rate_hz, "amplitude spectrum");
+  const std::size_t n = x.size();
+  const double m = mean_of(x);
+  const std::vector<double> w = hann(n);
+  std::vector<double> windowed(n);
+  for (std::size_t i = 0; i < n; ++i) windowed[i] = (x[i] - m) * w[i];
+  std::vector<Complex> spectrum;
+  Eigen::FFT<double> fft;
+  fft.fwd(spectrum, windowed);
+  Spectrum s;
+  s.resolution_hz = sample_rate_hz / static_cast<double>(n);
+  s.amplitude.resize(n / 2 + 1);
+  // Single-sided, divided by the coherent gain sum(w) = n/2.
+  for (std::size_t k = 0; k <= n / 2; ++k) {
+    const double factor = (k == 0 || 2 * k == n) ? 1.0 : 2.0;
+    s.amplitude[k] = factor * std::abs(spectrum[k]) / (0.5 * static_cast<double>(n));
+  }
+  return s;
+}
+
+std::vector<double> band_pass(const std::vector<double>& x, double sample_rate_hz, double low_hz, double high_hz) {
+  check_signal(x, sample_rate_hz, "band-pass");
+  check_band(low_hz, high_hz, "band-pass");
+  const std::vector<Complex> z = analytic_band(x, sample_rate_hz, low_hz, high_hz);
+  std::vector<double> y(z.size());
+  for (std::size_t i = 0; i < z.size(); ++i) y[i] = z[i].real();  // Re of the analytic signal
+  return y;
+}
+
+std::vector<double> hilbert_envelope(const std::vector<double>& x) {
+  // Every positive frequency: a band from 0 to beyond Nyquist at a unit sample rate.
+  check_signal(x, 1.0, "Hilbert envelope");
+  const std::vector<Complex> z = analytic_band(x, 1.0, 0.0, 1.0);
+  std::vector<double> e(z.size());
+  for (std::size_t i = 0; i < z.size(); ++i) e[i] = std::abs(z[i]);
+  return e;
+}
+
+std::vector<double> band_envelope(const std::vector<double>& x, double sample_rate_hz, double low_hz,
+                                  double high_hz) {
+  check_signal(x, sample_rate_hz, "band envelope");
+  check_band(low_hz, high_hz, "band envelope");
+  const std::vector<Complex> z = analytic_band(x, sample_rate_hz, low_hz, high_hz);
+  std::vector<double> e(z.size());
+  for (std::size_t i = 0; i < z.size(); ++i) e[i] = std::abs(z[i]);
+  return e;
+}
+
+Spectrum envelope_spectrum(const std::vector<double>& x, double sample_rate_hz, double low_hz, double high_hz) {
+  return amplitude_spectrum(band_envelope(x, sample_rate_hz, low_hz, high_hz), sample_rate_hz);
+}
+
+std::vector<double> integrate_to_velocity(const std::vector<double>& accel, double sample_rate_hz, double low_hz,
+                                          double high_hz) {
+  check_signal(accel, sample_rate_hz, "velocity");
+  check_band(low_hz, high_hz, "velocity");
+  std::vector<Complex> spectrum = forward(accel);
+  const std::size_t n = spectrum.size();
+  const double df = sample_rate_hz / static_cast<double>(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    // Bin k and its mirror n-k stand for the same |f|; the sign of omega follows the bin.
+    const bool negative = 2 * k > n;
+    const double f = (negative ? static_cast<double>(n - k) : static_cast<double>(k)) * df;
+    if (k == 0 || 2 * k == n || !in_band(f, low_hz, high_hz)) {
+      spectrum[k] = 0.0;
+      continue;
+    }
+    const double omega = 2.0 * kPi * f * (negative ? -1.0 : 1.0);
+    spectrum[k] /= Complex(0.0, omega);
+  }
+  std::vector<double> v;
+  Eigen::FFT<double> fft;
+  fft.inv(v, spectrum);
+  return v;
+}
+
+double band_velocity_rms(const std::vector<double>& accel, double sample_rate_hz, double low_hz, double high_hz) {
+  check_signal(accel, sample_rate_hz, "velocity RMS");
+  check_band(low_hz, high_hz, "velocity RMS");
+  const std::size_t n = accel.size();
+  const double m = mean_of(accel);
+  const std::vector<double> w = hann(n);
+  double window_energy = 0.0;
+  std::vector<double> windowed(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    windowed[i] = (accel[i] - m) * w[i];
+    window_energy += w[i] * w[i];
+  }
+  std::vector<Complex> spectrum;
+  Eigen::FFT<double> fft;
+  fft.fwd(spectrum, windowed);
+  const double df = sample_rate_hz / static_cast<double>(n);
+  long double sum = 0.0L;
+  for (std::size_t k = 1; 2 * k < n; ++k) {
+    const double f = k * df;
+    if (!in_band(f, low_hz, high_hz)) continue;
+    const double omega = 2.0 * kPi * f;
+    sum += 2.0L * std::norm(spectrum[k]) / (static_cast<long double>(omega) * omega);  // both sides
+  }
+  return std::sqrt(static_cast<double>(sum / (static_cast<long double>(n) * window_energy)));
+}
+
+SpectralPeak find_peak(const Spectrum& s, double expected_hz, const PeakSearchOptions& o, double absolute_floor) {
+  SpectralPeak p;
+  p.expected_hz = expected_hz;
+  const auto bins = static_cast<long>(s.amplitude.size());
+  if (!(s.resolution_hz > 0.0) || bins < 8 || !(expected_hz > 0.0) || !std::isfinite(expected_hz)) return p;
+  const double centre = expected_hz / s.resolution_hz;
+  const double half = std::max(o.tolerance_rel * centre, static_cast<double>(o.tolerance_min_bins));
+  const long lo = std::max(1L, static_cast<long>(std::ceil(centre - half)));
+  const long hi = std::min(bins - 2, static_cast<long>(std::floor(centre + half)));
+  if (lo > hi) return p;
+  long k = lo;
+  for (long j = lo; j <= hi; ++j)
+    if (s.amplitude[j] > s.amplitude[k]) k = j;
+  p.searched = true;
+  p.amplitude = s.amplitude[k];
+  p.local_maximum = s.amplitude[k] >= s.amplitude[k - 1] && s.amplitude[k] >= s.amplitude[k + 1];
+  // Gaussian (log-parabolic) interpolation, exact for a Gaussian lobe and within a few
+  // hundredths of a bin for the Hann lobe.
+  double offset = 0.0;
+  const double a0 = s.amplitude[k - 1], a1 = s.amplitude[k], a2 = s.amplitude[k + 1];
+  if (a0 > 0.0 && a1 > 0.0 && a2 > 0.0) {
+    const double l0 = std::log(a0), l1 = std::log(a1), l2 = std::log(a2);
+    const double denom = l0 - 2.0 * l1 + l2;
+    if (denom < 0.0) offset = std::clamp(0.5 * (l0 - l2) / denom, -0.5, 0.5);
+  }
+  p.frequency_hz = (static_cast<double>(k) + offset) * s.resolution_hz;
+  std::vector<double> neighbours;
+  for (long j = std::max(1L, k - o.noise_half_width_bins); j <= std::min(bins - 1, k + o.noise_half_width_bins); ++j)
+    if (std::abs(j - k) > o.noise_exclude_bins) neighbours.push_back(s.amplitude[j]);
+  if (!neighbours.empty()) {
+    auto mid = neighbours.begin() + static_cast<long>(neighbours.size() / 2);
+    std::nth_element(neighbours.begin(), mid, neighbours.end());
+    p.noise_floor = *mid;
+  }
+  const double floor = std::max(p.noise_floor, absolute_floor);
+  p.snr_db = floor > 0.0 ? 20.0 * std::log10(p.amplitude / floor) : std::numeric_limits<double>::infinity();
+  return p;
+}
+
+}  // namespace bearing_sim

@@ -1,0 +1,246 @@
+// bearing_tool analyze: condition indicators, envelope analysis and a diagnosis of a
+// recorded (or simulated) acceleration signal in a CSV file (docs/health.md).
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "bearing_sim/core/condition_indicators.hpp"
+#include "bearing_sim/core/frequencies.hpp"
+#include "commands.hpp"
+#include "tool_common.hpp"
+
+namespace bearing_sim::tool {
+namespace {
+
+struct AnalyzeCliOptions {
+  std::string csv;
+  std::string bearing;
+  double outer_rpm = 0.0;
+  double inner_rpm = 0.0;
+  std::string column = "ax_m_s2";
+  double rate_hz = 0.0;
+  double window_s = 0.0;
+  double resonance_hz = 0.0;
+  double band_width_hz = 2000.0;
+  std::vector<double> zones{1.4, 2.8, 4.5};
+  double snr_db = 10.0;
+  double kurtosis_warn = 6.0;
+  bool json = false;
+};
+
+struct CsvSignal {
+  std::vector<double> values;
+  double rate_hz = 0.0;  // from the time column; 0 when there is none
+  std::string column;
+};
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream s(line);
+  std::string cell;
+  while (std::getline(s, cell, ',')) {
+    const auto b = cell.find_first_not_of(" \t\r"), e = cell.find_last_not_of(" \t\r");
+    cells.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
+  }
+  return cells;
+}
+
+// Other spellings of the accelerometer columns of `bearing_tool simulate --csv`.
+std::string canonical_column(const std::string& name) {
+  if (name == "accel_x") return "ax_m_s2";
+  if (name == "accel_y") return "ay_m_s2";
+  if (name == "accel_z") return "az_m_s2";
+  return name;
+}
+
+double parse_cell(const std::string& text, const std::string& path, std::size_t line, const std::string& column) {
+  std::size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(v))
+    throw InputError("--csv '" + path + "' line " + std::to_string(line) + ", column '" + column + "': '" + text +
+                     "' is not a finite number");
+  return v;
+}
+
+// A header line of column names, then one sample per line.
+CsvSignal read_csv(const std::string& path, const std::string& wanted) {
+  std::ifstream in(path);
+  if (!in) throw InputError("--csv: cannot open '" + path + "': " + std::strerror(errno));
+  std::string line;
+  if (!std::getline(in, line)) throw InputError("--csv '" + path + "': empty file (a header line is expected)");
+  const std::vector<std::string> header = split(line);
+  int value_col = -1, time_col = -1;
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (header[i] == wanted) value_col = static_cast<int>(i);
+    if (time_col < 0 && header[i].rfind("time", 0) == 0) time_col = static_cast<int>(i);
+  }
+  if (value_col < 0) {
+    const std::string alias = canonical_column(wanted);
+    for (std::size_t i = 0; i < header.size() && value_col < 0; ++i)
+      if (header[i] == alias) value_col = static_cast<int>(i);
+  }
+  if (value_col < 0) {
+    std::string names;
+    for (const auto& h : header) names += (names.empty() ? "" : ", ") + h;
+    throw InputError("--column '" + wanted + "': no such column in '" + path + "' (columns: " + names + ")");
+  }
+  CsvSignal s;
+  s.column = header[value_col];
+  std::vector<double> time;
+  std::size_t line_no = 1;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const std::vector<std::string> cells = split(line);
+    const int needed = std::max(value_col, time_col) + 1;
+    if (static_cast<int>(cells.size()) < needed)
+      throw InputError("--csv '" + path + "' line " + std::to_string(line_no) + ": " + std::to_string(cells.size()) +
+                       " columns, " + std::to_string(needed) + " needed");
+    s.values.push_back(parse_cell(cells[value_col], path, line_no, s.column));
+    if (time_col >= 0) time.push_back(parse_cell(cells[time_col], path, line_no, header[time_col]));
+  }
+  if (time.size() >= 2) {
+    const double span = time.back() - time.front();
+    if (span > 0.0) s.rate_hz = static_cast<double>(time.size() - 1) / span;
+  }
+  return s;
+}
+
+nlohmann::json peak_json(const SpectralPeak& p) {
+  return {{"expected_hz", p.expected_hz},  {"searched", p.searched},       {"frequency_hz", p.frequency_hz},
+          {"amplitude_m_s2", p.amplitude}, {"noise_floor_m_s2", p.noise_floor}, {"snr_db", p.snr_db},
+          {"local_maximum", p.local_maximum}};
+}
+
+void run(const AnalyzeCliOptions& o) {
+  const BearingModel model = load_model(o.bearing);
+  if (o.inner_rpm == 0.0 && o.outer_rpm == 0.0)
+    throw InputError("give the ring speeds of the recording (--inner-rpm and/or --outer-rpm): the fault "
+                     "frequencies depend on them");
+  const CsvSignal signal = read_csv(o.csv, o.column);
+  const double rate = o.rate_hz > 0.0 ? o.rate_hz : signal.rate_hz;
+  if (!(rate > 0.0))
+    throw InputError("--csv '" + o.csv + "' has no time column (a header starting with 'time'): give --rate");
+  const BearingFrequencies f = bearing_frequencies(model, rpm_to_rad_s(o.inner_rpm), rpm_to_rad_s(o.outer_rpm));
+
+  AnalysisOptions a;
+  a.window_s = o.window_s;
+  a.resonance_hz = o.resonance_hz;
+  a.envelope_band_width_hz = o.band_width_hz;
+  a.zones = {o.zones[0], o.zones[1], o.zones[2]};
+  if (!(a.zones.ab_mm_s > 0.0 && a.zones.ab_mm_s < a.zones.bc_mm_s && a.zones.bc_mm_s < a.zones.cd_mm_s))
+    throw InputError("--zones: expected 0 < A/B < B/C < C/D (mm/s)");
+  a.thresholds.fault_snr_db = o.snr_db;
+  a.thresholds.kurtosis_warn = o.kurtosis_warn;
+  const ConditionIndicators c = analyze_vibration(signal.values, rate, f, a);
+
+  if (o.json) {
+    nlohmann::json faults = nlohmann::json::array();
+    for (const FaultIndicator& fi : c.faults)
+      faults.push_back({{"fault", fault_kind_name(fi.kind)},
+                        {"label", fault_frequency_label(fi.kind)},
+                        {"suspected", fi.suspected},
+                        {"modulation", fi.modulation},
+                        {"envelope_peak", peak_json(fi.envelope_peak)}});
+    print_json({{"bearing", bearing_json(model, o.bearing)},
+                {"csv", o.csv},
+                {"column", signal.column},
+                {"inner_rpm", o.inner_rpm},
+                {"outer_rpm", o.outer_rpm},
+                {"sample_rate_hz", rate},
+                {"samples", c.samples},
+                {"window_s", c.window_s},
+                {"rms_m_s2", c.acceleration.rms},
+                {"peak_m_s2", c.acceleration.peak},
+                {"crest_factor", c.acceleration.crest_factor},
+                {"kurtosis", c.acceleration.kurtosis},
+                {"L_dB", c.level_db},
+                {"velocity_rms_mm_s", c.velocity_rms_mm_s},
+                {"velocity_band_hz", {a.velocity_low_hz, a.velocity_high_hz}},
+                {"zone", velocity_zone_name(c.zone)},
+                {"zone_boundaries_mm_s", o.zones},
+                {"envelope_band_hz", {c.envelope_low_hz, c.envelope_high_hz}},
+                {"envelope_mean_m_s2", c.envelope_mean_m_s2},
+                {"envelope_resolution_hz", c.envelope.resolution_hz},
+                {"faults", faults},
+                {"level", health_level_name(c.diagnosis.level)},
+                {"reason", c.diagnosis.reason}});
+    return;
+  }
+
+  std::ostream& out = std::cout;
+  out << "Bearing: " << model.config().name << " (" << o.bearing << "), inner ring " << general(o.inner_rpm, 6)
+      << " rpm, outer ring " << general(o.outer_rpm, 6) << " rpm\n"
+      << "Signal: " << o.csv << ", column " << signal.column << ", " << c.samples << " samples at "
+      << general(rate, 6) << " Hz (last " << fixed(c.window_s, 3) << " s)\n\n";
+  Table t({"indicator", "value", "unit"}, {true, false, true});
+  t.add_row({"RMS", scientific(c.acceleration.rms, 4), "m/s^2"});
+  t.add_row({"peak", scientific(c.acceleration.peak, 4), "m/s^2"});
+  t.add_row({"crest factor", fixed(c.acceleration.crest_factor, 3), ""});
+  t.add_row({"kurtosis (Gaussian 3)", fixed(c.acceleration.kurtosis, 3), ""});
+  t.add_row({"L (JB/T 5314, a0 = 9.81e-3 m/s^2)", fixed(c.level_db, 2), "dB"});
+  t.add_row({"velocity RMS " + general(a.velocity_low_hz, 4) + "-" + general(a.velocity_high_hz, 4) + " Hz",
+             fixed(c.velocity_rms_mm_s, 3), "mm/s"});
+  t.add_row({"ISO 20816-3 zone (A/B/C/D at " + general(o.zones[0], 3) + "/" + general(o.zones[1], 3) + "/" +
+                 general(o.zones[2], 3) + " mm/s)",
+             velocity_zone_name(c.zone), ""});
+  t.print(out);
+  out << "\nEnvelope spectrum (band " << fixed(c.envelope_low_hz, 0) << "-" << fixed(c.envelope_high_hz, 0)
+      << " Hz, resolution " << fixed(c.envelope.resolution_hz, 3) << " Hz; noise = median of the neighbouring bins)\n";
+  Table e({"fault", "frequency", "expected Hz", "peak Hz", "amplitude m/s^2", "SNR dB", "suspected"},
+          {true, true, false, false, false, false, true});
+  for (const FaultIndicator& fi : c.faults) {
+    const SpectralPeak& p = fi.envelope_peak;
+    e.add_row({fault_kind_name(fi.kind), fault_frequency_label(fi.kind), fixed(p.expected_hz, 2),
+               p.searched ? fixed(p.frequency_hz, 2) : "-", p.searched ? scientific(p.amplitude, 3) : "-",
+               p.searched ? fixed(p.snr_db, 1) : "-", fi.suspected ? "yes" : "no"});
+  }
+  e.print(out);
+  out << "\nDiagnosis: " << health_level_name(c.diagnosis.level) << ": " << c.diagnosis.reason << "\n";
+}
+
+}  // namespace
+
+void register_analyze_command(CLI::App& app) {
+  auto o = std::make_shared<AnalyzeCliOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "analyze",
+      "Condition indicators of a recorded acceleration signal (CSV): RMS, peak, crest factor, kurtosis, L, "
+      "velocity RMS and ISO 20816-3 zone, envelope spectrum at the fault frequencies, diagnosis");
+  cmd->add_option("--csv", o->csv, "CSV file with a header line (e.g. from 'bearing_tool simulate --csv')")
+      ->required()
+      ->type_name("FILE");
+  add_bearing_option(cmd, &o->bearing);
+  add_number_option(cmd, "--outer-rpm", &o->outer_rpm, "RPM", "Outer ring speed during the recording, rpm (signed)");
+  add_number_option(cmd, "--inner-rpm", &o->inner_rpm, "RPM", "Inner ring speed during the recording, rpm (signed)");
+  cmd->add_option("--column", o->column,
+                  "Acceleration column (m/s^2) by header name; accel_x/y/z stand for ax/ay/az_m_s2")
+      ->type_name("NAME")
+      ->capture_default_str();
+  add_number_option(cmd, "--rate", &o->rate_hz, "HZ", "Sample rate, Hz (0: from the time column)")
+      ->check(CLI::NonNegativeNumber);
+  add_number_option(cmd, "--window-s", &o->window_s, "S", "Analyse the last S seconds (0: the whole file)")
+      ->check(CLI::NonNegativeNumber);
+  add_number_option(cmd, "--resonance-hz", &o->resonance_hz, "HZ",
+                    "Centre of the envelope band, Hz (0: from 4x the highest fault frequency to 0.4x the rate)")
+      ->check(CLI::NonNegativeNumber);
+  add_number_option(cmd, "--band-width-hz", &o->band_width_hz, "HZ", "Envelope band width around --resonance-hz, Hz")
+      ->check(CLI::PositiveNumber);
+  add_vector_option(cmd, "--zones", &o->zones, {"AB", "BC", "CD"},
+                    "Velocity zone boundaries, mm/s (default ISO 20816-3 group 2, rigid foundation)");
+  add_number_option(cmd, "--snr-db", &o->snr_db, "DB", "Envelope SNR at a fault frequency for a suspected defect");
+  add_number_option(cmd, "--kurtosis-warn", &o->kurtosis_warn, "K", "Kurtosis for a WARN (0: off)");
+  add_json_flag(cmd, &o->json);
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace bearing_sim::tool

@@ -1,0 +1,168 @@
+// bearing_tool analyze on a CSV written by bearing_tool simulate --csv: the indicators
+// must be those of the core library on the same signal (computed here in-process from
+// the same simulation), and the command must reject bad input with exit code 2.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/condition_indicators.hpp"
+#include "bearing_sim/core/frequencies.hpp"
+#include "bearing_sim/core/simulation_run.hpp"
+
+namespace {
+
+using nlohmann::json;
+constexpr double kPi = 3.14159265358979323846;
+
+// 6205-like, inner ring rotating, a 1 mm x 30 um outer race spall (as test_envelope_faults).
+const char* const kBearing =
+    "name: 6205-like with an outer race spall\n"
+    "balls_per_row: 9\n"
+    "ball_diameter_mm: 7.94\n"
+    "pitch_diameter_mm: 39.04\n"
+    "inner_groove_curvature: 0.52\n"
+    "outer_groove_curvature: 0.52\n"
+    "rotating_ring: inner\n"
+    "rotating_mass_kg: 0.5\n"
+    "damping: {contact_damping_Ns_per_m: 100}\n"
+    "imperfections: {seed: 3, roughness_rms_um: 0.02}\n"
+    "defects: [{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 30}]\n";
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+class AnalyzeTool : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char tmpl[] = "/tmp/test_bearing_tool_analyze_XXXXXX";
+    ASSERT_NE(mkdtemp(tmpl), nullptr);
+    dir_ = tmpl;
+    bearing_ = dir_ + "/b.yaml";
+    std::ofstream(bearing_) << kBearing;
+  }
+  void TearDown() override { std::system(("rm -rf '" + dir_ + "'").c_str()); }
+
+  RunResult run(const std::string& args) {
+    const std::string err_path = dir_ + "/stderr.txt";
+    const std::string command = std::string("'") + BEARING_TOOL_PATH + "' " + args + " 2>'" + err_path + "'";
+    RunResult r;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return r;
+    char buf[4096];
+    std::size_t n;
+    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
+    const int status = pclose(pipe);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream e(err_path);
+    std::stringstream ss;
+    ss << e.rdbuf();
+    r.err = ss.str();
+    return r;
+  }
+
+  std::string dir_, bearing_;
+};
+
+TEST_F(AnalyzeTool, SameIndicatorsAsTheLibrary) {
+  const std::string csv = dir_ + "/run.csv";
+  const RunResult sim = run("simulate --bearing '" + bearing_ +
+                            "' --force 1000,0,200 --inner-rpm 1800 --rate 40000 --duration 1 --csv '" + csv + "'");
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  const RunResult r = run("analyze --csv '" + csv + "' --bearing '" + bearing_ + "' --inner-rpm 1800 --window-s 0.8 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+
+  // The library on the same run, in-process (the dynamics are deterministic).
+  const bearing_sim::BearingModel model(bearing_sim::bearing_config_from_string(kBearing));
+  bearing_sim::SimulationRequest req;
+  req.load << 1000.0, 0.0, 200.0, 0.0, 0.0;
+  req.ring_speed_rad_s = 1800.0 * 2.0 * kPi / 60.0;
+  req.duration_s = 1.0;
+  req.sample_rate_hz = 40000.0;
+  std::vector<double> ax;
+  bearing_sim::run_simulation(model, req, [&ax](const bearing_sim::DynamicSample& s) { ax.push_back(s.acceleration[0]); });
+  bearing_sim::AnalysisOptions o;
+  o.window_s = 0.8;
+  const bearing_sim::ConditionIndicators c =
+      bearing_sim::analyze_vibration(ax, 40000.0, bearing_sim::bearing_frequencies(model, req.ring_speed_rad_s), o);
+
+  // The CSV holds 11 significant digits and the rate comes from its time column
+  // (%.12g): agreement to 1e-6 relative is far tighter than any physical effect.
+  const auto near = [](double tool, double lib) { EXPECT_NEAR(tool, lib, 1e-6 * std::abs(lib) + 1e-12); };
+  EXPECT_NEAR(j["sample_rate_hz"].get<double>(), 40000.0, 1e-4);
+  EXPECT_EQ(j["samples"].get<std::size_t>(), c.samples);
+  near(j["rms_m_s2"], c.acceleration.rms);
+  near(j["peak_m_s2"], c.acceleration.peak);
+  near(j["crest_factor"], c.acceleration.crest_factor);
+  near(j["kurtosis"], c.acceleration.kurtosis);
+  near(j["L_dB"], c.level_db);
+  near(j["velocity_rms_mm_s"], c.velocity_rms_mm_s);
+  EXPECT_EQ(j["zone"], bearing_sim::velocity_zone_name(c.zone));
+  ASSERT_EQ(j["faults"].size(), c.faults.size());
+  for (std::size_t k = 0; k < c.faults.size(); ++k) {
+    const json& p = j["faults"][k]["envelope_peak"];
+    near(p["frequency_hz"], c.faults[k].envelope_peak.frequency_hz);
+    near(p["amplitude_m_s2"], c.faults[k].envelope_peak.amplitude);
+    EXPECT_NEAR(p["snr_db"].get<double>(), c.faults[k].envelope_peak.snr_db, 1e-4);
+    EXPECT_EQ(j["faults"][k]["suspected"].get<bool>(), c.faults[k].suspected);
+  }
+  EXPECT_EQ(j["level"], bearing_sim::health_level_name(c.diagnosis.level));
+  EXPECT_EQ(j["reason"], c.diagnosis.reason);
+  // And physically: the outer race spall is what the tool reports.
+  EXPECT_TRUE(j["faults"][0]["suspected"].get<bool>());
+  EXPECT_NE(j["reason"].get<std::string>().find("outer race defect suspected"), std::string::npos);
+
+  // The human table carries the same diagnosis line.
+  const RunResult t = run("analyze --csv '" + csv + "' --bearing '" + bearing_ + "' --inner-rpm 1800 --window-s 0.8");
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_NE(t.out.find("Diagnosis: " + std::string(bearing_sim::health_level_name(c.diagnosis.level))),
+            std::string::npos) << t.out;
+}
+
+TEST_F(AnalyzeTool, BadInput) {
+  const std::string csv = dir_ + "/small.csv";
+  {
+    std::ofstream f(csv);
+    f << "time_s,accel\n";
+    for (int i = 0; i < 200; ++i) f << i * 1e-4 << "," << std::sin(0.3 * i) << "\n";
+  }
+  // No speed: the fault frequencies are unknown.
+  RunResult r = run("analyze --csv '" + csv + "' --bearing '" + bearing_ + "' --column accel");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--inner-rpm"), std::string::npos) << r.err;
+  // A column that is not there is named with the available ones.
+  r = run("analyze --csv '" + csv + "' --bearing '" + bearing_ + "' --inner-rpm 1800 --column ay_m_s2");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("columns: time_s, accel"), std::string::npos) << r.err;
+  // A file that is not there.
+  r = run("analyze --csv '" + dir_ + "/missing.csv' --bearing '" + bearing_ + "' --inner-rpm 1800");
+  EXPECT_EQ(r.exit_code, 2);
+  // A malformed number names the line.
+  {
+    std::ofstream f(csv, std::ios::app);
+    f << "0.02,abc\n";
+  }
+  r = run("analyze --csv '" + csv + "' --bearing '" + bearing_ + "' --inner-rpm 1800 --column accel");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("line 202"), std::string::npos) << r.err;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
