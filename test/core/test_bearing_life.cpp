@@ -120,9 +120,13 @@ TEST(ReferenceLife, AgreesWithIso281ForRadialLoad) {
     mean_life += reference_life(model, s.balls).life_million_rev / kPhases;
   }
   const double iso = std::pow(basic_dynamic_load_rating_N(b) / fr, 3.0);
-  // ISO Table 2 f_c (55.5 at 0.10) differs by about 3% from the closed form behind it,
-  // and the computed load distribution from the ideal one: within 15% in life (5% in load).
-  EXPECT_NEAR(mean_life / iso, 1.0, 0.15);
+  // The closed form behind ISO 281 Table 2 (ISO/TR 1281-1, lambda = 0.95) at g = 0.1,
+  // fi = 0.52, fe = 0.53: f_c = 37.91 [1 + (1.04 (0.9/1.1)^1.72 (0.52*0.06/(0.53*0.04))^0.41)^(10/3)]^-0.3
+  //   x 0.1^0.3 0.9^1.39 / 1.1^(1/3) x (1.04/0.04)^0.41 = 37.91 x 0.8666 x 1.5949 = 52.40,
+  // against 55.5 in the table: the ball-load route should give (52.40/55.5)^3 = 0.841 of the
+  // table's L10. 0.04: the computed (8-phase mean) load distribution against Stribeck's
+  // continuous one, a few percent in the cubed loads.
+  EXPECT_NEAR(mean_life / iso, 0.841, 0.04);
 }
 
 TEST(MinerDamage, TwoLevelHistory) {
