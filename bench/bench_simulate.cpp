@@ -12,9 +12,13 @@ namespace {
 
 using bearing_sim::Vector5;
 
-void simulate(benchmark::State& state, const std::string& file, const Vector5& load, double speed_rad_s) {
-  const bearing_sim::BearingModel model(
-      bearing_sim::load_bearing_config(std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/" + file));
+bearing_sim::BearingConfig bearing(const std::string& file) {
+  return bearing_sim::load_bearing_config(std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/" + file);
+}
+
+void simulate(benchmark::State& state, const bearing_sim::BearingConfig& config, const Vector5& load,
+              double speed_rad_s) {
+  const bearing_sim::BearingModel model(config);
   bearing_sim::BearingDynamics dynamics(model, load, speed_rad_s, {10000.0, 0});
   constexpr int kSamplesPerIteration = 1000;  // 0.1 s simulated
   for (auto _ : state) {
@@ -29,17 +33,34 @@ void simulate(benchmark::State& state, const std::string& file, const Vector5& l
 void BM_SimulateCtGantry(benchmark::State& state) {
   Vector5 load;
   load << 6800.0, 0.0, 0.0, 0.0, 2100.0;
-  simulate(state, "ct_gantry_lyc.yaml", load, 180.0 * 2.0 * 3.14159265358979 / 60.0);
+  simulate(state, bearing("ct_gantry_lyc.yaml"), load, 180.0 * 2.0 * 3.14159265358979 / 60.0);
+}
+
+// The CT bearing with waviness on both races and the balls, and a 2 mm x 20 um spall on
+// the fixed inner race in the load zone.
+void BM_SimulateCtGantryWithDefects(benchmark::State& state) {
+  bearing_sim::BearingConfig config = bearing("ct_gantry_lyc.yaml");
+  config.imperfections = bearing_sim::parse_imperfections(YAML::Load(R"(
+waviness:
+  - {surface: inner_race, order: 206, amplitude_um: 0.05}
+  - {surface: inner_race, order: 208, amplitude_um: 0.05}
+  - {surface: outer_race, order: 8, amplitude_um: 0.5}
+  - {surface: ball, order: 4, amplitude_um: 0.02}
+)"), YAML::Load("[{surface: inner_race, position_deg: 180, width_mm: 2.0, depth_um: 20}]"), "bench");
+  Vector5 load;
+  load << 6800.0, 0.0, 0.0, 0.0, 2100.0;
+  simulate(state, config, load, 180.0 * 2.0 * 3.14159265358979 / 60.0);
 }
 
 void BM_SimulateIns61822(benchmark::State& state) {
   Vector5 load;
   load << 3400.0, 0.0, 1750.0, 0.0, 0.0;
-  simulate(state, "ins_618_22_db.yaml", load, 60.0 * 2.0 * 3.14159265358979 / 60.0);
+  simulate(state, bearing("ins_618_22_db.yaml"), load, 60.0 * 2.0 * 3.14159265358979 / 60.0);
 }
 
 }  // namespace
 
 BENCHMARK(BM_SimulateCtGantry)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_SimulateCtGantryWithDefects)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_SimulateIns61822)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_MAIN();

@@ -21,6 +21,7 @@ BearingDynamics::BearingDynamics(BearingModel model, const Vector5& load, double
   set_ring_speed(ring_speed_rad_s);
   substeps_ = options_.substeps > 0 ? options_.substeps
                                     : choose_substeps(model_, load_, options_.sample_rate_hz);
+  substeps_load_norm_ = load_.norm();
   slowest_mode_rad_s_ = natural_frequencies_rad_s(model_, load_).minCoeff();
   reset_to_equilibrium();
 }
@@ -32,15 +33,45 @@ Vector5 BearingDynamics::natural_frequencies_rad_s(const BearingModel& model, co
   return Eigen::SelfAdjointEigenSolver<Matrix5>(a).eigenvalues().cwiseMax(0.0).cwiseSqrt();
 }
 
+double BearingDynamics::fastest_rate_rad_s(const BearingModel& model, const Vector5& load) {
+  // Eigenvalues of the linearized first-order system [0 I; -M^-1 K  -M^-1 C]: |lambda| is
+  // omega for light damping and grows to c/m when the contacts are overdamped, which an
+  // explicit step must resolve too.
+  const StaticSolution s = solve_static(model, load);
+  Matrix5 damping;
+  model.contact_force_and_stiffness(s.displacement, RollingPhase{}, nullptr, &damping);
+  const Vector5 inv_m = model.mass_diagonal().cwiseInverse();
+  Eigen::Matrix<double, 10, 10> a = Eigen::Matrix<double, 10, 10>::Zero();
+  a.topRightCorner<5, 5>().setIdentity();
+  a.bottomLeftCorner<5, 5>() = -(inv_m.asDiagonal() * s.stiffness);
+  a.bottomRightCorner<5, 5>() = -(inv_m.asDiagonal() * damping);
+  return Eigen::EigenSolver<Eigen::Matrix<double, 10, 10>>(a, false).eigenvalues().cwiseAbs().maxCoeff();
+}
+
 int BearingDynamics::choose_substeps(const BearingModel& model, const Vector5& load, double sample_rate_hz) {
-  const double omega_max = natural_frequencies_rad_s(model, load).maxCoeff();
+  const double rate_max = fastest_rate_rad_s(model, load);
   const double h_sample = 1.0 / sample_rate_hz;
-  return std::max(1, static_cast<int>(std::ceil(omega_max * h_sample / kStepTimesOmegaMax)));
+  return std::max(1, static_cast<int>(std::ceil(rate_max * h_sample / kStepTimesOmegaMax)));
+}
+
+void BearingDynamics::update_substeps() {
+  if (options_.substeps > 0) return;
+  try {
+    substeps_ = choose_substeps(model_, load_, options_.sample_rate_hz);
+    substeps_load_norm_ = load_.norm();
+  } catch (const LoadNotCarriedError&) {
+    // Keep the step: the caller learns of the load when it resets to the equilibrium.
+  }
 }
 
 void BearingDynamics::set_load(const Vector5& load) {
   if (!load.allFinite()) throw InvalidInputError("load is not finite");
   load_ = load;
+  // The contact stiffness grows with the load (as F^(1/3)): check the step again when
+  // the load has changed a lot since it was chosen.
+  if (substeps_load_norm_ > 0.0 &&
+      (load_.norm() > 1.5 * substeps_load_norm_ || load_.norm() < substeps_load_norm_ / 1.5))
+    update_substeps();
   acceleration_current_ = false;
   samples_since_split_ = 0;  // the contact margin depends on the inputs
 }
@@ -64,6 +95,7 @@ void BearingDynamics::set_model(BearingModel model) {
   inverse_mass_ = inverse_mass;
   displacement_limit_m_ = 0.25 * model_.config().ball_diameter_m + std::abs(model_.config().clearance_m);
   update_cage_speed();
+  update_substeps();  // clearance and damping change the fastest mode
   acceleration_current_ = false;
   samples_since_split_ = 0;  // the contact margin depends on the inputs
 }

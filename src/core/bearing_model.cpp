@@ -240,14 +240,15 @@ Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, cons
   return f;
 }
 
-Vector5 BearingModel::contact_force_and_stiffness(const Vector5& q, const RollingPhase& phase,
-                                                  Matrix5* stiffness) const {
+Vector5 BearingModel::contact_force_and_stiffness(const Vector5& q, const RollingPhase& phase, Matrix5* stiffness,
+                                                  Matrix5* damping) const {
   const double cc = std::cos(phase.cage), sc = std::sin(phase.cage);
   const double* off = offsets_at(phase, balls_);
   const double A = groove_centre_distance_, g0 = config_.clearance_m, sign = moving_sign_;
   const double kn = contact_stiffness_;
   Vector5 f = Vector5::Zero();
   if (stiffness) stiffness->setZero();
+  if (damping) damping->setZero();
   for (int b = 0; b < ball_count(); ++b) {
     const double cphi = cc * balls_.cos_base[b] - sc * balls_.sin_base[b];
     const double sphi = sc * balls_.cos_base[b] + cc * balls_.sin_base[b];
@@ -268,6 +269,8 @@ Vector5 BearingModel::contact_force_and_stiffness(const Vector5& q, const Rollin
       const Eigen::Matrix3d kc = load_slope * ee + (load / k.norm) * (Eigen::Matrix3d::Identity() - ee);
       *stiffness += G.transpose() * kc * G;
     }
+    // Damping force -c_n (e . du/dt) e on each loaded contact: C = sum c_n G^T e e^T G.
+    if (damping) *damping += config_.contact_damping_Ns_per_m * (G.transpose() * e) * (e.transpose() * G);
   }
   return f;
 }

@@ -65,7 +65,10 @@ class BearingDynamics {
 
   // Natural frequencies of the ring on the linearized contacts at the static equilibrium.
   static Vector5 natural_frequencies_rad_s(const BearingModel& model, const Vector5& load);
-  // Internal steps per sample so that omega_max * h <= kStepTimesOmegaMax.
+  // Largest |eigenvalue| of the linearized ring dynamics with contact damping, rad/s.
+  static double fastest_rate_rad_s(const BearingModel& model, const Vector5& load);
+  // Internal steps per sample so that |lambda|_max * h <= kStepTimesOmegaMax. Chosen at
+  // construction and again (in automatic mode) when the model or the load changes a lot.
   static int choose_substeps(const BearingModel& model, const Vector5& load, double sample_rate_hz);
   static constexpr double kStepTimesOmegaMax = 0.5;
 
@@ -79,6 +82,7 @@ class BearingDynamics {
   double contact_margin_m(const Vector5& q, const Vector5& v, const Vector5& a) const;
   DynamicSample commit_sample(const Vector5& q, const Vector5& v, const Vector5& a, const RollingPhase& phase);
   void update_cage_speed();
+  void update_substeps();
 
   BearingModel model_;
   DynamicsOptions options_;
@@ -88,6 +92,7 @@ class BearingDynamics {
   double cage_speed_ = 0.0, inner_speed_ = 0.0, outer_speed_ = 0.0, spin_speed_ = 0.0;
   RollingPhase phase_;
   int substeps_ = 1;
+  double substeps_load_norm_ = 0.0;  // |load| when the substeps were chosen
   double displacement_limit_m_ = 0.0;
   double slowest_mode_rad_s_ = 0.0;  // for the contact margin
   std::uint64_t sample_index_ = 0;

@@ -88,8 +88,10 @@ class BearingModel {
   Vector5 contact_force(const Vector5& q, const Vector5& q_dot, double cage_angle_rad) const {
     return contact_force(q, q_dot, RollingPhase{cage_angle_rad}, balls_);
   }
-  // Same, without damping, and the stiffness K = -d(force)/dq (analytic).
-  Vector5 contact_force_and_stiffness(const Vector5& q, const RollingPhase& phase, Matrix5* stiffness) const;
+  // Same, without damping, and the stiffness K = -d(force)/dq (analytic) and the damping
+  // matrix C = -d(force)/d(q_dot) of the loaded contacts, each if asked for.
+  Vector5 contact_force_and_stiffness(const Vector5& q, const RollingPhase& phase, Matrix5* stiffness,
+                                      Matrix5* damping = nullptr) const;
   Vector5 contact_force_and_stiffness(const Vector5& q, double cage_angle_rad, Matrix5* stiffness) const {
     return contact_force_and_stiffness(q, RollingPhase{cage_angle_rad}, stiffness);
   }
