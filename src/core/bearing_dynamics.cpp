@@ -11,7 +11,7 @@ namespace bearing_sim {
 
 BearingDynamics::BearingDynamics(BearingModel model, const Vector5& load, double ring_speed_rad_s,
                                  DynamicsOptions options)
-    : model_(std::move(model)), options_(options) {
+    : model_(std::move(model)), options_(options), slip_rng_(model_.config().imperfections.seed ^ 0x2545f491u) {
   if (!(options_.sample_rate_hz > 0.0) || !std::isfinite(options_.sample_rate_hz))
     throw InvalidInputError("sample rate must be a positive number of Hz");
   if (options_.substeps < 0) throw InvalidInputError("substeps must be >= 0 (0: automatic)");
@@ -83,6 +83,19 @@ void BearingDynamics::set_ring_speed(double ring_speed_rad_s) {
   samples_since_split_ = 0;
 }
 
+void BearingDynamics::update_slip_fluctuation() {
+  // Ornstein-Uhlenbeck process: stationary standard deviation and correlation time as
+  // configured, exact for any step.
+  const ImperfectionSpec& spec = model_.config().imperfections;
+  if (spec.cage_slip_variation <= 0.0) {
+    slip_fluctuation_ = 0.0;
+    return;
+  }
+  const double decay = std::exp(-1.0 / (options_.sample_rate_hz * spec.cage_slip_correlation_s));
+  slip_fluctuation_ = decay * slip_fluctuation_ +
+                      spec.cage_slip_variation * std::sqrt(1.0 - decay * decay) * slip_noise_(slip_rng_);
+}
+
 void BearingDynamics::update_cage_speed() {
   model_.ring_speeds(ring_speed_, &inner_speed_, &outer_speed_);
   cage_speed_ = model_.cage_speed_rad_s(inner_speed_, outer_speed_);
@@ -130,7 +143,8 @@ Vector5 BearingDynamics::acceleration(const Vector5& q, const Vector5& q_dot, co
 }
 
 RollingPhase BearingDynamics::advanced(const RollingPhase& p, double dt) const {
-  return RollingPhase{p.cage + cage_speed_ * dt, p.inner_ring + inner_speed_ * dt, p.outer_ring + outer_speed_ * dt,
+  const double slipping_cage_speed = cage_speed_ * (1.0 - model_.config().imperfections.cage_slip - slip_fluctuation_);
+  return RollingPhase{p.cage + slipping_cage_speed * dt, p.inner_ring + inner_speed_ * dt, p.outer_ring + outer_speed_ * dt,
                       p.ball_spin + spin_speed_ * dt, p.time_s + dt};
 }
 
@@ -219,6 +233,7 @@ DynamicSample BearingDynamics::commit_sample(const Vector5& q, const Vector5& v,
                         std::remainder(phase.outer_ring, kTwoPi), std::remainder(phase.ball_spin, kTwoPi),
                         static_cast<double>(sample_index_) / options_.sample_rate_hz};
   current_.time_s = phase_.time_s;
+  update_slip_fluctuation();
   current_.cage_angle_rad = phase_.cage;
   current_.ring_angle_rad = model_.config().rotating_ring == RotatingRing::Outer ? phase_.outer_ring : phase_.inner_ring;
   current_.displacement = q;

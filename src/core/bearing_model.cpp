@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "bearing_sim/core/errors.hpp"
 
@@ -36,13 +37,19 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
   balls_.groove_centre_z.resize(n);
   balls_.normal_z.resize(n);
   balls_.deflection_offset.assign(n, 0.0);
+  // Irregular ball spacing, from its own random stream so that the other seeded parts do
+  // not change when it is switched on.
+  std::mt19937_64 spacing_rng(c.imperfections.seed ^ 0x5bd1e995u);
+  std::normal_distribution<double> spacing(0.0, 1.0);
   for (int r = 0; r < c.rows; ++r) {
     const double nz = row_contact_sign(r) * std::sin(a0);
     const double gz = row_axial_position_m(r) - (c.outer_groove_curvature - 0.5) * d * nz;
     for (int j = 0; j < c.balls_per_row; ++j) {
       const int b = r * c.balls_per_row + j;
       row_[b] = r;
-      const double azimuth = std::fmod(2.0 * kPi * j / c.balls_per_row + (r == 1 ? c.row_phase_rad : 0.0), 2.0 * kPi);
+      const double jitter = c.imperfections.ball_spacing_jitter_m / (c.pitch_diameter_m / 2.0) * spacing(spacing_rng);
+      const double azimuth =
+          std::fmod(2.0 * kPi * j / c.balls_per_row + (r == 1 ? c.row_phase_rad : 0.0) + jitter + 2.0 * kPi, 2.0 * kPi);
       base_azimuth_[b] = azimuth < 0.0 ? azimuth + 2.0 * kPi : azimuth;  // in [0, 2 pi)
       balls_.ball[b] = b;
       balls_.base_azimuth[b] = base_azimuth_[b];

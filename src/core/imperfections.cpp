@@ -56,7 +56,8 @@ ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML
   if (imperfections) {
     if (!imperfections.IsMap()) throw ConfigError(source + ": key 'imperfections': expected a mapping");
     detail::Reader r(imperfections, source, "imperfections.");
-    r.check_keys({"seed", "waviness", "ball_diameter_variation_um", "roughness_rms_um"});
+    r.check_keys({"seed", "waviness", "ball_diameter_variation_um", "roughness_rms_um", "ball_spacing_jitter_mm",
+                  "cage_slip_percent", "cage_slip_variation_percent", "cage_slip_correlation_s"});
     const int seed = r.integer("seed", 1);
     r.require(seed >= 0, "seed", "must be >= 0");
     spec.seed = static_cast<std::uint64_t>(seed);
@@ -64,6 +65,15 @@ ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML
     r.require(spec.ball_diameter_variation_m >= 0.0, "ball_diameter_variation_um", "must be >= 0");
     spec.roughness_rms_m = r.number("roughness_rms_um", 0.0) * 1e-6;
     r.require(spec.roughness_rms_m >= 0.0, "roughness_rms_um", "must be >= 0");
+    spec.ball_spacing_jitter_m = r.number("ball_spacing_jitter_mm", 0.0) * 1e-3;
+    r.require(spec.ball_spacing_jitter_m >= 0.0, "ball_spacing_jitter_mm", "must be >= 0");
+    spec.cage_slip = r.number("cage_slip_percent", 0.0) / 100.0;
+    r.require(spec.cage_slip >= 0.0 && spec.cage_slip < 0.2, "cage_slip_percent", "must be in [0, 20)");
+    spec.cage_slip_variation = r.number("cage_slip_variation_percent", 0.0) / 100.0;
+    r.require(spec.cage_slip_variation >= 0.0 && spec.cage_slip_variation < 0.05, "cage_slip_variation_percent",
+              "must be in [0, 5)");
+    spec.cage_slip_correlation_s = r.number("cage_slip_correlation_s", 0.05);
+    r.require(spec.cage_slip_correlation_s > 0.0, "cage_slip_correlation_s", "must be > 0");
     const YAML::Node list = imperfections["waviness"];
     if (list) {
       if (!list.IsSequence()) r.fail("waviness", "expected a list of {surface, order, amplitude_um, phase_deg}");
@@ -120,6 +130,15 @@ Imperfections::Imperfections(const ImperfectionSpec& spec, const Geometry& g) : 
     std::normal_distribution<double> normal(0.0, spec.ball_diameter_variation_m);
     for (double& dev : ball_diameter_deviation_) dev = normal(rng);
   }
+  // How far the balls sit from even spacing relative to ball 0 of their row, for the
+  // spall's index search.
+  const double pitch = kTwoPi / g.balls_per_row;
+  for (int row = 0; row < g.rows; ++row)
+    for (int j = 0; j < g.balls_per_row; ++j)
+      max_spacing_error_ = std::max(max_spacing_error_,
+                                    std::abs(std::remainder(g.base_azimuth[row * g.balls_per_row + j] -
+                                                                g.base_azimuth[row * g.balls_per_row] - j * pitch,
+                                                            kTwoPi)));
   ball_phase_.resize(n_balls);
   std::uniform_real_distribution<double> uniform_angle(0.0, kTwoPi);
   for (double& p : ball_phase_) p = uniform_angle(rng);
@@ -272,7 +291,7 @@ void Imperfections::add_offsets(const RollingPhase& phase, double* out, bool inc
       const double start = phase.cage - ring - s.position_rad;
       const int z = geometry_.balls_per_row;
       const double pitch = kTwoPi / z;
-      const int reach = static_cast<int>(std::ceil(0.5 * angular_width / pitch)) + 1;
+      const int reach = static_cast<int>(std::ceil((0.5 * angular_width + max_spacing_error_) / pitch)) + 1;
       for (int row = 0; row < geometry_.rows; ++row) {
         const double row_phase = base[row * z];
         const long centre = std::lround(-(start + row_phase) / pitch);

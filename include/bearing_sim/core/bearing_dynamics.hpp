@@ -2,6 +2,7 @@
 // 5-DOF dynamics of the moving ring on its Hertz contacts (MODEL.md section 5),
 // integrated by RK4 with an internal step finer than the output sample period.
 #include <cstdint>
+#include <random>
 
 #include "bearing_sim/core/bearing_model.hpp"
 
@@ -83,6 +84,7 @@ class BearingDynamics {
   DynamicSample commit_sample(const Vector5& q, const Vector5& v, const Vector5& a, const RollingPhase& phase);
   void update_cage_speed();
   void update_substeps();
+  void update_slip_fluctuation();
 
   BearingModel model_;
   DynamicsOptions options_;
@@ -91,6 +93,10 @@ class BearingDynamics {
   double ring_speed_ = 0.0;
   double cage_speed_ = 0.0, inner_speed_ = 0.0, outer_speed_ = 0.0, spin_speed_ = 0.0;
   RollingPhase phase_;
+  // Random part of the cage slip (imperfections), per sample.
+  double slip_fluctuation_ = 0.0;
+  std::mt19937_64 slip_rng_;
+  std::normal_distribution<double> slip_noise_{0.0, 1.0};
   int substeps_ = 1;
   double substeps_load_norm_ = 0.0;  // |load| when the substeps were chosen
   double displacement_limit_m_ = 0.0;

@@ -37,9 +37,17 @@ struct ImperfectionSpec {
   std::vector<Waviness> waviness;
   double ball_diameter_variation_m = 0.0;  // standard deviation of the ball diameters
   double roughness_rms_m = 0.0;            // RMS of a random profile on each race
+  // Irregular ball spacing (cage pocket clearance) and cage slip: real bearings are not
+  // perfectly periodic, which keeps distributed roughness from ringing at the ball-pass
+  // frequencies.
+  double ball_spacing_jitter_m = 0.0;      // standard deviation of each ball's place on the pitch circle
+  double cage_slip = 0.0;                  // mean fraction the cage lags its kinematic speed
+  double cage_slip_variation = 0.0;        // standard deviation of the slip fluctuation
+  double cage_slip_correlation_s = 0.05;   // correlation time of the fluctuation
   std::vector<Spall> spalls;
   bool empty() const {
-    return waviness.empty() && ball_diameter_variation_m == 0.0 && roughness_rms_m == 0.0 && spalls.empty();
+    return waviness.empty() && ball_diameter_variation_m == 0.0 && roughness_rms_m == 0.0 && spalls.empty() &&
+           ball_spacing_jitter_m == 0.0 && cage_slip == 0.0 && cage_slip_variation == 0.0;
   }
 };
 
@@ -112,6 +120,7 @@ class Imperfections {
   std::vector<double> ball_diameter_deviation_;
   std::vector<double> ball_phase_;  // random initial spin angle of each ball
   std::vector<Spall> spalls_;
+  double max_spacing_error_ = 0.0;  // largest deviation of a ball from even spacing, rad
   // Per surface (outer race, inner race, ball): largest slope (m/rad) and largest
   // peak-to-peak change (m) of the offsets, spalls left out.
   double slope_[3] = {0.0, 0.0, 0.0};
