@@ -163,9 +163,7 @@ void register_simulate_command(CLI::App& app) {
       "Dynamic run from the static equilibrium at a fixed load and ring speed: RMS acceleration, "
       "vibration level L, mean displacement; optional CSV of every sample");
   add_bearing_option(cmd, &o->bearing);
-  add_vector_option(cmd, "--force", &o->force, {"FX", "FY", "FZ"},
-                    "Force on the moving ring in the bearing frame, N (z along the axis)");
-  add_vector_option(cmd, "--moment", &o->moment, {"MX", "MY"}, "Moment on the moving ring about x and y, N*m");
+  add_load_options(cmd, &o->force, &o->moment);
   add_number_option(cmd, "--outer-rpm", &o->outer_rpm, "RPM",
                     "Outer ring speed, rpm (must be 0 unless the file has rotating_ring: outer)");
   add_number_option(cmd, "--inner-rpm", &o->inner_rpm, "RPM",

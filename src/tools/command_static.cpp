@@ -140,9 +140,7 @@ void register_static_command(CLI::App& app) {
       "Quasi-static equilibrium of the moving ring under a load: displacement, 5x5 stiffness "
       "(and the 6x6 Bushing matrix), ball loads, contact angles and Hertz pressures");
   add_bearing_option(cmd, &o->bearing);
-  add_vector_option(cmd, "--force", &o->force, {"FX", "FY", "FZ"},
-                    "Force on the moving ring in the bearing frame, N (z along the axis)");
-  add_vector_option(cmd, "--moment", &o->moment, {"MX", "MY"}, "Moment on the moving ring about x and y, N*m");
+  add_load_options(cmd, &o->force, &o->moment);
   add_number_option(cmd, "--cage-angle-deg", &o->cage_angle_deg, "DEG",
                     "Cage angle: azimuth of the first ball of row 1, deg");
   add_json_flag(cmd, &o->json);

@@ -53,6 +53,12 @@ void add_bearing_option(CLI::App* command, std::string* path) {
       ->type_name("FILE");
 }
 
+void add_load_options(CLI::App* command, std::vector<double>* force, std::vector<double>* moment) {
+  add_vector_option(command, "--force", force, {"FX", "FY", "FZ"},
+                    "Force on the moving ring in the bearing frame, N (z along the axis)");
+  add_vector_option(command, "--moment", moment, {"MX", "MY"}, "Moment on the moving ring about x and y, N*m");
+}
+
 CLI::Option* add_vector_option(CLI::App* command, const std::string& name, std::vector<double>* values,
                                const std::vector<std::string>& components, const std::string& description) {
   const int n = static_cast<int>(components.size());

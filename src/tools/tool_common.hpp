@@ -42,6 +42,9 @@ void add_bearing_option(CLI::App* command, std::string* path);
 CLI::Option* add_vector_option(CLI::App* command, const std::string& name, std::vector<double>* values,
                                const std::vector<std::string>& components, const std::string& description);
 
+// --force FX,FY,FZ and --moment MX,MY: the load on the moving ring (static, simulate).
+void add_load_options(CLI::App* command, std::vector<double>* force, std::vector<double>* moment);
+
 // A single finite number, shown in --help as `type_name` (e.g. "RPM") with its default.
 // Chain ->check(...) for a range (e.g. CLI::PositiveNumber).
 CLI::Option* add_number_option(CLI::App* command, const std::string& name, double* value,

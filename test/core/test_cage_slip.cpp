@@ -15,16 +15,12 @@
 namespace bearing_sim {
 namespace {
 
+using test::bearing_6205;
+using test::fault;
+
 constexpr double kRateHz = 40000.0;
 constexpr double kSpeedRadS = 1800.0 * 2.0 * test::kPi / 60.0;
 
-BearingModel bearing_6205(const std::string& extra) {
-  return BearingModel(bearing_config_from_string(
-      "name: 6205-like\nballs_per_row: 9\nball_diameter_mm: 7.94\npitch_diameter_mm: 39.04\n"
-      "inner_groove_curvature: 0.52\nouter_groove_curvature: 0.52\nrotating_ring: inner\n"
-      "rotating_mass_kg: 0.5\ndamping: {contact_damping_Ns_per_m: 100}\n" + extra,
-      "6205-like"));
-}
 
 ConditionIndicators analyze(const BearingModel& model) {
   SimulationRequest r;
@@ -40,11 +36,6 @@ ConditionIndicators analyze(const BearingModel& model) {
   return analyze_vibration(ax, kRateHz, bearing_frequencies(model, kSpeedRadS), o);
 }
 
-const FaultIndicator& fault(const ConditionIndicators& c, FaultKind kind) {
-  for (const FaultIndicator& f : c.faults)
-    if (f.kind == kind) return f;
-  throw std::runtime_error("fault kind missing");
-}
 
 TEST(CageSlip, SlipLowersTheOuterRaceBallPassLineByTheSlip) {
   const std::string spall = "defects: [{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 30}]\n";

@@ -19,24 +19,13 @@
 namespace bearing_sim {
 namespace {
 
+using test::bearing_6205;
+using test::fault;
+
 constexpr double kRateHz = 40000.0;
 constexpr double kInnerRpm = 1800.0;
 constexpr double kSpeedRadS = kInnerRpm * 2.0 * test::kPi / 60.0;
 
-BearingModel bearing_6205(const std::string& extra_yaml) {
-  return BearingModel(bearing_config_from_string(
-      "name: 6205-like\n"
-      "balls_per_row: 9\n"
-      "ball_diameter_mm: 7.94\n"
-      "pitch_diameter_mm: 39.04\n"
-      "inner_groove_curvature: 0.52\n"
-      "outer_groove_curvature: 0.52\n"
-      "rotating_ring: inner\n"
-      "rotating_mass_kg: 0.5\n"
-      "damping: {contact_damping_Ns_per_m: 100}\n" +
-          extra_yaml,
-      "6205-like"));
-}
 
 const std::string kOuterSpall = "defects: [{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 30}]\n";
 const std::string kInnerSpall = "defects: [{surface: inner_race, position_deg: 0, width_mm: 1.0, depth_um: 30}]\n";
@@ -74,11 +63,6 @@ ConditionIndicators analyze(const std::vector<double>& x, const BearingModel& mo
   return analyze_vibration(x, kRateHz, bearing_frequencies(model, kSpeedRadS), o);
 }
 
-const FaultIndicator& fault(const ConditionIndicators& c, FaultKind kind) {
-  for (const FaultIndicator& f : c.faults)
-    if (f.kind == kind) return f;
-  throw std::runtime_error("fault kind missing");
-}
 
 TEST(Kurtosis, GaussianNoiseIsThree) {
   std::mt19937_64 rng(5);

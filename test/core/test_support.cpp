@@ -1,5 +1,7 @@
 #include "test_support.hpp"
 
+#include <stdexcept>
+
 #include <cmath>
 #include <sstream>
 
@@ -77,6 +79,27 @@ Vector5 load5(double fx, double fy, double fz, double mx, double my) {
   Vector5 l;
   l << fx, fy, fz, mx, my;
   return l;
+}
+
+BearingModel bearing_6205(const std::string& extra_yaml) {
+  return BearingModel(bearing_config_from_string(
+      "name: 6205-like\n"
+      "balls_per_row: 9\n"
+      "ball_diameter_mm: 7.94\n"
+      "pitch_diameter_mm: 39.04\n"
+      "inner_groove_curvature: 0.52\n"
+      "outer_groove_curvature: 0.52\n"
+      "rotating_ring: inner\n"
+      "rotating_mass_kg: 0.5\n"
+      "damping: {contact_damping_Ns_per_m: 100}\n" +
+          extra_yaml,
+      "6205-like"));
+}
+
+const FaultIndicator& fault(const ConditionIndicators& c, FaultKind kind) {
+  for (const FaultIndicator& f : c.faults)
+    if (f.kind == kind) return f;
+  throw std::runtime_error(std::string("no indicator for ") + fault_kind_name(kind));
 }
 
 }  // namespace bearing_sim::test

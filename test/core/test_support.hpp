@@ -5,6 +5,7 @@
 
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/bearing_model.hpp"
+#include "bearing_sim/core/condition_indicators.hpp"
 
 namespace bearing_sim::test {
 
@@ -32,6 +33,13 @@ double dft_amplitude(const std::vector<double>& x, double sample_rate_hz, double
 // Frequency of the largest |X(f)| on a grid from f_min to f_max (DC excluded by f_min > 0).
 double spectral_peak_hz(const std::vector<double>& x, double sample_rate_hz, double f_min_hz, double f_max_hz,
                         double step_hz);
+
+// The 6205-like deep groove bearing of the health tests (Z = 9, d = 7.94 mm, dm = 39.04 mm,
+// fi = fo = 0.52), inner ring rotating with 0.5 kg, 100 N*s/m per contact, plus extra keys.
+BearingModel bearing_6205(const std::string& extra_yaml = "");
+
+// The indicator of one fault kind in an analysis.
+const FaultIndicator& fault(const ConditionIndicators& c, FaultKind kind);
 
 // Generalized load vector (Fx, Fy, Fz, Mx, My).
 Vector5 load5(double fx, double fy, double fz, double mx, double my);
