@@ -7,6 +7,7 @@
 #include <random>
 
 #include "bearing_sim/core/errors.hpp"
+#include "contact_kernel.hpp"
 
 namespace bearing_sim {
 namespace {
@@ -207,44 +208,27 @@ const double* BearingModel::offsets_at(const RollingPhase& phase, const BallArra
 }
 
 Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
-                                    const BallArrays& balls) const {
-  const double cc = std::cos(phase.cage), sc = std::sin(phase.cage);
-  const double rho = groove_centre_radius_, ca = cos_a0_, A = groove_centre_distance_;
-  const double g0 = config_.clearance_m, sign = moving_sign_, kn = contact_stiffness_;
-  const double cn = config_.contact_damping_Ns_per_m;
-  const double* qp = q.data();
-  const double* qd = q_dot.data();
-  const double* cb = balls.cos_base.data();
-  const double* sb = balls.sin_base.data();
-  const double* gzs = balls.groove_centre_z.data();
-  const double* nzs = balls.normal_z.data();
-  const double* off = offsets_at(phase, balls);
-  const int n = static_cast<int>(balls.size());
-  double fx = 0, fy = 0, fz = 0, mx = 0, my = 0;
-#pragma omp simd reduction(+ : fx, fy, fz, mx, my)
-  for (int b = 0; b < n; ++b) {
-    const double cphi = cc * cb[b] - sc * sb[b];
-    const double sphi = sc * cb[b] + cc * sb[b];
-    const Kinematics k = kinematics(cphi, sphi, gzs[b], nzs[b], off[b], rho, ca, A, g0, sign, qp);
-    const double dp = k.deflection > 0.0 ? k.deflection : 0.0;
-    // Rate of deflection from the ring velocity: d(delta)/dt = -e . du/dt.
-    const double wx = sign * (qd[0] + qd[4] * k.pz);
-    const double wy = sign * (qd[1] - qd[3] * k.pz);
-    const double wz = sign * (qd[2] + qd[3] * k.py - qd[4] * k.px);
-    const double inv_norm = 1.0 / k.norm;
-    const double rate = -(k.vx * wx + k.vy * wy + k.vz * wz) * inv_norm;
-    double load = kn * dp * std::sqrt(dp) + cn * rate;
-    load = (k.deflection > 0.0 && load > 0.0) ? load : 0.0;
-    const double s = sign * load * inv_norm;
-    fx += s * k.vx;
-    fy += s * k.vy;
-    fz += s * k.vz;
-    mx += s * (k.py * k.vz - k.pz * k.vy);
-    my += s * (k.pz * k.vx - k.px * k.vz);
-  }
-  Vector5 f;
-  f << fx, fy, fz, mx, my;
-  return f;
+                                    const BallArrays& balls, ContactKernel kernel) const {
+  detail::ContactKernelInput in;
+  in.cos_cage = std::cos(phase.cage);
+  in.sin_cage = std::sin(phase.cage);
+  in.groove_centre_radius = groove_centre_radius_;
+  in.cos_a0 = cos_a0_;
+  in.groove_centre_distance = groove_centre_distance_;
+  in.clearance = config_.clearance_m;
+  in.sign = moving_sign_;
+  in.stiffness = contact_stiffness_;
+  in.damping = config_.contact_damping_Ns_per_m;
+  in.q = q.data();
+  in.q_dot = q_dot.data();
+  in.cos_base = balls.cos_base.data();
+  in.sin_base = balls.sin_base.data();
+  in.groove_centre_z = balls.groove_centre_z.data();
+  in.normal_z = balls.normal_z.data();
+  in.offset = offsets_at(phase, balls);
+  in.n = static_cast<int>(balls.size());
+  if (kernel == ContactKernel::Fastest && detail::avx512_kernel_available()) return detail::contact_force_avx512(in);
+  return detail::contact_force_portable(in);
 }
 
 Vector5 BearingModel::contact_force_and_stiffness(const Vector5& q, const RollingPhase& phase, Matrix5* stiffness,

@@ -80,8 +80,9 @@ class BearingModel {
 
   // Contact forces and moments on the moving ring, with contact damping (hot path),
   // over every ball or a subset (the others known to be out of contact).
-  Vector5 contact_force(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
-                        const BallArrays& balls) const;
+  enum class ContactKernel { Fastest, Portable };  // Portable: for checking the fast one
+  Vector5 contact_force(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase, const BallArrays& balls,
+                        ContactKernel kernel = ContactKernel::Fastest) const;
   Vector5 contact_force(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase) const {
     return contact_force(q, q_dot, phase, balls_);
   }
