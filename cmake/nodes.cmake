@@ -8,6 +8,8 @@ add_library(bearing_sim_ros_helpers STATIC
   src/ros/sample_source.cpp
   src/ros/sample_divider.cpp
   src/ros/timing_stats.cpp
+  src/ros/health_monitor.cpp
+  src/ros/triaxial_sensor.cpp
 )
 target_include_directories(bearing_sim_ros_helpers PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
 target_link_libraries(bearing_sim_ros_helpers PUBLIC bearing_sim_core)

@@ -18,3 +18,11 @@ bearing_sim_node_rostest(test_node_steady_state node_steady_state)
 bearing_sim_node_rostest(test_node_inputs node_inputs)
 bearing_sim_node_rostest(test_node_realtime node_realtime)
 bearing_sim_node_rostest(test_node_fast_mode node_fast_mode)
+bearing_sim_node_rostest(test_node_divergence node_divergence)
+bearing_sim_node_rostest(test_node_health node_health)
+
+# Issue 5 helpers (HealthMonitor, TriaxialSensor, chunk tilt), no ROS master.
+catkin_add_gtest(test_health_monitor test/ros/test_health_monitor.cpp TIMEOUT 300)
+target_link_libraries(test_health_monitor bearing_sim_ros_helpers bearing_sim_core)
+target_compile_definitions(test_health_monitor PRIVATE BEARING_SIM_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
+bearing_sim_optimize(test_health_monitor)

@@ -23,22 +23,25 @@ void ChunkAssembler::start_chunk() {
   current_target_ = chunk_samples_;
   chunk_.first_sample = next_sample_;
   for (auto* v : {&chunk_.accel_x, &chunk_.accel_y, &chunk_.accel_z, &chunk_.displacement_x, &chunk_.displacement_y,
-                  &chunk_.displacement_z}) {
+                  &chunk_.displacement_z, &chunk_.tilt_x, &chunk_.tilt_y}) {
     v->clear();
     v->reserve(current_target_);
   }
 }
 
-bool ChunkAssembler::add(std::uint64_t sample_index, const DynamicSample& sample) {
+bool ChunkAssembler::add(std::uint64_t sample_index, const Eigen::Vector3d& acceleration,
+                         const Vector5& displacement) {
   if (sample_index != next_sample_)
     throw std::logic_error("chunk assembler: sample " + std::to_string(sample_index) + " is not the next one (" +
                            std::to_string(next_sample_) + ")");
-  chunk_.accel_x.push_back(static_cast<float>(sample.acceleration[0]));
-  chunk_.accel_y.push_back(static_cast<float>(sample.acceleration[1]));
-  chunk_.accel_z.push_back(static_cast<float>(sample.acceleration[2]));
-  chunk_.displacement_x.push_back(static_cast<float>(sample.displacement[0]));
-  chunk_.displacement_y.push_back(static_cast<float>(sample.displacement[1]));
-  chunk_.displacement_z.push_back(static_cast<float>(sample.displacement[2]));
+  chunk_.accel_x.push_back(static_cast<float>(acceleration[0]));
+  chunk_.accel_y.push_back(static_cast<float>(acceleration[1]));
+  chunk_.accel_z.push_back(static_cast<float>(acceleration[2]));
+  chunk_.displacement_x.push_back(static_cast<float>(displacement[0]));
+  chunk_.displacement_y.push_back(static_cast<float>(displacement[1]));
+  chunk_.displacement_z.push_back(static_cast<float>(displacement[2]));
+  chunk_.tilt_x.push_back(static_cast<float>(displacement[3]));
+  chunk_.tilt_y.push_back(static_cast<float>(displacement[4]));
   ++next_sample_;
   return chunk_.size() >= current_target_;
 }

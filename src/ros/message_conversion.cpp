@@ -1,5 +1,6 @@
 #include "bearing_sim/ros/message_conversion.hpp"
 
+#include <cmath>
 #include <utility>
 
 namespace bearing_sim {
@@ -23,6 +24,70 @@ void fill_vibration_chunk(SampleChunk&& chunk, const ros::Time& first_sample_sta
   msg->displacement_x = std::move(chunk.displacement_x);
   msg->displacement_y = std::move(chunk.displacement_y);
   msg->displacement_z = std::move(chunk.displacement_z);
+  msg->tilt_x = std::move(chunk.tilt_x);
+  msg->tilt_y = std::move(chunk.tilt_y);
+}
+
+void fill_bearing_health(const HealthReport& r, const std::string& signal, double sample_rate_hz,
+                         BearingHealth* msg) {
+  const ConditionIndicators& c = r.indicators;
+  msg->signal = signal;
+  msg->sample_rate = sample_rate_hz;
+  if (r.analysed) {
+    msg->window_s = c.window_s;
+    msg->accel_rms = c.acceleration.rms;
+    msg->accel_peak = c.acceleration.peak;
+    msg->crest_factor = c.acceleration.crest_factor;
+    msg->kurtosis = c.acceleration.kurtosis;
+    msg->level_db = c.level_db;
+    msg->velocity_rms_mm_s = c.velocity_rms_mm_s;
+    msg->velocity_zone = velocity_zone_name(c.zone);
+    msg->envelope_low_hz = c.envelope_low_hz;
+    msg->envelope_high_hz = c.envelope_high_hz;
+    for (const FaultIndicator& f : c.faults) {
+      EnvelopeLine line;
+      line.label = fault_frequency_label(f.kind);
+      line.part = fault_kind_name(f.kind);
+      line.expected_hz = fault_frequency_hz(r.frequencies, f.kind);
+      line.peak_hz = f.envelope_peak.frequency_hz;
+      line.amplitude_m_s2 = f.envelope_peak.amplitude;
+      line.noise_floor_m_s2 = f.envelope_peak.noise_floor;
+      line.snr_db = f.envelope_peak.snr_db;
+      line.suspected = f.suspected;
+      msg->faults.push_back(line);
+    }
+    msg->level = static_cast<std::uint8_t>(c.diagnosis.level);
+    msg->reason = c.diagnosis.reason;
+  } else {
+    // No window yet (OK) or a failed analysis (WARN): say which.
+    msg->level = r.error.rfind("collecting", 0) == 0 ? BearingHealth::OK : BearingHealth::WARN;
+    msg->reason = r.error;
+  }
+  for (const DefectNow& d : r.defects) {
+    DefectState s;
+    s.surface = surface_name(d.spall.surface);
+    s.position_rad = d.spall.position_rad;
+    s.ball = d.spall.surface == Surface::Ball ? d.spall.ball : -1;
+    s.width_m = d.width_m;
+    s.depth_m = d.depth_m;
+    s.width_growth_m_per_s = d.spall.width_growth_m_per_s;
+    s.depth_growth_m_per_s = d.spall.depth_growth_m_per_s;
+    s.age_s = d.age_s;
+    msg->defects.push_back(s);
+  }
+  msg->ring_speed_rad_s = r.ring_speed_rad_s;
+  msg->radial_force_N = std::hypot(r.load[0], r.load[1]);
+  msg->axial_force_N = std::abs(r.load[2]);
+  msg->dynamic_load_rating_N = r.iso281.dynamic_load_rating_N;
+  msg->equivalent_load_N = r.iso281.equivalent.load_N;
+  msg->l10_million_rev = r.iso281.life_million_rev;
+  msg->l10_hours = r.iso281.life_hours;
+  msg->reference_life_million_rev = r.reference_life_million_rev;
+  msg->reference_life_hours = r.reference_life_hours;
+  msg->miner_damage = r.miner_damage;
+  msg->remaining_life_hours = r.remaining_life_hours;
+  msg->operated_s = r.operated_s;
+  msg->revolutions = r.revolutions;
 }
 
 void fill_ball_loads(const std::vector<BallState>& balls, int rows, int balls_per_row, double cage_angle_rad,

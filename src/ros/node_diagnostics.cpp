@@ -16,6 +16,7 @@ NodeDiagnostics::NodeDiagnostics(ros::NodeHandle nh, ros::NodeHandle pnh, const 
   updater_.add("Real time", this, &NodeDiagnostics::realtime_task);
   updater_.add("Inputs", this, &NodeDiagnostics::inputs_task);
   updater_.add("Model", this, &NodeDiagnostics::model_task);
+  updater_.add("Health", this, &NodeDiagnostics::health_task);
 }
 
 void NodeDiagnostics::record_chunk(double lateness_s, bool overrun, std::uint64_t samples_published,
@@ -54,6 +55,17 @@ void NodeDiagnostics::set_model_state(const ModelState& state) {
 void NodeDiagnostics::set_scheduling(const std::string& description) {
   std::lock_guard<std::mutex> lock(mutex_);
   scheduling_ = description;
+}
+
+void NodeDiagnostics::set_health(HealthStatus status) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  health_ = std::move(status);
+}
+
+void NodeDiagnostics::health_task(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (const auto& kv : health_.values) status.add(kv.first, kv.second);
+  status.summary(health_.level, health_.message);
 }
 
 void NodeDiagnostics::update() { updater_.force_update(); }

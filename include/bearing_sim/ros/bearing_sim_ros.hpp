@@ -13,15 +13,19 @@
 #include <geometry_msgs/WrenchStamped.h>
 #include <ros/ros.h>
 #include <std_msgs/Float64.h>
+#include <std_srvs/Trigger.h>
 
 #include "bearing_sim/BearingSimConfig.h"
+#include "bearing_sim/InjectDefect.h"
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
 #include "bearing_sim/ros/chunk_assembler.hpp"
+#include "bearing_sim/ros/health_monitor.hpp"
 #include "bearing_sim/ros/input_validator.hpp"
 #include "bearing_sim/ros/node_diagnostics.hpp"
 #include "bearing_sim/ros/sample_divider.hpp"
 #include "bearing_sim/ros/sample_source.hpp"
+#include "bearing_sim/ros/triaxial_sensor.hpp"
 
 namespace bearing_sim {
 namespace ros_node {
@@ -51,11 +55,15 @@ class BearingSimRos {
     std::optional<double> ring_speed_rad_s;
     std::optional<BearingModel> model;
     std::optional<OutputSettings> settings;
+    // inject_defect / clear_defects in the order called: a spall to add, or nullopt to clear.
+    std::vector<std::optional<Spall>> defect_commands;
   };
 
   void on_load(const geometry_msgs::WrenchStamped::ConstPtr& msg);
   void on_speed(const std_msgs::Float64::ConstPtr& msg);
   void on_reconfigure(BearingSimConfig& config, std::uint32_t level);
+  bool on_inject_defect(InjectDefect::Request& req, InjectDefect::Response& res);
+  bool on_clear_defects(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   void reject_input(const std::string& reason);
   void publish_model_state();
 
@@ -66,6 +74,10 @@ class BearingSimRos {
   void apply_settings(const OutputSettings& settings);
   void publish_level(const SampleSource::Sample& sample);
   void publish_ball_loads(const SampleSource::Sample& sample);
+  void publish_sensor_chunk();
+  void feed_health(bool request, double time_s);
+  // Health worker thread.
+  void publish_health(const HealthReport& report);
   ros::Time stamp_of(std::uint64_t sample_index) const;
 
   ros::NodeHandle nh_, pnh_;
@@ -75,6 +87,8 @@ class BearingSimRos {
   bool publish_clock_ = false;
   int realtime_priority_ = 0;  // SCHED_FIFO priority of the sim thread in real time; 0: normal
   std::string frame_id_, bearing_frame_id_;
+  std::string sensor_description_;  // "sensor: <name>" or "ideal ring acceleration"
+  double measured_rate_hz_ = 10000.0;  // of `vibration`, L and health: the sensor's output rate, or sample_rate_hz_
   InputLimits limits_;
 
   // ROS side (spinner thread only): the latest accepted inputs and model, for validation.
@@ -92,11 +106,16 @@ class BearingSimRos {
   std::unique_ptr<SampleSource> source_;
   std::unique_ptr<ChunkAssembler> assembler_;
   std::unique_ptr<RunningRms> level_rms_;
-  std::unique_ptr<SampleDivider> level_divider_, ball_loads_divider_;
+  std::unique_ptr<SampleDivider> level_divider_, ball_loads_divider_, health_divider_;
+  std::unique_ptr<TriaxialSensor> sensor_;              // null: no sensor, `vibration` is the ideal acceleration
+  std::unique_ptr<ChunkAssembler> sensor_assembler_;    // numbered in sensor samples
+  std::vector<float> health_samples_;                   // measured x since the last hand-over to the monitor
+  std::unique_ptr<HealthMonitor> health_;
   OutputSettings settings_;
   ros::Time ros_start_;
 
-  ros::Publisher vibration_pub_, level_pub_, ball_loads_pub_, clock_pub_;
+  ros::Publisher vibration_pub_, ideal_pub_, level_pub_, ball_loads_pub_, clock_pub_, health_pub_;
+  ros::ServiceServer inject_srv_, clear_srv_;
   ros::Subscriber load_sub_, speed_sub_;
   std::unique_ptr<NodeDiagnostics> diagnostics_;
   ros::WallTimer diagnostics_timer_;

@@ -14,6 +14,7 @@ struct SampleChunk {
   std::uint64_t first_sample = 0;
   std::vector<float> accel_x, accel_y, accel_z;                      // m/s^2
   std::vector<float> displacement_x, displacement_y, displacement_z;  // m
+  std::vector<float> tilt_x, tilt_y;                                  // rad
   std::size_t size() const { return accel_x.size(); }
 };
 
@@ -27,7 +28,11 @@ class ChunkAssembler {
 
   // Appends the sample numbered `sample_index`; throws std::logic_error unless it is
   // next_sample(). Returns true when the chunk is full and ready for take().
-  bool add(std::uint64_t sample_index, const DynamicSample& sample);
+  bool add(std::uint64_t sample_index, const DynamicSample& sample) {
+    return add(sample_index, sample.acceleration.head<3>(), sample.displacement);
+  }
+  // The same with another acceleration (a sensor's x, y, z) and the ring's displacement then.
+  bool add(std::uint64_t sample_index, const Eigen::Vector3d& acceleration, const Vector5& displacement);
   // The full chunk; the next one starts empty.
   SampleChunk take();
 

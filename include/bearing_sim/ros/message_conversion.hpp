@@ -6,9 +6,11 @@
 #include <ros/time.h>
 
 #include "bearing_sim/BallLoads.h"
+#include "bearing_sim/BearingHealth.h"
 #include "bearing_sim/VibrationChunk.h"
 #include "bearing_sim/core/bearing_model.hpp"
 #include "bearing_sim/ros/chunk_assembler.hpp"
+#include "bearing_sim/ros/health_monitor.hpp"
 
 namespace bearing_sim {
 namespace ros_node {
@@ -19,6 +21,10 @@ Vector5 load_from_wrench(const geometry_msgs::Wrench& wrench);
 // Moves the chunk's arrays into the message.
 void fill_vibration_chunk(SampleChunk&& chunk, const ros::Time& first_sample_stamp, const std::string& frame_id,
                           double sample_rate_hz, VibrationChunk* msg);
+
+// The health report as a message; `signal` says what was analysed.
+void fill_bearing_health(const HealthReport& report, const std::string& signal, double sample_rate_hz,
+                         BearingHealth* msg);
 
 void fill_ball_loads(const std::vector<BallState>& balls, int rows, int balls_per_row, double cage_angle_rad,
                      BallLoads* msg);

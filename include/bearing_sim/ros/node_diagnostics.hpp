@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <mutex>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
@@ -32,6 +34,13 @@ struct ModelState {
   double static_max_contact_pressure_Pa = 0.0;
 };
 
+// The latest health analysis, as shown on /diagnostics (filled by the health worker).
+struct HealthStatus {
+  std::uint8_t level = 0;  // diagnostic_msgs::DiagnosticStatus OK / WARN / ERROR
+  std::string message = "collecting the first window";
+  std::vector<std::pair<std::string, std::string>> values;
+};
+
 class NodeDiagnostics {
  public:
   NodeDiagnostics(ros::NodeHandle nh, ros::NodeHandle pnh, const std::string& hardware_id,
@@ -45,6 +54,7 @@ class NodeDiagnostics {
   void record_divergence(const std::string& message);
   void set_model_state(const ModelState& state);
   void set_scheduling(const std::string& description);
+  void set_health(HealthStatus status);
   void update();  // publish now
 
  private:
@@ -52,6 +62,7 @@ class NodeDiagnostics {
   void realtime_task(diagnostic_updater::DiagnosticStatusWrapper& status);
   void inputs_task(diagnostic_updater::DiagnosticStatusWrapper& status);
   void model_task(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void health_task(diagnostic_updater::DiagnosticStatusWrapper& status);
   bool within_hold(Clock::time_point t, bool ever) const;
 
   DiagnosticsSettings settings_;
@@ -70,6 +81,7 @@ class NodeDiagnostics {
   Clock::time_point last_divergence_time_;
   ModelState model_;
   std::string scheduling_;
+  HealthStatus health_;
 };
 
 }  // namespace ros_node
