@@ -10,6 +10,8 @@ add_executable(bearing_tool
   src/tools/command_frequencies.cpp
   src/tools/command_simulate.cpp
   src/tools/command_analyze.cpp
+  src/tools/command_sweep.cpp
+  src/tools/command_modes.cpp
 )
 target_link_libraries(bearing_tool PRIVATE bearing_sim_core CLI11::CLI11 nlohmann_json::nlohmann_json)
 bearing_sim_optimize(bearing_tool)

@@ -19,6 +19,8 @@ constexpr Register kCommands[] = {
     bearing_sim::tool::register_frequencies_command,
     bearing_sim::tool::register_simulate_command,
     bearing_sim::tool::register_analyze_command,
+    bearing_sim::tool::register_sweep_command,
+    bearing_sim::tool::register_modes_command,
 };
 
 int fail(int code, const char* kind, const std::exception& e) {

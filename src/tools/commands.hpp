@@ -11,5 +11,7 @@ void register_static_command(CLI::App& app);
 void register_frequencies_command(CLI::App& app);
 void register_simulate_command(CLI::App& app);
 void register_analyze_command(CLI::App& app);
+void register_sweep_command(CLI::App& app);
+void register_modes_command(CLI::App& app);
 
 }  // namespace bearing_sim::tool
