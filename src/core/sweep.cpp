@@ -11,6 +11,8 @@
 #include <sstream>
 #include <thread>
 
+#include <Eigen/Eigenvalues>
+
 #include "bearing_sim/core/errors.hpp"
 
 namespace bearing_sim {
@@ -429,6 +431,13 @@ SweepResult run_sweep_case(const SweepCase& c, bool dynamic) {
   try {
     const BearingModel model(c.config);
     r.statics = solve_static(model, c.operating_point.load);
+    if (c.config.has_dynamics()) {
+      const Matrix5 k = 0.5 * (r.statics.stiffness + r.statics.stiffness.transpose());
+      const Matrix5 m = model.mass_diagonal().asDiagonal();
+      Eigen::GeneralizedSelfAdjointEigenSolver<Matrix5> eig(k, m, Eigen::EigenvaluesOnly);
+      if (eig.info() == Eigen::Success)
+        for (int i = 0; i < 5; ++i) r.ring_modes_hz[i] = std::sqrt(std::max(eig.eigenvalues()[i], 0.0)) / (2.0 * kPi);
+    }
     if (dynamic) {
       SimulationRequest req;
       req.load = c.operating_point.load;
@@ -480,7 +489,7 @@ std::string sweep_csv_header() {
   return "study,parameter,value,imperfection_set,status,Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm,"
          "x_um,y_um,z_um,theta_x_urad,theta_y_urad,"
          "Kxx_N_per_m,Kyy_N_per_m,Kzz_N_per_m,Ktxtx_Nm_per_rad,Ktyty_Nm_per_rad,Kx_ty_N_per_rad,Kz_ty_N_per_rad,"
-         "max_ball_load_N,max_pressure_MPa,loaded_balls,"
+         "max_ball_load_N,max_pressure_MPa,loaded_balls,f1_Hz,f2_Hz,f3_Hz,f4_Hz,f5_Hz,"
          "a_rms_x_m_s2,a_rms_y_m_s2,a_rms_z_m_s2,L_dB,substeps,wall_s,error";
 }
 
@@ -504,8 +513,9 @@ std::string sweep_csv_row(const SweepResult& r) {
     int loaded = 0;
     for (const auto& b : s.balls) loaded += b.load_N > 0.0;
     os << ',' << s.max_ball_load_N << ',' << s.max_contact_pressure_Pa / 1e6 << ',' << loaded;
+    for (int i = 0; i < 5; ++i) os << ',' << r.ring_modes_hz[i];
   } else {
-    os << std::string(15, ',');
+    os << std::string(20, ',');
   }
   if (r.ok && r.dynamic) {
     os << ',' << r.dynamics.a_rms_x << ',' << r.dynamics.a_rms_y << ',' << r.dynamics.a_rms_z << ','

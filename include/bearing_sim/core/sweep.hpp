@@ -61,6 +61,9 @@ struct SweepResult {
   bool ok = false;
   std::string error;  // when !ok: why (load not carried, divergence)
   StaticSolution statics;
+  // Undamped natural frequencies of the moving ring on its contacts at the static
+  // equilibrium (K phi = w^2 diag(m, m, m, J, J) phi), ascending, Hz; zeros without a mass.
+  Vector5 ring_modes_hz = Vector5::Zero();
   bool dynamic = false;
   SimulationSummary dynamics;
   double wall_s = 0.0;
