@@ -94,6 +94,11 @@ studies:
     EXPECT_EQ(serial[i].dynamics.a_rms_x, parallel[i].dynamics.a_rms_x) << "case " << i;
     EXPECT_EQ(serial[i].statics.stiffness, parallel[i].statics.stiffness);
   }
+  // The ring's modes on its contacts: ascending, and above the ball-pass frequency here.
+  for (const auto& r : serial) {
+    EXPECT_GT(r.ring_modes_hz[0], 313.0);
+    for (int i = 1; i < 5; ++i) EXPECT_GE(r.ring_modes_hz[i], r.ring_modes_hz[i - 1]);
+  }
   // Tighter grooves: stiffer. Waviness at Z +- 1: far above the smooth bearing's level.
   EXPECT_GT(serial[0].statics.stiffness(0, 0), serial[1].statics.stiffness(0, 0));
   EXPECT_LT(serial[0].dynamics.level_db, 0.0);
