@@ -108,8 +108,8 @@ void register_sweep_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "sweep",
       "Parameter studies from a YAML definition (base bearing file, operating point, imperfection sets, "
-      "studies): quasi-static stiffness and, for dynamic sweeps, a_rms and L per case, in parallel, CSV out. "
-      "Parameters:" + params);
+      "studies): quasi-static stiffness and, for dynamic sweeps, a_rms and L per case, in parallel, CSV out");
+  cmd->footer("Parameters a study may vary:" + params);
   cmd->add_option("--definition", o->definition, "Sweep definition (YAML, docs/bearing_tool.md)")
       ->required()
       ->type_name("FILE");
