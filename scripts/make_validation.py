@@ -165,6 +165,10 @@ def ct_section(rows, mass_kg):
             ax.axvline(0.6, color="g", ls="--", label="paper's optimum 0.6")
         if param == "imperfection_scale":
             ax.set_xscale("log", base=2)
+        if param == "clearance_um":
+            ax.axvspan(min(ax.get_xlim()[0], -10), 0, color="0.85", alpha=0.5, label="preload (g0 < 0)")
+        lo, hi = ax.get_ylim()
+        ax.set_ylim(max(lo, -60.0), hi)  # a fully preloaded smooth bearing is at about -190 dB
         ax.set_xlabel(label)
         ax.set_ylabel("L (dB, JB/T 5314)")
         ax.grid(alpha=0.3)
@@ -475,7 +479,8 @@ errors we do not copy are in MODEL.md section 7.
 | CT: L falls then rises with the groove curvature, minimum near fi 0.522 / fo 0.518 | no minimum with waviness: flat within {ct[("inner_groove_curvature", A)]["span"]:.1f} dB (wavy_A) or falling {-ct[("inner_groove_curvature", "wavy_B")]["rise"]:.1f} dB (wavy_B) from 0.505 to 0.56; the smooth bearing has a minimum at {ct[("inner_groove_curvature", "smooth")]["xmin"]:g}, at an irrelevant {ct[("inner_groove_curvature", "smooth")]["lmin"]:.0f} dB | below the ring's resonance the waviness displacement is passed through almost whatever the contact stiffness; the paper's L comes from a smooth model in a 0.02 s window from a non-equilibrium start (section 1.4) |
 | CT: L rises slowly with the number of balls | wavy_A: +{z_rise:.1f} dB from Z = 150 to 240; wavy_B: falls {-ct[("balls_per_row", "wavy_B")]["rise"]:.1f} dB | with Z+-1 waviness the forcing sits at Z f_c, and a = w^2 x gives 40 lg(240/150) = 8.2 dB; low-order waviness is averaged better by more balls. The direction depends on the waviness spectrum |
 | CT: L falls, then rises sharply with clearance; minimum at 18 um | wavy_A: flat ({l_at(ct, "clearance_um", A, 0):.1f} dB) with a resonance peak of {peak_c["lmax"]:.1f} dB at {peak_c["xs"][peak_c["ls"].index(peak_c["lmax"])]:g} um; wavy_B and smooth: rise monotonically | the ring's lowest mode on its contacts falls with clearance and crosses Z f_c = 313 Hz at g0 = {gx:.1f} um. No minimum before it |
-| CT: a suitable axial load (Fa/Fr = 0.6) lowers vibration | L rises with Fa/Fr for every setting (wavy_A +{ct[("axial_load_ratio", A)]["rise"]:.1f} dB, wavy_B +{ct[("axial_load_ratio", "wavy_B")]["rise"]:.1f} dB over 0-1.2) | an external axial load unloads one row and softens the ring's lowest mode (down to {ax_f:.0f} Hz at Fa/Fr = {ax_x:g}); the paper's benefit is a preload of the rows against each other, which this study does not apply |
+| CT: a suitable axial load (Fa/Fr = 0.6) lowers vibration | L rises with Fa/Fr for every setting (wavy_A +{ct[("axial_load_ratio", A)]["rise"]:.1f} dB, wavy_B +{ct[("axial_load_ratio", "wavy_B")]["rise"]:.1f} dB over 0-1.2) | an external axial load unloads one row and softens the ring's lowest mode (down to {ax_f:.0f} Hz at Fa/Fr = {ax_x:g}) |
+| CT conclusion (3): preload the rows (bolts between the inner rings) to lower vibration | confirmed as a preload: g0 = -10 um lowers L from {l_at(ct, "clearance_um", "wavy_B", 0):.1f} to {l_at(ct, "clearance_um", "wavy_B", -10):.1f} dB (wavy_B), {l_at(ct, "clearance_um", A, 0):.1f} to {l_at(ct, "clearance_um", A, -10):.1f} dB (wavy_A); the smooth bearing falls to {l_at(ct, "clearance_um", "smooth", -10):.0f} dB | with every ball loaded the varying compliance vanishes and the ring is stiffer (lowest mode {k_at(ct, "clearance_um", "smooth", -10, "f1_Hz"):.0f} Hz against {k_at(ct, "clearance_um", "smooth", 0, "f1_Hz"):.0f} Hz); the benefit comes from the preload, not from an external axial load |
 | INS: Kr = 1.2e5 N/mm (formula (8)), 1.91e5 N/mm (FE) at Fr 3400 N | {ins["kr"]:.3g} N/mm (pure radial load), {ins["kr_c"]:.3g} N/mm (combined load) | close to the FE value; formula (8) is for one row, this is the pair |
 | INS: Ka = 1.4e5 N/mm (formula (9)), 1.88e5 N/mm (FE) at Fa 1750 N | {ins["ka"]:.3g} N/mm (pure axial load), {ins["ka_c"]:.3g} N/mm (combined) | without preload only one row of a DB pair carries an axial load: the pair is no stiffer axially than one row at 10 deg |
 | INS: Ktheta = 1.5e6 N*mm/deg (FE) | {ins["kt"]:.3g} N*mm/deg (3 N*m alone), {ins["kt_c"]:.3g} N*mm/deg (combined) | rigid rings give Ktheta ~ Ka R^2/2 + Kr (s/2)^2: {ins["kt_consistent_paper"]:.3g} N*mm/deg from the paper's own FE Ka and Kr, so its Ktheta is about {PAPER_KT_FE / ins["kt_consistent_paper"]:.0f}x what its own Kr and Ka allow |
@@ -548,7 +553,15 @@ depend on the waviness spectrum.
   fall towards the ball-pass band ({ax_f:.0f} Hz at Fa/Fr = {ax_x:g}) and L rises, strongly for
   wavy_B above 0.5. The paper's conclusion (3) really concerns a *preload* of the two rows
   against each other (the bolts between the inner rings); that is a negative clearance, not
-  an external axial load, and it would stiffen both rows.
+  an external axial load. The clearance study continues to g0 = -10 um: there, L does fall
+  (wavy_B {l_at(ct, "clearance_um", "wavy_B", 0):.1f} -> {l_at(ct, "clearance_um", "wavy_B", -10):.1f} dB,
+  wavy_A {l_at(ct, "clearance_um", A, 0):.1f} -> {l_at(ct, "clearance_um", A, -10):.1f} dB): every ball is
+  loaded, the ring is stiffer and the low-order waviness is averaged by all the balls. The
+  Z+-1 forcing (wavy_A) is hardly affected, as it acts through the same contacts.
+- **What the paper calls clearance.** Its "游隙" (0-40 um) is probably a radial clearance;
+  ours is g0 per ball along the contact line (at 35 deg, a diametral clearance Pd is
+  g0 = Pd cos(35 deg)/2 for a pure radial shift). The crossing at {gx:.1f} um of g0 would then
+  be near {2 * gx / math.cos(math.radians(35)):.0f} um of diametral clearance.
 
 ### 1.4 Why the paper's own curves may look as they do
 
