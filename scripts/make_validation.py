@@ -202,7 +202,7 @@ def ct_section(rows, mass_kg):
         ax2.set_ylabel("frequency (Hz)")
         h1, l1 = ax1.get_legend_handles_labels()
         h2, l2 = ax2.get_legend_handles_labels()
-        ax1.legend(h1 + h2, l1 + l2, fontsize=7, loc="upper left")
+        ax1.legend(h1 + h2, l1 + l2, fontsize=7, loc="center right" if param == "clearance_um" else "upper left")
         ax1.grid(alpha=0.3)
     fig.suptitle("CT bearing: L peaks where the ring's lowest mode on its contacts crosses the ball-pass frequency")
     fig.tight_layout()
