@@ -17,24 +17,16 @@
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/bearing_model.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
+#include "tool_runner.hpp"
 
 namespace {
 
 using nlohmann::json;
 constexpr double kPi = 3.14159265358979323846;
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using bearing_sim::test::read_file;
+using bearing_sim::test::RunResult;
 
 // A scratch directory for YAML and CSV files, removed at exit of the test.
 class ToolTest : public ::testing::Test {
@@ -53,20 +45,7 @@ class ToolTest : public ::testing::Test {
   }
 
   // Runs bearing_tool with `args` (shell words); stdout and stderr captured apart.
-  RunResult run(const std::string& args) {
-    const std::string err_path = dir_ + "/stderr.txt";
-    const std::string command = std::string("'") + BEARING_TOOL_PATH + "' " + args + " 2>'" + err_path + "'";
-    RunResult r;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return r;
-    char buf[4096];
-    std::size_t n;
-    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-    const int status = pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.err = read_file(err_path);
-    return r;
-  }
+  RunResult run(const std::string& args) { return bearing_sim::test::run_bearing_tool(args, dir_); }
 
   json run_json(const std::string& args) {
     const RunResult r = run(args + " --json");

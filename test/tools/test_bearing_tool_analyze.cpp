@@ -19,6 +19,7 @@
 #include "bearing_sim/core/condition_indicators.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/simulation_run.hpp"
+#include "tool_runner.hpp"
 
 namespace {
 
@@ -39,10 +40,7 @@ const char* const kBearing =
     "imperfections: {seed: 3, roughness_rms_um: 0.02}\n"
     "defects: [{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 30}]\n";
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-};
+using bearing_sim::test::RunResult;
 
 class AnalyzeTool : public ::testing::Test {
  protected:
@@ -55,23 +53,7 @@ class AnalyzeTool : public ::testing::Test {
   }
   void TearDown() override { std::system(("rm -rf '" + dir_ + "'").c_str()); }
 
-  RunResult run(const std::string& args) {
-    const std::string err_path = dir_ + "/stderr.txt";
-    const std::string command = std::string("'") + BEARING_TOOL_PATH + "' " + args + " 2>'" + err_path + "'";
-    RunResult r;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return r;
-    char buf[4096];
-    std::size_t n;
-    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-    const int status = pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream e(err_path);
-    std::stringstream ss;
-    ss << e.rdbuf();
-    r.err = ss.str();
-    return r;
-  }
+  RunResult run(const std::string& args) { return bearing_sim::test::run_bearing_tool(args, dir_); }
 
   std::string dir_, bearing_;
 };

@@ -1,0 +1,42 @@
+#pragma once
+// Runs the built bearing_tool (BEARING_TOOL_PATH) for the tool tests.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace bearing_sim::test {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+inline std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// bearing_tool with `args` (shell words); stdout and stderr captured apart, stderr via a
+// file in `scratch_dir`.
+inline RunResult run_bearing_tool(const std::string& args, const std::string& scratch_dir) {
+  const std::string err_path = scratch_dir + "/stderr.txt";
+  const std::string command = std::string("'") + BEARING_TOOL_PATH + "' " + args + " 2>'" + err_path + "'";
+  RunResult r;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return r;
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.err = read_file(err_path);
+  return r;
+}
+
+}  // namespace bearing_sim::test
