@@ -1,0 +1,252 @@
+#include "bearing_sim/ros/scenario_player.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <stdexcept>
+
+#include <geometry_msgs/WrenchStamped.h>
+#include <std_msgs/Float64.h>
+#include <std_srvs/Trigger.h>
+
+#include "bearing_sim/DefectState.h"
+#include "bearing_sim/InjectDefect.h"
+#include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/imperfections.hpp"
+
+namespace bearing_sim {
+namespace ros_node {
+namespace {
+
+Scenario load_scenario(const ros::NodeHandle& pnh, std::string* file) {
+  if (!pnh.getParam("scenario_file", *file) || file->empty())
+    throw std::runtime_error("parameter ~scenario_file (path of the scenario YAML) is required");
+  return Scenario::load(*file);  // ConfigError names the file and the key
+}
+
+// Nodes the master lists as subscribers of a topic.
+std::vector<std::string> registered_subscribers(const std::string& topic) {
+  std::vector<std::string> nodes;
+  XmlRpc::XmlRpcValue args, result, payload;
+  args[0] = ros::this_node::getName();
+  if (!ros::master::execute("getSystemState", args, result, payload, false) || payload.size() < 2) return nodes;
+  XmlRpc::XmlRpcValue& subscribed = payload[1];
+  for (int i = 0; i < subscribed.size(); ++i) {
+    if (static_cast<std::string>(subscribed[i][0]) != topic) continue;
+    for (int j = 0; j < subscribed[i][1].size(); ++j) nodes.push_back(subscribed[i][1][j]);
+  }
+  return nodes;
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec1, ec2;
+  return std::filesystem::weakly_canonical(a, ec1) == std::filesystem::weakly_canonical(b, ec2);
+}
+
+}  // namespace
+
+ScenarioPlayer::ScenarioPlayer(ros::NodeHandle nh, ros::NodeHandle pnh)
+    : nh_(nh), pnh_(pnh), scenario_(load_scenario(pnh_, &scenario_file_)) {
+  bearing_name_ = load_bearing_config(scenario_.bearing_file()).name;
+  pnh_.param<std::string>("node", node_name_, "bearing_sim_node");
+  pnh_.param("speed_rate_hz", settings_.speed_rate_hz, settings_.speed_rate_hz);
+  pnh_.param("load_rate_hz", settings_.load_rate_hz, settings_.load_rate_hz);
+  pnh_.param("state_rate_hz", settings_.state_rate_hz, settings_.state_rate_hz);
+  pnh_.param("loop", settings_.loop, settings_.loop);
+  pnh_.param("wait_timeout_s", wait_timeout_s_, wait_timeout_s_);
+  pnh_.param("wait_for_subscribers", wait_for_subscribers_, wait_for_subscribers_);
+  try {
+    ScenarioTimeline check(scenario_, settings_);  // rates
+  } catch (const InvalidInputError& e) {
+    throw std::runtime_error(e.what());
+  }
+
+  speed_pub_ = nh_.advertise<std_msgs::Float64>("speed", 10);
+  load_pub_ = nh_.advertise<geometry_msgs::WrenchStamped>("load", 10);
+  state_pub_ = nh_.advertise<ScenarioState>("scenario_state", 100);
+  ROS_INFO("scenario_player: '%s' (%s), %.1f s, %zu defect event(s), bearing '%s'%s", scenario_.name().c_str(),
+           scenario_file_.c_str(), scenario_.duration_s(), scenario_.defect_events().size(), bearing_name_.c_str(),
+           settings_.loop ? ", looping" : "");
+}
+
+bool ScenarioPlayer::wait_for_node() {
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(wait_timeout_s_);
+  auto remaining = [&] { return std::max(0.0, (deadline - ros::WallTime::now()).toSec()); };
+  const std::string node = nh_.resolveName(node_name_);
+  for (const char* service : {"inject_defect", "clear_defects"}) {
+    if (!ros::service::waitForService(nh_.resolveName(service), ros::Duration(remaining()))) {
+      if (ros::ok())
+        ROS_FATAL("scenario_player: no service %s after %.0f s: is %s running?", nh_.resolveName(service).c_str(),
+                  wait_timeout_s_, node.c_str());
+      return false;
+    }
+  }
+  std::string node_bearing;
+  if (nh_.getParam(node_name_ + "/bearing_file", node_bearing) && !same_file(node_bearing, scenario_.bearing_file()))
+    ROS_WARN("scenario_player: %s simulates %s, the scenario is written for %s", node.c_str(), node_bearing.c_str(),
+             scenario_.bearing_file().c_str());
+  // The scenario runs on the node's clock: with the node as fast as possible that is its
+  // /clock, which this process only follows with use_sim_time.
+  bool node_real_time = true;
+  nh_.getParam(node_name_ + "/real_time", node_real_time);
+  if (!node_real_time && !ros::Time::isSimTime()) {
+    ROS_FATAL("scenario_player: %s runs as fast as possible (~real_time false) but /use_sim_time is not set: "
+              "the scenario would play on wall time. Set /use_sim_time true (ct_gantry.launch does with a scenario)",
+              node.c_str());
+    return false;
+  }
+  if (!ros::Time::waitForValid(ros::WallDuration(remaining()))) {
+    if (ros::ok()) ROS_FATAL("scenario_player: use_sim_time is set but no /clock after %.0f s", wait_timeout_s_);
+    return false;
+  }
+  // Every registered subscriber of speed and load (the node among them) connected, so that
+  // the inputs at t = 0 reach the node; and the recorder, if asked to wait for it.
+  auto connected = [&](const ros::Publisher& pub, const std::string& topic) {
+    const std::vector<std::string> subs = registered_subscribers(nh_.resolveName(topic));
+    return std::find(subs.begin(), subs.end(), node) != subs.end() && pub.getNumSubscribers() >= subs.size();
+  };
+  while (ros::ok()) {
+    if (connected(speed_pub_, "speed") && connected(load_pub_, "load") &&
+        state_pub_.getNumSubscribers() >= static_cast<std::uint32_t>(std::max(0, wait_for_subscribers_)))
+      return true;
+    if (remaining() <= 0.0) {
+      ROS_FATAL("scenario_player: %s does not subscribe to speed and load, or scenario_state has fewer than %d "
+                "subscribers, after %.0f s",
+                node.c_str(), wait_for_subscribers_, wait_timeout_s_);
+      return false;
+    }
+    ros::WallDuration(0.02).sleep();
+  }
+  return false;
+}
+
+void ScenarioPlayer::start() {
+  timeline_ = std::make_unique<ScenarioTimeline>(scenario_, settings_);
+  start_ = ros::Time::now();
+  ROS_INFO("scenario_player: '%s' starts at %.3f s on the node's clock (%s)", scenario_.name().c_str(),
+           start_.toSec(), ros::Time::isSimTime() ? "/clock" : "wall time");
+  inject_client_ = nh_.serviceClient<InjectDefect>("inject_defect", true);
+  clear_client_ = nh_.serviceClient<std_srvs::Trigger>("clear_defects", true);
+  tick(start_);
+  if (ros::Time::isSimTime()) {
+    // Follow each /clock message as it comes (the node publishes one per chunk), not
+    // roscpp's timer, which polls simulated time every millisecond of wall time.
+    clock_sub_ = nh_.subscribe<rosgraph_msgs::Clock>(
+        "/clock", 1, [this](const rosgraph_msgs::Clock::ConstPtr& m) { tick(m->clock); },
+        ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
+  } else {
+    const double rate = std::max({settings_.speed_rate_hz, settings_.load_rate_hz, settings_.state_rate_hz});
+    timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / rate),
+                                 [this](const ros::WallTimerEvent&) { tick(ros::Time::now()); });
+  }
+}
+
+void ScenarioPlayer::tick(const ros::Time& now) {
+  if (!timeline_ || timeline_->finished()) return;
+  for (const TimelineCommand& c : timeline_->advance((now - start_).toSec())) execute(c);
+}
+
+ros::Time ScenarioPlayer::stamp_of(const TimelineCommand& c) const {
+  return start_ + ros::Duration(static_cast<double>(c.pass) * scenario_.duration_s() + c.scenario_time_s);
+}
+
+void ScenarioPlayer::execute(const TimelineCommand& c) {
+  using Kind = TimelineCommand::Kind;
+  switch (c.kind) {
+    case Kind::ClearDefects:
+      ROS_INFO("scenario_player: pass %llu of '%s' begins", static_cast<unsigned long long>(c.pass + 1),
+               scenario_.name().c_str());
+      clear(c);
+      break;
+    case Kind::DefectEvent:
+      if (c.event.kind == ScenarioDefectEvent::Kind::Clear) clear(c);
+      else inject(c);
+      break;
+    case Kind::Speed: {
+      std_msgs::Float64 m;
+      m.data = c.speed_rad_s;
+      speed_pub_.publish(m);
+      break;
+    }
+    case Kind::Load: {
+      geometry_msgs::WrenchStamped m;
+      m.header.stamp = stamp_of(c);
+      m.header.frame_id = "bearing";
+      m.wrench.force.x = c.load[0];
+      m.wrench.force.y = c.load[1];
+      m.wrench.force.z = c.load[2];
+      m.wrench.torque.x = c.load[3];
+      m.wrench.torque.y = c.load[4];
+      load_pub_.publish(m);
+      break;
+    }
+    case Kind::State:
+      publish_state(c);
+      break;
+    case Kind::End:
+      ROS_INFO("scenario_player: '%s' finished at %.3f s; the node keeps the last speed and load",
+               scenario_.name().c_str(), c.scenario_time_s);
+      break;
+  }
+}
+
+void ScenarioPlayer::inject(const TimelineCommand& c) {
+  const Spall& s = c.event.spall;
+  InjectDefect srv;
+  srv.request.surface = surface_name(s.surface);
+  srv.request.position_rad = s.position_rad;
+  srv.request.ball = s.ball;
+  srv.request.width_m = s.width_m;
+  srv.request.depth_m = s.depth_m;
+  srv.request.width_growth_m_per_s = s.width_growth_m_per_s;
+  srv.request.depth_growth_m_per_s = s.depth_growth_m_per_s;
+  if (!inject_client_.isValid()) inject_client_ = nh_.serviceClient<InjectDefect>("inject_defect", true);
+  if (!inject_client_.call(srv))
+    ROS_ERROR("scenario_player: t = %.3f s: inject_defect failed (node gone?)", c.scenario_time_s);
+  else if (!srv.response.success)
+    ROS_ERROR("scenario_player: t = %.3f s: the node refused the defect of the event at %.3f s: %s",
+              c.scenario_time_s, c.event.time_s, srv.response.message.c_str());
+  else
+    ROS_INFO("scenario_player: t = %.3f s (event at %.3f s): %s", c.scenario_time_s, c.event.time_s,
+             srv.response.message.c_str());
+}
+
+void ScenarioPlayer::clear(const TimelineCommand& c) {
+  std_srvs::Trigger srv;
+  if (!clear_client_.isValid()) clear_client_ = nh_.serviceClient<std_srvs::Trigger>("clear_defects", true);
+  if (!clear_client_.call(srv))
+    ROS_ERROR("scenario_player: t = %.3f s: clear_defects failed (node gone?)", c.scenario_time_s);
+  else
+    ROS_INFO("scenario_player: t = %.3f s: %s", c.scenario_time_s, srv.response.message.c_str());
+}
+
+void ScenarioPlayer::publish_state(const TimelineCommand& c) {
+  const double t = c.scenario_time_s;
+  const ScenarioInputs in = scenario_.inputs_at(t);
+  ScenarioState m;
+  m.header.stamp = stamp_of(c);
+  m.header.frame_id = "bearing";
+  m.scenario = scenario_.name();
+  m.bearing = bearing_name_;
+  m.seed = scenario_.seed();
+  m.scenario_time_s = t;
+  m.phase = in.phase;
+  m.ring_speed_rad_s = in.ring_speed_rad_s;
+  for (int i = 0; i < 5; ++i) m.load[static_cast<std::size_t>(i)] = in.load[i];
+  for (const Spall& s : scenario_.spalls_at(t)) {
+    DefectState d;
+    d.surface = surface_name(s.surface);
+    d.position_rad = s.position_rad;
+    d.ball = s.surface == Surface::Ball ? s.ball : -1;
+    d.width_m = Scenario::spall_width_at(s, t);
+    d.depth_m = Scenario::spall_depth_at(s, t);
+    d.width_growth_m_per_s = s.width_growth_m_per_s;
+    d.depth_growth_m_per_s = s.depth_growth_m_per_s;
+    d.age_s = t - s.created_at_s;
+    m.defects.push_back(d);
+  }
+  state_pub_.publish(m);
+}
+
+}  // namespace ros_node
+}  // namespace bearing_sim

@@ -1,0 +1,130 @@
+#include "bearing_sim/ros/scenario_timeline.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iterator>
+#include <string>
+
+#include "bearing_sim/core/errors.hpp"
+
+namespace bearing_sim {
+namespace ros_node {
+namespace {
+
+void check_rate(double rate_hz, const char* name) {
+  if (!std::isfinite(rate_hz) || !(rate_hz > 0.0))
+    throw InvalidInputError(std::string("scenario player: ") + name + " must be finite and > 0, got " +
+                            std::to_string(rate_hz));
+}
+
+// Index of the grid cell [k / rate, (k + 1) / rate) holding t.
+std::int64_t cell(double t, double rate_hz) { return static_cast<std::int64_t>(std::floor(t * rate_hz)); }
+
+}  // namespace
+
+ScenarioTimeline::ScenarioTimeline(const Scenario& scenario, TimelineSettings settings)
+    : scenario_(scenario), settings_(settings) {
+  check_rate(settings_.speed_rate_hz, "speed_rate_hz");
+  check_rate(settings_.load_rate_hz, "load_rate_hz");
+  check_rate(settings_.state_rate_hz, "state_rate_hz");
+}
+
+TimelineCommand ScenarioTimeline::command(TimelineCommand::Kind kind, double t) const {
+  TimelineCommand c;
+  c.kind = kind;
+  c.scenario_time_s = t;
+  c.pass = pass_;
+  return c;
+}
+
+void ScenarioTimeline::start_pass() {
+  next_event_ = 0;
+  next_speed_cell_ = next_load_cell_ = next_state_cell_ = 0;
+}
+
+std::vector<TimelineCommand> ScenarioTimeline::advance(double elapsed_s) {
+  std::vector<TimelineCommand> out;
+  if (finished_) return out;
+  const double duration = scenario_.duration_s();
+  for (;;) {
+    const double t = std::max(0.0, elapsed_s - pass_start_s_);
+    if (!(t >= duration)) {  // also a NaN elapsed time: nothing beyond what is due at the last t
+      if (std::isfinite(t)) emit_due(t, false, &out);
+      return out;
+    }
+    // The rest of this pass, with the final values and labels exactly at its end.
+    emit_due(duration, true, &out);
+    if (!settings_.loop) {
+      finished_ = true;
+      out.push_back(command(TimelineCommand::Kind::End, duration));
+      return out;
+    }
+    pass_start_s_ += duration;
+    ++pass_;
+    start_pass();
+    out.push_back(command(TimelineCommand::Kind::ClearDefects, 0.0));
+  }
+}
+
+void ScenarioTimeline::emit_due(double t, bool end_of_pass, std::vector<TimelineCommand>* out) {
+  using Kind = TimelineCommand::Kind;
+  bool event_fired = false;
+  const std::vector<ScenarioDefectEvent>& events = scenario_.defect_events();
+  while (next_event_ < events.size() && events[next_event_].time_s <= t) {
+    TimelineCommand c = command(Kind::DefectEvent, t);
+    c.event = events[next_event_++];
+    out->push_back(std::move(c));
+    event_fired = true;
+  }
+
+  const ScenarioInputs in = scenario_.inputs_at(t);
+  if (end_of_pass || cell(t, settings_.speed_rate_hz) >= next_speed_cell_) {
+    next_speed_cell_ = cell(t, settings_.speed_rate_hz) + 1;
+    if (!have_sent_inputs_ || in.ring_speed_rad_s != last_speed_rad_s_) {
+      TimelineCommand c = command(Kind::Speed, t);
+      c.speed_rad_s = in.ring_speed_rad_s;
+      out->push_back(std::move(c));
+      last_speed_rad_s_ = in.ring_speed_rad_s;
+    }
+  }
+  if (end_of_pass || cell(t, settings_.load_rate_hz) >= next_load_cell_) {
+    next_load_cell_ = cell(t, settings_.load_rate_hz) + 1;
+    if (!have_sent_inputs_ || in.load != last_load_) {
+      TimelineCommand c = command(Kind::Load, t);
+      c.load = in.load;
+      out->push_back(std::move(c));
+      last_load_ = in.load;
+    }
+  }
+  have_sent_inputs_ = true;
+  if (end_of_pass || event_fired || cell(t, settings_.state_rate_hz) >= next_state_cell_) {
+    next_state_cell_ = cell(t, settings_.state_rate_hz) + 1;
+    out->push_back(command(Kind::State, t));
+  }
+}
+
+std::string scenario_node_parameter(const Scenario& scenario, const std::string& name) {
+  if (name == "bearing_file") return scenario.bearing_file();
+  if (name == "sensor_file") return scenario.sensor_file();
+  const ScenarioInputs in = scenario.inputs_at(0.0);
+  const char* const load_names[5] = {"initial_force_x_N", "initial_force_y_N", "initial_force_z_N",
+                                     "initial_moment_x_Nm", "initial_moment_y_Nm"};
+  double value = 0.0;
+  if (name == "initial_speed_rad_s") {
+    value = in.ring_speed_rad_s;
+  } else {
+    const auto* it = std::find(std::begin(load_names), std::end(load_names), name);
+    if (it == std::end(load_names))
+      throw InvalidInputError("unknown node parameter '" + name +
+                              "' (bearing_file, sensor_file, initial_force_{x,y,z}_N, "
+                              "initial_moment_{x,y}_Nm, initial_speed_rad_s)");
+    value = in.load[it - std::begin(load_names)];
+  }
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", value);  // round-trips the double
+  return buf;
+}
+
+}  // namespace ros_node
+}  // namespace bearing_sim

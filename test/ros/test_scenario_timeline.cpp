@@ -1,0 +1,245 @@
+// ScenarioTimeline (the scenario player's time line, no ROS): which command goes out when.
+// Inputs equal Scenario::inputs_at at the times they are sent, on their grids and only
+// when they change; each defect event fires exactly once per pass, in order, at the first
+// tick at or after its time; labels at their rate and after every event; the end; loops.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/scenario.hpp"
+#include "bearing_sim/ros/scenario_timeline.hpp"
+
+using namespace bearing_sim;
+using namespace bearing_sim::ros_node;
+using Kind = TimelineCommand::Kind;
+
+namespace {
+
+const std::string kBearing = std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/ct_gantry_lyc.yaml";
+
+// 6 s: 60 rpm, ramp to 180 rpm from 1 to 3 s; load step at 4 s; an inner-race spall at
+// 2 s growing, cleared at 5 s.
+std::string scenario_text(const std::string& load_extra = "") {
+  return "name: timeline\nduration_s: 6\nseed: 7\nbearing_file: " + kBearing +
+         "\n"
+         "phases: [{name: slow, start_s: 0}, {name: ramp, start_s: 1}, {name: fast, start_s: 3}]\n"
+         "speed:\n"
+         "  initial_speed_rpm: 60\n"
+         "  segments:\n"
+         "    - {type: ramp, start_s: 1, end_s: 3, to_speed_rpm: 180}\n"
+         "load:\n"
+         "  initial: {force_N: [6800, 0, 0], moment_Nm: [0, 2100]}\n"
+         "  segments:\n"
+         "    - {type: step, start_s: 4, force_N: [9000, 0, 0]}\n" +
+         load_extra +
+         "defects:\n"
+         "  - {type: spall, at_s: 2, surface: inner_race, position_deg: 180, width_mm: 1.0, depth_um: 10,\n"
+         "     width_growth_mm_per_s: 0.1, depth_growth_um_per_s: 1}\n"
+         "  - {type: clear, at_s: 5}\n";
+}
+
+Scenario make_scenario(const std::string& load_extra = "") {
+  return Scenario::from_string(scenario_text(load_extra), "/tmp/timeline_test.yaml");
+}
+
+struct Sent {
+  double tick_s;  // elapsed time of the advance() call
+  TimelineCommand command;
+};
+
+// advance() at k * step_s for k = 0 .. until_s / step_s.
+std::vector<Sent> play(ScenarioTimeline& tl, double step_s, double until_s) {
+  std::vector<Sent> out;
+  const long n = std::lround(until_s / step_s);
+  for (long k = 0; k <= n; ++k) {
+    const double t = static_cast<double>(k) * step_s;
+    for (const TimelineCommand& c : tl.advance(t)) out.push_back({t, c});
+  }
+  return out;
+}
+
+std::vector<Sent> of_kind(const std::vector<Sent>& all, Kind kind) {
+  std::vector<Sent> out;
+  for (const Sent& s : all)
+    if (s.command.kind == kind) out.push_back(s);
+  return out;
+}
+
+}  // namespace
+
+TEST(ScenarioTimeline, SpeedEqualsTheScenarioAtEachSendTimeOnItsGrid) {
+  const Scenario sc = make_scenario();
+  ScenarioTimeline tl(sc, TimelineSettings{});  // speed grid 200 Hz
+  const std::vector<Sent> speeds = of_kind(play(tl, 1e-3, 7.0), Kind::Speed);
+  std::set<long> cells;
+  for (const Sent& s : speeds) {
+    EXPECT_EQ(s.command.scenario_time_s, s.tick_s);  // sent at once, evaluated at the send time
+    EXPECT_EQ(s.command.speed_rad_s, sc.inputs_at(s.tick_s).ring_speed_rad_s) << "t = " << s.tick_s;
+    EXPECT_TRUE(cells.insert(static_cast<long>(std::floor(s.tick_s * 200.0 + 1e-9))).second)
+        << "two speeds in one 5 ms cell at " << s.tick_s;
+    // Only at the start and while the speed changes (the ramp from 1 to 3 s).
+    EXPECT_TRUE(s.tick_s == 0.0 || (s.tick_s > 1.0 && s.tick_s < 3.0 + 5e-3)) << "t = " << s.tick_s;
+  }
+  // One per 5 ms cell over the 2 s ramp, plus the first.
+  EXPECT_NEAR(static_cast<double>(speeds.size()), 1.0 + 2.0 * 200.0, 2.0);
+}
+
+TEST(ScenarioTimeline, LoadOnlyWhenItChanges) {
+  const Scenario sc = make_scenario();
+  ScenarioTimeline tl(sc, TimelineSettings{});
+  const std::vector<Sent> loads = of_kind(play(tl, 1e-3, 7.0), Kind::Load);
+  ASSERT_EQ(loads.size(), 2u);  // at 0 and at the step
+  EXPECT_EQ(loads[0].tick_s, 0.0);
+  EXPECT_EQ(loads[0].command.load, sc.inputs_at(0.0).load);
+  EXPECT_EQ(loads[0].command.load[0], 6800.0);
+  EXPECT_GE(loads[1].tick_s, 4.0);
+  EXPECT_LT(loads[1].tick_s, 4.0 + 1.0 / 50.0);  // within one cell of the load grid
+  EXPECT_EQ(loads[1].command.load, sc.inputs_at(loads[1].tick_s).load);
+  EXPECT_EQ(loads[1].command.load[0], 9000.0);
+}
+
+TEST(ScenarioTimeline, RotatingUnbalanceGoesOutOncePerLoadCell) {
+  // 0.2 kg at 0.55 m: the load turns with the ring, so it changes in every cell.
+  const Scenario sc = make_scenario("  unbalance: {mass_kg: 0.2, radius_m: 0.55, phase_deg: 0}\n");
+  TimelineSettings settings;
+  settings.load_rate_hz = 50.0;
+  ScenarioTimeline tl(sc, settings);
+  const std::vector<Sent> loads = of_kind(play(tl, 1e-3, 6.0), Kind::Load);
+  for (const Sent& s : loads) EXPECT_EQ(s.command.load, sc.inputs_at(s.tick_s).load) << "t = " << s.tick_s;
+  EXPECT_NEAR(static_cast<double>(loads.size()), 6.0 * 50.0, 2.0);
+  // At 60 rpm the unbalance force m e w^2 = 0.11 * (2 pi)^2 = 4.3 N is on top of 6800 N.
+  const double f = std::hypot(loads[10].command.load[0] - 6800.0, loads[10].command.load[1]);
+  EXPECT_NEAR(f, 0.2 * 0.55 * 4.0 * M_PI * M_PI, 1e-9);
+}
+
+TEST(ScenarioTimeline, EachDefectEventFiresOnceInOrderAtItsTime) {
+  const Scenario sc = make_scenario();
+  ASSERT_EQ(sc.defect_events().size(), 2u);
+  for (double step : {1e-3, 0.01, 0.7, 2.9}) {
+    ScenarioTimeline tl(sc, TimelineSettings{});
+    const std::vector<Sent> events = of_kind(play(tl, step, 7.0), Kind::DefectEvent);
+    ASSERT_EQ(events.size(), 2u) << "step " << step;
+    for (std::size_t i = 0; i < 2; ++i) {
+      const ScenarioDefectEvent& e = sc.defect_events()[i];
+      EXPECT_EQ(events[i].command.event.kind, e.kind);
+      EXPECT_EQ(events[i].command.event.time_s, e.time_s);
+      EXPECT_GE(events[i].tick_s, e.time_s);       // never early
+      EXPECT_LT(events[i].tick_s, e.time_s + step);  // at the first tick at or after it
+    }
+    EXPECT_EQ(events[0].command.event.kind, ScenarioDefectEvent::Kind::Spall);
+    EXPECT_EQ(events[0].command.event.spall.surface, Surface::InnerRace);
+    EXPECT_DOUBLE_EQ(events[0].command.event.spall.width_m, 1e-3);
+    EXPECT_DOUBLE_EQ(events[0].command.event.spall.width_growth_m_per_s, 1e-4);
+    EXPECT_EQ(events[1].command.event.kind, ScenarioDefectEvent::Kind::Clear);
+  }
+  // One call past everything: both, in order, then the end.
+  ScenarioTimeline tl(sc, TimelineSettings{});
+  tl.advance(0.0);
+  const std::vector<TimelineCommand> all = tl.advance(100.0);
+  std::vector<Kind> kinds;
+  for (const TimelineCommand& c : all)
+    if (c.kind == Kind::DefectEvent || c.kind == Kind::End) kinds.push_back(c.kind);
+  EXPECT_EQ(kinds, (std::vector<Kind>{Kind::DefectEvent, Kind::DefectEvent, Kind::End}));
+}
+
+TEST(ScenarioTimeline, LabelsAtTheirRateAndAfterEachEvent) {
+  const Scenario sc = make_scenario();
+  ScenarioTimeline tl(sc, TimelineSettings{});  // 10 Hz
+  const std::vector<Sent> all = play(tl, 1e-3, 7.0);
+  const std::vector<Sent> states = of_kind(all, Kind::State);
+  // One per 0.1 s cell over 6 s, one at the end, and one after each of the two events
+  // (the events at 2 s and 5 s fall on a cell start, where a label goes out anyway).
+  EXPECT_NEAR(static_cast<double>(states.size()), 60.0 + 1.0, 1.0);
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (all[i].command.kind != Kind::DefectEvent) continue;
+    bool labelled = false;
+    for (std::size_t j = i + 1; j < all.size() && all[j].tick_s == all[i].tick_s; ++j)
+      labelled |= all[j].command.kind == Kind::State;
+    EXPECT_TRUE(labelled) << "no label after the event at " << all[i].tick_s;
+  }
+  for (std::size_t i = 1; i < states.size(); ++i)
+    EXPECT_GT(states[i].command.scenario_time_s, states[i - 1].command.scenario_time_s);
+}
+
+TEST(ScenarioTimeline, EndsOnceWithTheFinalValues) {
+  const Scenario sc = make_scenario();
+  ScenarioTimeline tl(sc, TimelineSettings{});
+  const std::vector<Sent> all = play(tl, 0.013, 8.0);
+  ASSERT_FALSE(all.empty());
+  EXPECT_EQ(all.back().command.kind, Kind::End);
+  EXPECT_EQ(all.back().command.scenario_time_s, 6.0);
+  EXPECT_EQ(of_kind(all, Kind::End).size(), 1u);
+  const std::vector<Sent> states = of_kind(all, Kind::State);
+  EXPECT_EQ(states.back().command.scenario_time_s, 6.0);  // labels exactly at the end
+  EXPECT_TRUE(tl.finished());
+  EXPECT_TRUE(tl.advance(9.0).empty());
+  EXPECT_TRUE(of_kind(all, Kind::ClearDefects).empty());
+}
+
+TEST(ScenarioTimeline, LoopsWithTheDefectsClearedAtEachPass) {
+  const Scenario sc = make_scenario();
+  TimelineSettings settings;
+  settings.loop = true;
+  ScenarioTimeline tl(sc, settings);
+  const std::vector<Sent> all = play(tl, 1e-3, 15.0);  // 2.5 passes of 6 s
+  EXPECT_FALSE(tl.finished());
+  EXPECT_EQ(tl.pass(), 2u);
+  const std::vector<Sent> clears = of_kind(all, Kind::ClearDefects);
+  ASSERT_EQ(clears.size(), 2u);
+  EXPECT_NEAR(clears[0].tick_s, 6.0, 1e-9);
+  EXPECT_NEAR(clears[1].tick_s, 12.0, 1e-9);
+  EXPECT_EQ(clears[1].command.pass, 2u);
+  // Spall at 2, clear at 5 in each full pass; the spall of the third at 14 s.
+  const std::vector<Sent> events = of_kind(all, Kind::DefectEvent);
+  ASSERT_EQ(events.size(), 5u);
+  const double expected_ticks[5] = {2.0, 5.0, 8.0, 11.0, 14.0};
+  for (std::size_t i = 0; i < 5; ++i) {
+    EXPECT_NEAR(events[i].tick_s, expected_ticks[i], 1e-9);
+    EXPECT_NEAR(events[i].command.scenario_time_s, expected_ticks[i] - 6.0 * static_cast<double>(i / 2), 1e-9);
+    EXPECT_EQ(events[i].command.pass, i / 2);
+  }
+  for (const Sent& s : of_kind(all, Kind::Speed))
+    EXPECT_EQ(s.command.speed_rad_s, sc.inputs_at(s.command.scenario_time_s).ring_speed_rad_s);
+}
+
+TEST(ScenarioTimeline, NodeParametersAreTheInputsAtTimeZero) {
+  const Scenario sc = make_scenario();
+  EXPECT_EQ(scenario_node_parameter(sc, "bearing_file"), sc.bearing_file());
+  EXPECT_EQ(scenario_node_parameter(sc, "sensor_file"), "");
+  const ScenarioInputs in = sc.inputs_at(0.0);
+  auto value = [&](const char* name) { return std::strtod(scenario_node_parameter(sc, name).c_str(), nullptr); };
+  EXPECT_EQ(value("initial_speed_rad_s"), in.ring_speed_rad_s);  // %.17g round-trips
+  EXPECT_DOUBLE_EQ(value("initial_speed_rad_s"), 2.0 * M_PI);
+  EXPECT_EQ(value("initial_force_x_N"), 6800.0);
+  EXPECT_EQ(value("initial_force_y_N"), 0.0);
+  EXPECT_EQ(value("initial_force_z_N"), 0.0);
+  EXPECT_EQ(value("initial_moment_x_Nm"), 0.0);
+  EXPECT_EQ(value("initial_moment_y_Nm"), 2100.0);
+  EXPECT_THROW(scenario_node_parameter(sc, "initial_speed_rpm"), InvalidInputError);
+}
+
+TEST(ScenarioTimeline, RejectsBadRates) {
+  const Scenario sc = make_scenario();
+  for (double bad : {0.0, -10.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    TimelineSettings s;
+    s.speed_rate_hz = bad;
+    EXPECT_THROW((ScenarioTimeline{sc, s}), InvalidInputError);
+    s = TimelineSettings{};
+    s.load_rate_hz = bad;
+    EXPECT_THROW((ScenarioTimeline{sc, s}), InvalidInputError);
+    s = TimelineSettings{};
+    s.state_rate_hz = bad;
+    EXPECT_THROW((ScenarioTimeline{sc, s}), InvalidInputError);
+  }
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
