@@ -13,7 +13,7 @@ namespace ros_node {
 
 struct TimelineSettings {
   double speed_rate_hz = 200.0;  // grid of speed updates (each sent only if the speed changed)
-  double load_rate_hz = 50.0;    // grid of load updates (only if changed: each costs the node a static solution)
+  double load_rate_hz = 100.0;   // grid of load updates (only if changed: each costs the node a static solution)
   double state_rate_hz = 10.0;   // ScenarioState labels (also right after every defect event)
   bool loop = false;             // at the end start again (defects cleared); else finish
 };
