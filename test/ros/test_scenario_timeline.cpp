@@ -75,7 +75,9 @@ std::vector<Sent> of_kind(const std::vector<Sent>& all, Kind kind) {
 
 TEST(ScenarioTimeline, SpeedEqualsTheScenarioAtEachSendTimeOnItsGrid) {
   const Scenario sc = make_scenario();
-  ScenarioTimeline tl(sc, TimelineSettings{});  // speed grid 200 Hz
+  TimelineSettings settings;
+  settings.speed_rate_hz = 200.0;
+  ScenarioTimeline tl(sc, settings);
   const std::vector<Sent> speeds = of_kind(play(tl, 1e-3, 7.0), Kind::Speed);
   std::set<long> cells;
   for (const Sent& s : speeds) {

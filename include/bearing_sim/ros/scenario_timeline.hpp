@@ -11,8 +11,10 @@
 namespace bearing_sim {
 namespace ros_node {
 
+// The node applies its inputs once per chunk (10 ms at the launch's 100 samples at 10 kHz),
+// so 100 Hz is the finest staircase it can follow.
 struct TimelineSettings {
-  double speed_rate_hz = 200.0;  // grid of speed updates (each sent only if the speed changed)
+  double speed_rate_hz = 100.0;  // grid of speed updates (each sent only if the speed changed)
   double load_rate_hz = 100.0;   // grid of load updates (only if changed: each costs the node a static solution)
   double state_rate_hz = 10.0;   // ScenarioState labels (also right after every defect event)
   bool loop = false;             // at the end start again (defects cleared); else finish
