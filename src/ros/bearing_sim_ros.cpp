@@ -64,6 +64,9 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh),
     throw std::runtime_error("bearing file " + bearing_file + " has no rotating_mass_kg: no dynamics possible");
 
   sample_rate_hz_ = param(pnh_, "sample_rate_hz", 10000.0);
+  const double load_ramp_s = param(pnh_, "load_ramp_s", 0.0);
+  if (!(load_ramp_s >= 0.0) || load_ramp_s > 1.0) throw std::runtime_error("~load_ramp_s must be in [0, 1] s");
+  load_ramp_ = LoadRamp(static_cast<std::uint64_t>(std::llround(load_ramp_s * sample_rate_hz_)));
   const int substeps = param(pnh_, "substeps", 0);
   real_time_ = param(pnh_, "real_time", true);
   publish_clock_ = param(pnh_, "publish_clock", !real_time_);
@@ -348,7 +351,10 @@ void BearingSimRos::apply_pending() {
       health_->set_model(*p.model);
       dynamics.set_model(std::move(*p.model));
     }
-    if (p.load) dynamics.set_load(*p.load);
+    if (p.load) {
+      load_ramp_.start(dynamics.load(), *p.load);
+      if (!load_ramp_.active()) dynamics.set_load(*p.load);
+    }
     if (p.ring_speed_rad_s) dynamics.set_ring_speed(*p.ring_speed_rad_s);
   } catch (const InvalidInputError& e) {
     diagnostics_->record_rejected_input(e.what());
@@ -501,6 +507,7 @@ void BearingSimRos::run() {
     while (!full) {
       // New inputs take effect from the next sample.
       if (pending_flag_.load(std::memory_order_acquire)) apply_pending();
+      if (load_ramp_.active()) source_->dynamics().set_load(load_ramp_.next());
       const SampleSource::Sample sample = source_->next();
       if (sample.diverged) {
         ROS_ERROR_THROTTLE(1.0, "bearing_sim_node: %s; reset to the static equilibrium",

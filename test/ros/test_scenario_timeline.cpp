@@ -13,6 +13,7 @@
 
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/scenario.hpp"
+#include "bearing_sim/ros/load_ramp.hpp"
 #include "bearing_sim/ros/scenario_timeline.hpp"
 
 using namespace bearing_sim;
@@ -239,6 +240,35 @@ TEST(ScenarioTimeline, RejectsBadRates) {
     s.state_rate_hz = bad;
     EXPECT_THROW((ScenarioTimeline{sc, s}), InvalidInputError);
   }
+}
+
+// The node's ~load_ramp_s (set by ct_gantry.launch with a scenario): a new load reached
+// linearly, exactly at the last sample; idle before the first start and with 0 samples.
+TEST(LoadRamp, LinearToTheTargetOverItsSamples) {
+  Vector5 a, b;
+  a << 6800, 0, 0, 0, 2100;
+  b << 6839, 7, 0, 0, 2100;
+  LoadRamp idle(100);
+  EXPECT_FALSE(idle.active());  // nothing to do before the first load arrives
+  LoadRamp ramp(100);
+  ramp.start(a, b);
+  for (int k = 1; k <= 100; ++k) {
+    ASSERT_TRUE(ramp.active());
+    const Vector5 l = ramp.next();
+    const Vector5 expected = a + (b - a) * (k / 100.0);
+    EXPECT_NEAR((l - expected).norm(), 0.0, 1e-9) << "sample " << k;
+    if (k == 100) EXPECT_EQ(l, b);  // exactly the target at the end
+  }
+  EXPECT_FALSE(ramp.active());
+  // A new load mid-way starts from where the ramp is.
+  ramp.start(a, b);
+  for (int k = 0; k < 50; ++k) ramp.next();
+  const Vector5 mid = a + (b - a) * 0.5;
+  ramp.start(mid, a);
+  EXPECT_NEAR((ramp.next() - (mid + (a - mid) * 0.01)).norm(), 0.0, 1e-9);
+  LoadRamp step(0);
+  step.start(a, b);
+  EXPECT_FALSE(step.active());  // the caller applies b at once
 }
 
 int main(int argc, char** argv) {

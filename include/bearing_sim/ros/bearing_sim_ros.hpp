@@ -19,6 +19,7 @@
 #include "bearing_sim/InjectDefect.h"
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
+#include "bearing_sim/ros/load_ramp.hpp"
 #include "bearing_sim/ros/chunk_assembler.hpp"
 #include "bearing_sim/ros/health_monitor.hpp"
 #include "bearing_sim/ros/input_validator.hpp"
@@ -83,6 +84,7 @@ class BearingSimRos {
   ros::NodeHandle nh_, pnh_;
   // Parameters (fixed after construction).
   double sample_rate_hz_ = 10000.0;
+  LoadRamp load_ramp_;  // sim thread: a new load over ~load_ramp_s (0: a step)
   bool real_time_ = true;
   bool publish_clock_ = false;
   int realtime_priority_ = 0;  // SCHED_FIFO priority of the sim thread in real time; 0: normal
