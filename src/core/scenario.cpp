@@ -415,6 +415,11 @@ Vector5 Scenario::unbalance_load(double w, double alpha, double ring_angle) cons
   return f;
 }
 
+Vector5 Scenario::load_at(double t) const {
+  const SpeedPiece& p = speed_piece(t);
+  return base_load_at(t) + unbalance_load(piece_speed(p, t), piece_acceleration(p, t), piece_angle(p, t));
+}
+
 std::string Scenario::phase_at(double t) const {
   speed_piece(t);
   std::string phase;
@@ -428,7 +433,7 @@ ScenarioInputs Scenario::inputs_at(double t) const {
   ScenarioInputs in;
   in.ring_speed_rad_s = piece_speed(p, t);
   in.ring_angle_rad = piece_angle(p, t);
-  in.load = base_load_at(t) + unbalance_load(in.ring_speed_rad_s, piece_acceleration(p, t), in.ring_angle_rad);
+  in.load = load_at(t);
   in.phase = phase_at(t);
   return in;
 }

@@ -65,6 +65,8 @@ class Scenario {
   ScenarioInputs inputs_at(double time_s) const;
   double ring_speed_at(double time_s) const;
   double ring_angle_at(double time_s) const;
+  // Load with the unbalance (inputs_at(t).load without the phase look-up).
+  Vector5 load_at(double time_s) const;
   // Load without the unbalance.
   Vector5 base_load_at(double time_s) const;
   // Reaction of the unbalance on the ring at that speed, acceleration and ring angle.
