@@ -55,3 +55,16 @@ if(CATKIN_ENABLE_TESTING)
   add_dependencies(test_bearing_tool_analyze bearing_tool)
   bearing_sim_optimize(test_bearing_tool_analyze)
 endif()
+
+if(CATKIN_ENABLE_TESTING)
+  # bearing_tool generate: reads the bags back with rosbag::View, and the NPY/CSV/JSON files.
+  catkin_add_gtest(test_bearing_tool_generate test/tools/test_bearing_tool_generate.cpp
+    WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR} TIMEOUT 600)
+  target_include_directories(test_bearing_tool_generate PRIVATE ${catkin_INCLUDE_DIRS} ${rosbag_storage_INCLUDE_DIRS}
+    ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_INCLUDE_DESTINATION})
+  target_link_libraries(test_bearing_tool_generate nlohmann_json::nlohmann_json ${rosbag_storage_LIBRARIES}
+    ${roscpp_serialization_LIBRARIES} ${rostime_LIBRARIES})
+  target_compile_definitions(test_bearing_tool_generate PRIVATE BEARING_TOOL_PATH="$<TARGET_FILE:bearing_tool>"
+    BEARING_SIM_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
+  add_dependencies(test_bearing_tool_generate bearing_tool ${${PROJECT_NAME}_EXPORTED_TARGETS})
+endif()
