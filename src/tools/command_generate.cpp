@@ -138,9 +138,9 @@ void run(const GenerateOptions& o) {
   for (std::thread& t : pool) t.join();
 
   std::size_t failed = 0;
-  double simulated = 0.0, cpu = 0.0, sink_cpu = 0.0;
-  std::cout << "scenario                         seed   simulated s   samples (measured)  RT factor per core  "
-               "output overhead\n";
+  double simulated = 0.0, cpu = 0.0, sink_cpu = 0.0, health_cpu = 0.0;
+  std::cout << "scenario                         seed  simulated s  samples (measured)  RT factor per core  "
+               "output  health\n";
   for (const Job& j : jobs) {
     const DatasetInfo& info = j.simulation->info();
     if (!j.error.empty()) {
@@ -150,10 +150,10 @@ void run(const GenerateOptions& o) {
       continue;
     }
     char line[256];
-    std::snprintf(line, sizeof line, "%-32s %4llu %13.2f %20llu %18.1fx %14.1f%%\n", info.scenario.c_str(),
+    std::snprintf(line, sizeof line, "%-32s %4llu %12.2f %19llu %18.1fx %6.1f%% %6.1f%%\n", info.scenario.c_str(),
                   static_cast<unsigned long long>(info.seed), j.stats.simulated_s,
                   static_cast<unsigned long long>(j.stats.measured_samples), j.stats.realtime_factor_per_core(),
-                  100.0 * j.stats.sink_cpu_s / j.stats.cpu_s);
+                  100.0 * j.stats.sink_cpu_s / j.stats.cpu_s, 100.0 * j.stats.health_cpu_s / j.stats.cpu_s);
     std::cout << line;
     for (const std::string& f : j.outputs) std::cout << "  " << f << '\n';
     if (j.stats.divergences > 0)
@@ -161,11 +161,12 @@ void run(const GenerateOptions& o) {
     simulated += j.stats.simulated_s;
     cpu += j.stats.cpu_s;
     sink_cpu += j.stats.sink_cpu_s;
+    health_cpu += j.stats.health_cpu_s;
   }
   if (cpu > 0.0)
     std::cout << "total: " << simulated << " s simulated in " << cpu << " s of CPU on " << threads
               << " thread(s): " << simulated / cpu << "x real time per core, output "
-              << 100.0 * sink_cpu / cpu << "% of it\n";
+              << 100.0 * sink_cpu / cpu << "% of it, health analysis " << 100.0 * health_cpu / cpu << "%\n";
   if (failed > 0) throw std::runtime_error(std::to_string(failed) + " scenario(s) failed");
 }
 

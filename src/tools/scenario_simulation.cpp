@@ -200,10 +200,14 @@ RunStats ScenarioSimulation::run(const std::vector<DatasetSink*>& sinks, const s
       for (DatasetSink* s : sinks) s->label(label);
     }
     if (health && health_divider.due(sample.index)) {
-      SinkTimer t(&stats.sink_cpu_s);
       health->push(health_samples.data(), health_samples.size());
       health_samples.clear();
-      const ros_node::HealthReport report = health->analyze_now(sample.time_s);
+      ros_node::HealthReport report;
+      {
+        SinkTimer t(&stats.health_cpu_s);
+        report = health->analyze_now(sample.time_s);
+      }
+      SinkTimer t(&stats.sink_cpu_s);
       for (DatasetSink* s : sinks) s->health(report);
     }
     if (full || i + 1 == n) {  // the last chunk may be short

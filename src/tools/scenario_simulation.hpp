@@ -32,7 +32,8 @@ struct GenerateSettings {
 struct RunStats {
   double simulated_s = 0.0;
   double cpu_s = 0.0;       // CPU time of the running thread, all of the run
-  double sink_cpu_s = 0.0;  // of that, in the sinks (message conversion, writing)
+  double sink_cpu_s = 0.0;    // of that, in the sinks (message conversion, writing, ball loads)
+  double health_cpu_s = 0.0;  // of that, in the health analysis (condition indicators, lives)
   std::uint64_t ideal_samples = 0, measured_samples = 0, divergences = 0;
   double realtime_factor_per_core() const { return cpu_s > 0.0 ? simulated_s / cpu_s : 0.0; }
 };
