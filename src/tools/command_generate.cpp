@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -47,6 +48,14 @@ struct Job {
   std::string error;
 };
 
+// Output files are named after the scenario: letters, digits, '.', '-' and '_' kept.
+std::string file_stem(const std::string& scenario_name) {
+  std::string stem = scenario_name;
+  for (char& c : stem)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-' && c != '_') c = '_';
+  return stem;
+}
+
 void prepare_out_dir(const std::string& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -57,7 +66,7 @@ void prepare_out_dir(const std::string& dir) {
 }
 
 void run_job(Job& job, const GenerateOptions& o, std::mutex& print_mutex) {
-  const std::string stem = o.out_dir + "/" + job.simulation->info().scenario;
+  const std::string stem = o.out_dir + "/" + file_stem(job.simulation->info().scenario);
   std::vector<std::unique_ptr<DatasetSink>> sinks;
   for (const std::string& f : o.formats) {
     if (f == "bag") {
@@ -120,9 +129,9 @@ void run(const GenerateOptions& o) {
     } catch (const InvalidInputError& e) {
       throw InputError("scenario " + o.scenarios[i] + ": " + e.what());
     }
-    if (!names.insert(jobs[i].simulation->info().scenario).second)
+    if (!names.insert(file_stem(jobs[i].simulation->info().scenario)).second)
       throw InputError("two scenarios are named '" + jobs[i].simulation->info().scenario +
-                       "': their files would overwrite each other in --out");
+                       "' (or alike): their files would overwrite each other in --out");
   }
   prepare_out_dir(o.out_dir);
 

@@ -81,7 +81,8 @@ class Scenario {
   static double spall_width_at(const Spall& spall, double time_s);
   static double spall_depth_at(const Spall& spall, double time_s);
 
-  // One piece of a piecewise time line; public for the tests and the docs' sake only.
+ private:
+  // Pieces of the piecewise time lines.
   struct SpeedPiece {
     enum class Kind { Hold, Ramp, Coast };
     Kind kind = Kind::Hold;
@@ -96,7 +97,6 @@ class Scenario {
     Vector5 from = Vector5::Zero(), to = Vector5::Zero();
   };
 
- private:
   Scenario() = default;
   const SpeedPiece& speed_piece(double time_s) const;
   static double piece_speed(const SpeedPiece& p, double time_s);
