@@ -65,7 +65,9 @@ void expect_config_error(const std::string& yaml, const std::string& key, const 
     const std::string msg = e.what();
     EXPECT_NE(msg.find(kSource), std::string::npos) << msg;
     EXPECT_NE(msg.find("'" + key + "'"), std::string::npos) << "expected key '" << key << "' in: " << msg;
-    if (!what.empty()) EXPECT_NE(msg.find(what), std::string::npos) << "expected '" << what << "' in: " << msg;
+    if (!what.empty()) {
+      EXPECT_NE(msg.find(what), std::string::npos) << "expected '" << what << "' in: " << msg;
+    }
   }
 }
 }  // namespace
