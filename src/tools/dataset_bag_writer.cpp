@@ -1,6 +1,7 @@
 #include "dataset_bag_writer.hpp"
 
 #include <cmath>
+#include <mutex>
 
 #include <rosbag/bag.h>
 #include <std_msgs/String.h>
@@ -48,8 +49,14 @@ ros::Time record_time(const ros::Time& stamp) { return std::max(stamp, ros::TIME
 
 void DatasetBagWriter::begin(const DatasetInfo& info) {
   info_ = info;
-  bag_ = std::make_unique<rosbag::Bag>();
-  bag_->open(path_, rosbag::bagmode::Write);  // throws rosbag::BagException
+  {
+    // A rosbag::Bag loads its encryption plugins through pluginlib (a package crawl, ~30 ms)
+    // when constructed: one thread at a time.
+    static std::mutex construction;
+    std::lock_guard<std::mutex> lock(construction);
+    bag_ = std::make_unique<rosbag::Bag>();
+    bag_->open(path_, rosbag::bagmode::Write);  // throws rosbag::BagException
+  }
   std_msgs::String description;
   description.data = dataset_info_json(info).dump(2);
   // Marked latched, so that a player of the bag hands it to late subscribers.
