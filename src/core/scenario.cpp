@@ -66,11 +66,12 @@ bool read_vector(const YAML::Node& map, const detail::Reader& r, const std::stri
 }
 
 // A segment's [start_s, end_s] inside the scenario and after the previous segment.
-void read_interval(const detail::Reader& r, bool has_end, double duration_s, double previous_end_s,
-                   double* start_s, double* end_s) {
+void read_interval(const detail::Reader& r, bool has_end, double duration_s, double previous_end_s, double* start_s,
+                   double* end_s) {
   *start_s = r.number("start_s", 0.0, true);
   r.require(*start_s >= 0.0, "start_s", "must be >= 0");
-  r.require(*start_s <= duration_s, "start_s", "is after the end of the scenario (duration_s " + format_number(duration_s) + ")");
+  r.require(*start_s <= duration_s, "start_s",
+            "is after the end of the scenario (duration_s " + format_number(duration_s) + ")");
   r.require(*start_s >= previous_end_s, "start_s",
             "segments must be in time order without overlap: starts at " + format_number(*start_s) +
                 " s, before the previous segment ends (" + format_number(previous_end_s) + " s)");
@@ -78,7 +79,8 @@ void read_interval(const detail::Reader& r, bool has_end, double duration_s, dou
   if (has_end) {
     *end_s = r.number("end_s", 0.0, true);
     r.require(*end_s > *start_s, "end_s", "must be after start_s");
-    r.require(*end_s <= duration_s, "end_s", "is after the end of the scenario (duration_s " + format_number(duration_s) + ")");
+    r.require(*end_s <= duration_s, "end_s",
+              "is after the end of the scenario (duration_s " + format_number(duration_s) + ")");
   }
 }
 
@@ -87,7 +89,8 @@ void read_interval(const detail::Reader& r, bool has_end, double duration_s, dou
 std::string resolve_file(const detail::Reader& r, const std::string& key, const std::string& file,
                          const fs::path& base_dir, const std::string& sibling) {
   std::vector<fs::path> candidates;
-  if (fs::path(file).is_absolute()) candidates.push_back(file);
+  if (fs::path(file).is_absolute())
+    candidates.push_back(file);
   else {
     candidates.push_back(base_dir / file);
     candidates.push_back(base_dir / ".." / sibling / file);
@@ -121,8 +124,8 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
   Scenario sc;
   sc.source_ = source;
   detail::Reader r(root, source, "");
-  r.check_keys({"name", "description", "duration_s", "seed", "sample_rate_hz", "bearing_file", "sensor_file",
-                "phases", "speed", "load", "defects"});
+  r.check_keys({"name", "description", "duration_s", "seed", "sample_rate_hz", "bearing_file", "sensor_file", "phases",
+                "speed", "load", "defects"});
   sc.name_ = r.text("name", "");
   r.require(!sc.name_.empty(), "name", "is required and must not be empty");
   sc.description_ = r.text("description", "");
@@ -245,9 +248,12 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
         if (!segments[k].IsMap()) r.fail(key, "expected a mapping");
         detail::Reader g(segments[k], source, key + ".");
         const std::string type = g.text("type", "");
-        if (type == "step") g.check_keys({"type", "start_s", "force_N", "moment_Nm"});
-        else if (type == "ramp") g.check_keys({"type", "start_s", "end_s", "force_N", "moment_Nm"});
-        else g.fail("type", "must be step or ramp, got '" + type + "'");
+        if (type == "step")
+          g.check_keys({"type", "start_s", "force_N", "moment_Nm"});
+        else if (type == "ramp")
+          g.check_keys({"type", "start_s", "end_s", "force_N", "moment_Nm"});
+        else
+          g.fail("type", "must be step or ramp, got '" + type + "'");
         LoadPiece p;
         read_interval(g, type == "ramp", sc.duration_s_, previous_end, &p.start_s, &p.end_s);
         p.from = current;
@@ -295,8 +301,8 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
       d.require(event.time_s >= 0.0 && event.time_s <= sc.duration_s_, "at_s", "must be in [0, duration_s]");
       if (!sc.defect_events_.empty())
         d.require(event.time_s >= sc.defect_events_.back().time_s, "at_s",
-                  "defect events must be in time order: " + format_number(event.time_s) + " s is before the previous event (" +
-                      format_number(sc.defect_events_.back().time_s) + " s)");
+                  "defect events must be in time order: " + format_number(event.time_s) +
+                      " s is before the previous event (" + format_number(sc.defect_events_.back().time_s) + " s)");
       if (event.kind == ScenarioDefectEvent::Kind::Spall) {
         Spall& s = event.spall;
         try {
@@ -352,18 +358,24 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
 double Scenario::piece_speed(const SpeedPiece& p, double t) {
   const double dt = t - p.start_s;
   switch (p.kind) {
-    case SpeedPiece::Kind::Hold: return p.start_speed;
-    case SpeedPiece::Kind::Ramp: return p.start_speed + (p.end_speed - p.start_speed) * dt / (p.end_s - p.start_s);
-    case SpeedPiece::Kind::Coast: return p.start_speed * std::exp(-dt / p.time_constant_s);
+    case SpeedPiece::Kind::Hold:
+      return p.start_speed;
+    case SpeedPiece::Kind::Ramp:
+      return p.start_speed + (p.end_speed - p.start_speed) * dt / (p.end_s - p.start_s);
+    case SpeedPiece::Kind::Coast:
+      return p.start_speed * std::exp(-dt / p.time_constant_s);
   }
   return 0.0;
 }
 
 double Scenario::piece_acceleration(const SpeedPiece& p, double t) {
   switch (p.kind) {
-    case SpeedPiece::Kind::Hold: return 0.0;
-    case SpeedPiece::Kind::Ramp: return (p.end_speed - p.start_speed) / (p.end_s - p.start_s);
-    case SpeedPiece::Kind::Coast: return -piece_speed(p, t) / p.time_constant_s;
+    case SpeedPiece::Kind::Hold:
+      return 0.0;
+    case SpeedPiece::Kind::Ramp:
+      return (p.end_speed - p.start_speed) / (p.end_s - p.start_s);
+    case SpeedPiece::Kind::Coast:
+      return -piece_speed(p, t) / p.time_constant_s;
   }
   return 0.0;
 }
@@ -372,7 +384,8 @@ double Scenario::piece_acceleration(const SpeedPiece& p, double t) {
 double Scenario::piece_angle(const SpeedPiece& p, double t) {
   const double dt = t - p.start_s;
   switch (p.kind) {
-    case SpeedPiece::Kind::Hold: return p.start_angle + p.start_speed * dt;
+    case SpeedPiece::Kind::Hold:
+      return p.start_angle + p.start_speed * dt;
     case SpeedPiece::Kind::Ramp:
       return p.start_angle + p.start_speed * dt + 0.5 * (p.end_speed - p.start_speed) * dt * dt / (p.end_s - p.start_s);
     case SpeedPiece::Kind::Coast:
@@ -397,7 +410,8 @@ double Scenario::ring_angle_at(double t) const { return piece_angle(speed_piece(
 
 Vector5 Scenario::base_load_at(double t) const {
   speed_piece(t);  // checks t
-  auto it = std::upper_bound(load_.begin(), load_.end(), t, [](double time, const LoadPiece& p) { return time < p.start_s; });
+  auto it =
+      std::upper_bound(load_.begin(), load_.end(), t, [](double time, const LoadPiece& p) { return time < p.start_s; });
   if (it == load_.begin()) return initial_load_;
   const LoadPiece& p = *std::prev(it);
   if (t >= p.end_s) return p.to;
@@ -452,8 +466,10 @@ std::vector<Spall> Scenario::spalls_at(double t) const {
   std::vector<Spall> present;
   for (const ScenarioDefectEvent& e : defect_events_) {
     if (e.time_s > t) break;
-    if (e.kind == ScenarioDefectEvent::Kind::Clear) present.clear();
-    else present.push_back(e.spall);
+    if (e.kind == ScenarioDefectEvent::Kind::Clear)
+      present.clear();
+    else
+      present.push_back(e.spall);
   }
   return present;
 }

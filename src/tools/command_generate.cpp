@@ -30,9 +30,9 @@ struct GenerateOptions {
   std::vector<std::string> scenarios;
   std::string out_dir;
   std::vector<std::string> formats{"bag"};
-  long long seed = -1;         // -1: each scenario's own
-  double duration_s = 0.0;     // 0: each scenario's own
-  unsigned threads = 0;        // 0: hardware concurrency
+  long long seed = -1;      // -1: each scenario's own
+  double duration_s = 0.0;  // 0: each scenario's own
+  unsigned threads = 0;     // 0: hardware concurrency
   double label_rate_hz = 10.0;
   double ball_loads_rate_hz = 10.0;
   double health_rate_hz = 1.0;
@@ -174,8 +174,8 @@ void run(const GenerateOptions& o) {
   }
   if (cpu > 0.0)
     std::cout << "total: " << simulated << " s simulated in " << cpu << " s of CPU on " << threads
-              << " thread(s): " << simulated / cpu << "x real time per core, output "
-              << 100.0 * sink_cpu / cpu << "% of it, health analysis " << 100.0 * health_cpu / cpu << "%\n";
+              << " thread(s): " << simulated / cpu << "x real time per core, output " << 100.0 * sink_cpu / cpu
+              << "% of it, health analysis " << 100.0 * health_cpu / cpu << "%\n";
   if (failed > 0) throw std::runtime_error(std::to_string(failed) + " scenario(s) failed");
 }
 

@@ -9,9 +9,9 @@
 #include "bearing_sim/BallLoads.h"
 #include "bearing_sim/BearingHealth.h"
 #include "bearing_sim/ScenarioState.h"
-#include "bearing_sim/core/vibration_level.hpp"
 #include "bearing_sim/VibrationChunk.h"
 #include "bearing_sim/VibrationLevel.h"
+#include "bearing_sim/core/vibration_level.hpp"
 #include "bearing_sim/ros/message_conversion.hpp"
 #include "dataset_info_json.hpp"
 
@@ -97,8 +97,8 @@ void DatasetBagWriter::level(std::uint64_t index, double accel_rms, double windo
   bag_->write(kLevel, record_time(msg.header.stamp), msg);
 }
 
-void DatasetBagWriter::ball_loads(std::uint64_t index, const std::vector<BallState>& balls, int rows,
-                                  int balls_per_row, double cage_angle_rad) {
+void DatasetBagWriter::ball_loads(std::uint64_t index, const std::vector<BallState>& balls, int rows, int balls_per_row,
+                                  double cage_angle_rad) {
   BallLoads msg;
   msg.header.stamp = stamp_of(index, info_.sample_rate_hz);
   msg.header.frame_id = info_.bearing_frame_id;

@@ -7,9 +7,10 @@ nlohmann::json dataset_info_json(const DatasetInfo& info) {
   j["generator"] = "bearing_tool generate";
   j["scenario"] = {{"name", info.scenario}, {"description", info.description}, {"file", info.scenario_file}};
   j["bearing"] = {{"name", info.bearing_name}, {"file", info.bearing_file}};
-  j["sensor"] = info.sensor_file.empty() ? nlohmann::json(nullptr)
-                                         : nlohmann::json{{"name", info.sensor_name}, {"file", info.sensor_file},
-                                                          {"unit", info.sensor_unit}};
+  j["sensor"] =
+      info.sensor_file.empty()
+          ? nlohmann::json(nullptr)
+          : nlohmann::json{{"name", info.sensor_name}, {"file", info.sensor_file}, {"unit", info.sensor_unit}};
   j["seed"] = info.seed;
   j["duration_s"] = info.duration_s;
   j["sample_rate_hz"] = info.sample_rate_hz;

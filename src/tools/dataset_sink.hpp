@@ -20,12 +20,12 @@ struct DatasetInfo {
   std::string sensor_unit;               // m_s2 or V (of `vibration`)
   std::uint64_t seed = 0;
   double duration_s = 0.0;
-  double sample_rate_hz = 0.0;           // dynamics: vibration_ideal
-  double measured_rate_hz = 0.0;         // vibration: the sensor's output rate (or the dynamics')
-  int decimation_ratio = 1;              // sensor sample k is dynamics sample (k + 1) R - 1
-  std::uint64_t ideal_samples = 0;       // duration_s * sample_rate_hz
+  double sample_rate_hz = 0.0;      // dynamics: vibration_ideal
+  double measured_rate_hz = 0.0;    // vibration: the sensor's output rate (or the dynamics')
+  int decimation_ratio = 1;         // sensor sample k is dynamics sample (k + 1) R - 1
+  std::uint64_t ideal_samples = 0;  // duration_s * sample_rate_hz
   std::uint64_t measured_samples = 0;
-  double label_rate_hz = 0.0;             // scenario_state / the sidecar's label time line
+  double label_rate_hz = 0.0;  // scenario_state / the sidecar's label time line
   std::string frame_id, bearing_frame_id;
   std::vector<ScenarioPhase> phases;
 };
@@ -47,7 +47,9 @@ class DatasetSink {
   // Measured chunk (`vibration`), numbered in measured samples; without a sensor the
   // same chunk as ideal_chunk.
   virtual void measured_chunk(const ros_node::SampleChunk& chunk) = 0;
-  virtual void level(std::uint64_t index, double accel_rms, double window_s) { (void)index, (void)accel_rms, (void)window_s; }
+  virtual void level(std::uint64_t index, double accel_rms, double window_s) {
+    (void)index, (void)accel_rms, (void)window_s;
+  }
   virtual bool wants_ball_loads() const { return false; }
   virtual void ball_loads(std::uint64_t index, const std::vector<BallState>& balls, int rows, int balls_per_row,
                           double cage_angle_rad) {

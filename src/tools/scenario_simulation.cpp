@@ -48,7 +48,7 @@ LabelState scenario_label(const Scenario& scenario, std::uint64_t index, double 
   s.inputs = scenario.inputs_at(s.time_s);
   for (const Spall& spall : scenario.spalls_at(s.time_s))
     s.defects.push_back(ros_node::DefectNow{spall, Scenario::spall_width_at(spall, s.time_s),
-                                    Scenario::spall_depth_at(spall, s.time_s), s.time_s - spall.created_at_s});
+                                            Scenario::spall_depth_at(spall, s.time_s), s.time_s - spall.created_at_s});
   return s;
 }
 
@@ -77,12 +77,13 @@ ScenarioSimulation::ScenarioSimulation(Scenario scenario, const std::string& sce
   info_.frame_id = config.rotating_ring == RotatingRing::Outer ? "bearing_outer_ring" : "bearing_inner_ring";
   info_.bearing_frame_id = "bearing";
   info_.phases = scenario_.phases();
-  if (!(settings_.label_rate_hz > 0.0) || settings_.label_rate_hz > rate) throw InvalidInputError("label rate must be in (0, sample rate]");
+  if (!(settings_.label_rate_hz > 0.0) || settings_.label_rate_hz > rate)
+    throw InvalidInputError("label rate must be in (0, sample rate]");
   label_period_ = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(rate / settings_.label_rate_hz)));
   info_.label_rate_hz = rate / static_cast<double>(label_period_);
   if (!scenario_.sensor_file().empty()) {
     AccelerometerConfig sensor = load_accelerometer_config(scenario_.sensor_file());
-    sensor.seed = seed;  // noise streams seed, seed + 1, seed + 2 (TriaxialSensor)
+    sensor.seed = seed;                                  // noise streams seed, seed + 1, seed + 2 (TriaxialSensor)
     const ros_node::TriaxialSensor check(sensor, rate);  // throws for a rate it cannot run at
     info_.sensor_name = sensor.name;
     info_.sensor_file = scenario_.sensor_file();
@@ -114,8 +115,10 @@ RunStats ScenarioSimulation::run(const std::vector<DatasetSink*>& sinks, const s
         std::max<std::size_t>(1, settings_.chunk_samples / static_cast<std::size_t>(sensor->decimation_ratio())));
   }
   const bool want_balls = std::any_of(sinks.begin(), sinks.end(), [](DatasetSink* s) { return s->wants_ball_loads(); });
-  const bool want_health = settings_.health_rate_hz > 0.0 && std::any_of(sinks.begin(), sinks.end(), [](DatasetSink* s) { return s->wants_health(); });
-  RunningRms level_rms(static_cast<std::size_t>(std::max(1.0, std::round(settings_.level_window_s * info_.measured_rate_hz))));
+  const bool want_health = settings_.health_rate_hz > 0.0 &&
+                           std::any_of(sinks.begin(), sinks.end(), [](DatasetSink* s) { return s->wants_health(); });
+  RunningRms level_rms(
+      static_cast<std::size_t>(std::max(1.0, std::round(settings_.level_window_s * info_.measured_rate_hz))));
   SampleDivider level_divider(settings_.level_rate_hz, rate), ball_divider(settings_.ball_loads_rate_hz, rate),
       health_divider(want_health ? settings_.health_rate_hz : 1.0, rate);
   std::unique_ptr<HealthMonitor> health;
@@ -137,8 +140,10 @@ RunStats ScenarioSimulation::run(const std::vector<DatasetSink*>& sinks, const s
   auto apply_events = [&](double time_s) {
     bool changed = false;
     for (; next_event < events.size() && events[next_event].time_s <= time_s; ++next_event) {
-      if (events[next_event].kind == ScenarioDefectEvent::Kind::Clear) dynamics.clear_spalls();
-      else dynamics.add_spall(events[next_event].spall);  // checked against the bearing when loaded
+      if (events[next_event].kind == ScenarioDefectEvent::Kind::Clear)
+        dynamics.clear_spalls();
+      else
+        dynamics.add_spall(events[next_event].spall);  // checked against the bearing when loaded
       changed = true;
     }
     if (changed && health) health->set_defects(dynamics.model().imperfections().spalls());
@@ -190,7 +195,8 @@ RunStats ScenarioSimulation::run(const std::vector<DatasetSink*>& sinks, const s
     }
     if (want_balls && ball_divider.due(sample.index)) {
       SinkTimer t(&stats.sink_cpu_s);
-      const std::vector<BallState> balls = dynamics.model().ball_states(sample.state->displacement, sample.state->cage_angle_rad);
+      const std::vector<BallState> balls =
+          dynamics.model().ball_states(sample.state->displacement, sample.state->cage_angle_rad);
       for (DatasetSink* s : sinks)
         s->ball_loads(sample.index, balls, dynamics.model().rows(), dynamics.model().balls_per_row(),
                       sample.state->cage_angle_rad);

@@ -18,20 +18,20 @@
 namespace bearing_sim::tool {
 
 struct GenerateSettings {
-  std::optional<std::uint64_t> seed;        // overrides the scenario's
-  std::optional<double> duration_s;         // overrides the scenario's
-  std::size_t chunk_samples = 100;          // per vibration_ideal chunk, as the live node
+  std::optional<std::uint64_t> seed;  // overrides the scenario's
+  std::optional<double> duration_s;   // overrides the scenario's
+  std::size_t chunk_samples = 100;    // per vibration_ideal chunk, as the live node
   double level_rate_hz = 10.0;
   double level_window_s = 1.0;
   double ball_loads_rate_hz = 10.0;
   double label_rate_hz = 10.0;
-  double health_rate_hz = 1.0;              // 0: no health
+  double health_rate_hz = 1.0;  // 0: no health
   double health_window_s = 2.0;
 };
 
 struct RunStats {
   double simulated_s = 0.0;
-  double cpu_s = 0.0;       // CPU time of the running thread, all of the run
+  double cpu_s = 0.0;         // CPU time of the running thread, all of the run
   double sink_cpu_s = 0.0;    // of that, in the sinks (message conversion, writing, ball loads)
   double health_cpu_s = 0.0;  // of that, in the health analysis (condition indicators, lives)
   std::uint64_t ideal_samples = 0, measured_samples = 0, divergences = 0;

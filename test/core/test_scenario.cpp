@@ -33,7 +33,9 @@ const std::string kSpeed =
     "    - {type: coast, start_s: 16, end_s: 20, time_constant_s: 2}\n"
     "    - {type: ramp, start_s: 20, end_s: 22, to_speed_rad_s: 0}\n";
 
-Scenario speed_scenario(const std::string& extra = "") { return Scenario::from_string(header() + kSpeed + extra, kSource); }
+Scenario speed_scenario(const std::string& extra = "") {
+  return Scenario::from_string(header() + kSpeed + extra, kSource);
+}
 
 // The hand-written piecewise speed of kSpeed, rad/s, and its integral in closed form.
 double hand_speed(double t) {
@@ -47,7 +49,8 @@ double hand_speed(double t) {
 }
 double hand_angle(double t) {
   const double w0 = 30 * kRpm, w1 = 120 * kRpm, w2 = 150 * kRpm, w3 = w2 * std::exp(-2.0);
-  const double a1 = w0 * 1, a11 = a1 + 0.5 * (w0 + w1) * 10, a16 = a11 + w2 * 5, a20 = a16 + w2 * 2 * (1 - std::exp(-2.0));
+  const double a1 = w0 * 1, a11 = a1 + 0.5 * (w0 + w1) * 10, a16 = a11 + w2 * 5,
+               a20 = a16 + w2 * 2 * (1 - std::exp(-2.0));
   const double a22 = a20 + 0.5 * w3 * 2;
   if (t < 1) return w0 * t;
   if (t < 11) return a1 + w0 * (t - 1) + 0.5 * (w1 - w0) / 10 * (t - 1) * (t - 1);
@@ -75,14 +78,14 @@ void expect_config_error(const std::string& yaml, const std::string& key, const 
 TEST(Scenario, SpeedAtSegmentBoundariesAndInsidePieces) {
   const Scenario sc = speed_scenario();
   // Relative 1e-12: the same formulas evaluated in another order.
-  for (double t : {0.0, 0.5, 1.0, 3.7, 6.0, 10.999, 11.0, 13.0, 15.0, 15.5, 16.0, 17.3, 18.0, 19.99, 20.0, 21.0, 22.0, 24.0,
-                   25.0, 40.0}) {
+  for (double t : {0.0,  0.5,  1.0,  3.7,   6.0,  10.999, 11.0, 13.0, 15.0, 15.5,
+                   16.0, 17.3, 18.0, 19.99, 20.0, 21.0,   22.0, 24.0, 25.0, 40.0}) {
     EXPECT_NEAR(sc.ring_speed_at(t), hand_speed(t), 1e-12 * 20.0) << "t = " << t;
     EXPECT_NEAR(sc.inputs_at(t).ring_speed_rad_s, hand_speed(t), 1e-12 * 20.0) << "t = " << t;
   }
   // Values a gantry engineer would check by eye.
-  EXPECT_NEAR(sc.ring_speed_at(6.0), 75 * kRpm, 1e-12);     // half-way up the ramp
-  EXPECT_NEAR(sc.ring_speed_at(11.0), 150 * kRpm, 1e-12);   // the step of the hold
+  EXPECT_NEAR(sc.ring_speed_at(6.0), 75 * kRpm, 1e-12);                    // half-way up the ramp
+  EXPECT_NEAR(sc.ring_speed_at(11.0), 150 * kRpm, 1e-12);                  // the step of the hold
   EXPECT_NEAR(sc.ring_speed_at(18.0), 150 * kRpm / std::exp(1.0), 1e-12);  // one time constant
   EXPECT_EQ(sc.ring_speed_at(22.0), 0.0);
   EXPECT_THROW(sc.inputs_at(-0.1), InvalidInputError);
@@ -136,8 +139,9 @@ TEST(Scenario, LoadStepsAndRamps) {
 
 TEST(Scenario, UnbalanceForceTurnsWithTheRing) {
   const double m = 0.2, e = 0.55, phase_deg = 30.0;
-  const Scenario sc = speed_scenario("load:\n  initial: {force_N: [6800, 0, 0], moment_Nm: [0, 2100]}\n"
-                                     "  unbalance: {mass_kg: 0.2, radius_m: 0.55, phase_deg: 30}\n");
+  const Scenario sc = speed_scenario(
+      "load:\n  initial: {force_N: [6800, 0, 0], moment_Nm: [0, 2100]}\n"
+      "  unbalance: {mass_kg: 0.2, radius_m: 0.55, phase_deg: 30}\n");
   // Holds (no angular acceleration): |F| = m e w^2, along the mass at ring angle + phase.
   for (double t : {0.5, 12.0, 13.37, 15.5}) {
     const ScenarioInputs in = sc.inputs_at(t);
@@ -170,7 +174,8 @@ TEST(Scenario, UnbalanceForceTurnsWithTheRing) {
 TEST(Scenario, PhasesAndDefectEvents) {
   const Scenario sc = Scenario::from_string(
       header() +
-          "phases:\n  - {name: spin-up, start_s: 0}\n  - {name: scan, start_s: 10}\n  - {name: spin-down, start_s: 20}\n"
+          "phases:\n  - {name: spin-up, start_s: 0}\n  - {name: scan, start_s: 10}\n  - {name: spin-down, start_s: "
+          "20}\n"
           "defects:\n"
           "  - {type: spall, at_s: 5, surface: outer_race, position_deg: 90, width_mm: 0.5, depth_um: 10,\n"
           "     width_growth_mm_per_s: 0.1, depth_growth_um_per_hour: 3600}\n"
@@ -205,8 +210,8 @@ TEST(Scenario, BadInputNamesFileAndKey) {
   expect_config_error(h + "speeed: {}\n", "speeed", "unknown key");
   expect_config_error(h + kSpeed + "    - {type: hold, start_s: 22, end_s: 23, rpm: 3}\n", "speed.segments[4].rpm",
                       "unknown key");
-  expect_config_error("name: x\nduration_s: -3\nbearing_file: " + bearing_file("ct_gantry_lyc.yaml") + "\n", "duration_s",
-                      "must be > 0");
+  expect_config_error("name: x\nduration_s: -3\nbearing_file: " + bearing_file("ct_gantry_lyc.yaml") + "\n",
+                      "duration_s", "must be > 0");
   expect_config_error("name: x\nbearing_file: " + bearing_file("ct_gantry_lyc.yaml") + "\n", "duration_s", "required");
   // Overlapping, then unsorted, speed segments.
   expect_config_error(h + "speed:\n  segments:\n    - {type: ramp, start_s: 0, end_s: 5, to_speed_rpm: 10}\n"
@@ -219,26 +224,30 @@ TEST(Scenario, BadInputNamesFileAndKey) {
                       "speed.segments[0].end_s", "after start_s");
   expect_config_error(h + "speed:\n  segments:\n    - {type: ramp, start_s: 5, end_s: 30, to_speed_rpm: 10}\n",
                       "speed.segments[0].end_s", "after the end");
-  expect_config_error(h + "speed:\n  segments:\n    - {type: ramp, start_s: 5, end_s: 6}\n", "speed.segments[0].to_speed_rpm");
+  expect_config_error(h + "speed:\n  segments:\n    - {type: ramp, start_s: 5, end_s: 6}\n",
+                      "speed.segments[0].to_speed_rpm");
   expect_config_error(h + "speed:\n  segments:\n    - {type: coast, start_s: 5, end_s: 6, time_constant_s: 0}\n",
                       "speed.segments[0].time_constant_s");
   expect_config_error(h + "speed:\n  segments:\n    - {type: spin, start_s: 5, end_s: 6}\n", "speed.segments[0].type");
-  expect_config_error(h + "speed: {initial_speed_rpm: 3, initial_speed_rad_s: 1}\n", "speed.initial_speed_rpm", "not both");
+  expect_config_error(h + "speed: {initial_speed_rpm: 3, initial_speed_rad_s: 1}\n", "speed.initial_speed_rpm",
+                      "not both");
   expect_config_error(h + "load:\n  segments:\n    - {type: ramp, start_s: 2, end_s: 4, force_N: [1, 2, 3]}\n"
                           "    - {type: step, start_s: 3, moment_Nm: [1, 1]}\n",
                       "load.segments[1].start_s", "overlap");
   expect_config_error(h + "load:\n  initial: {force_N: [1, 2]}\n", "load.initial.force_N", "3 numbers");
   expect_config_error(h + "load:\n  initial: {force_N: [1, .nan, 3]}\n", "load.initial.force_N", "finite");
   expect_config_error(h + "load:\n  unbalance: {mass_kg: -1, radius_m: 0.5}\n", "load.unbalance.mass_kg");
-  expect_config_error(h + "phases:\n  - {name: a, start_s: 5}\n  - {name: b, start_s: 2}\n", "phases[1].start_s", "time order");
+  expect_config_error(h + "phases:\n  - {name: a, start_s: 5}\n  - {name: b, start_s: 2}\n", "phases[1].start_s",
+                      "time order");
   // Defects: unsorted, not fitting when they appear, outgrowing the bearing, bad surface.
-  expect_config_error(h + "defects:\n  - {at_s: 5, width_mm: 1, depth_um: 10}\n  - {at_s: 2, width_mm: 1, depth_um: 10}\n",
-                      "defects[1].at_s", "time order");
+  expect_config_error(
+      h + "defects:\n  - {at_s: 5, width_mm: 1, depth_um: 10}\n  - {at_s: 2, width_mm: 1, depth_um: 10}\n",
+      "defects[1].at_s", "time order");
   expect_config_error(h + "defects:\n  - {at_s: 1, width_mm: 1, depth_um: 4000}\n", "defects[0]", "does not fit");
-  expect_config_error(h + "defects:\n  - {at_s: 1, surface: ball, ball: 414, width_mm: 1, depth_um: 10}\n", "defects[0]",
-                      "ball index");
-  expect_config_error(h + "defects:\n  - {at_s: 1, width_mm: 1, depth_um: 10, depth_growth_um_per_s: 200}\n", "defects[0]",
-                      "grows too large");
+  expect_config_error(h + "defects:\n  - {at_s: 1, surface: ball, ball: 414, width_mm: 1, depth_um: 10}\n",
+                      "defects[0]", "ball index");
+  expect_config_error(h + "defects:\n  - {at_s: 1, width_mm: 1, depth_um: 10, depth_growth_um_per_s: 200}\n",
+                      "defects[0]", "grows too large");
   expect_config_error(h + "defects:\n  - {at_s: 1, surface: cage, width_mm: 1, depth_um: 10}\n", "defects[0].surface");
   expect_config_error(h + "defects:\n  - {at_s: 1, width_mm: 1, depth_um: 10, width_growth_mm_per_s: -1}\n",
                       "defects[0].width_growth_mm_per_s", ">= 0");

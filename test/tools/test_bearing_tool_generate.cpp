@@ -94,7 +94,8 @@ std::vector<float> read_npy(const std::string& path, std::uint64_t* rows) {
   EXPECT_EQ((10 + header_len) % 64, 0u) << "data aligned to 64 bytes";
   const std::string header = bytes.substr(10, header_len);
   std::smatch m;
-  EXPECT_TRUE(std::regex_search(header, m, std::regex("'descr': '<f4', 'fortran_order': False, 'shape': \\((\\d+), 3\\)")))
+  EXPECT_TRUE(
+      std::regex_search(header, m, std::regex("'descr': '<f4', 'fortran_order': False, 'shape': \\((\\d+), 3\\)")))
       << header;
   *rows = std::stoull(m[1]);
   std::vector<float> data((bytes.size() - 10 - header_len) / 4);
@@ -197,8 +198,8 @@ TEST_F(Generate, LabelsFollowTheScenario) {
 
 TEST_F(Generate, NpyCsvAndJsonEqualTheBag) {
   const std::string stem = dir_ + "/a/gen_test";
-  for (const auto& [suffix, topic] : std::map<std::string, std::string>{{"_vibration", "/bearing/vibration"},
-                                                                          {"_vibration_ideal", "/bearing/vibration_ideal"}}) {
+  for (const auto& [suffix, topic] : std::map<std::string, std::string>{
+           {"_vibration", "/bearing/vibration"}, {"_vibration_ideal", "/bearing/vibration_ideal"}}) {
     const std::vector<float> from_bag = bag_samples(messages<bearing_sim::VibrationChunk>(bag(), topic), kRate);
     std::uint64_t rows = 0;
     const std::vector<float> npy = read_npy(stem + suffix + ".npy", &rows);
@@ -248,7 +249,8 @@ TEST_F(Generate, SameSeedSameBytesOtherSeedDiffers) {
   ASSERT_EQ(b.exit_code, 0) << b.err;
   for (const char* f : {"gen_test.bag", "gen_test_vibration.npy", "gen_test_vibration_ideal.npy", "gen_test.json"})
     expect_same_bytes(dir_ + "/a/" + f, dir_ + "/b/" + f);
-  const auto c = run_bearing_tool("generate '" + scenario_ + "' --out '" + dir_ + "/c' --format bag,npy --seed 6 --quiet", dir_);
+  const auto c =
+      run_bearing_tool("generate '" + scenario_ + "' --out '" + dir_ + "/c' --format bag,npy --seed 6 --quiet", dir_);
   ASSERT_EQ(c.exit_code, 0) << c.err;
   // The sensor noise follows the seed (this bearing has no random imperfections, so the
   // ideal acceleration does not depend on it).
@@ -262,9 +264,11 @@ TEST_F(Generate, SameSeedSameBytesOtherSeedDiffers) {
 TEST_F(Generate, ParallelThreadsGiveTheSameBytesAsOneByOne) {
   const std::string second = dir_ + "/gen_test2.yaml";
   const auto both = run_bearing_tool(
-      "generate '" + scenario_ + "' '" + second + "' --out '" + dir_ + "/p' --format bag,npy --threads 2 --quiet", dir_);
+      "generate '" + scenario_ + "' '" + second + "' --out '" + dir_ + "/p' --format bag,npy --threads 2 --quiet",
+      dir_);
   ASSERT_EQ(both.exit_code, 0) << both.err;
-  const auto one = run_bearing_tool("generate '" + second + "' --out '" + dir_ + "/s' --format bag,npy --threads 1 --quiet", dir_);
+  const auto one =
+      run_bearing_tool("generate '" + second + "' --out '" + dir_ + "/s' --format bag,npy --threads 1 --quiet", dir_);
   ASSERT_EQ(one.exit_code, 0) << one.err;
   for (const char* f : {"gen_test.bag", "gen_test_vibration.npy", "gen_test.json"})
     expect_same_bytes(dir_ + "/a/" + f, dir_ + "/p/" + f);

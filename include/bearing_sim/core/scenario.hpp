@@ -16,8 +16,8 @@ namespace bearing_sim {
 struct ScenarioInputs {
   Vector5 load = Vector5::Zero();  // Fx, Fy, Fz (N), Mx, My (N*m) on the rotating ring, unbalance included
   double ring_speed_rad_s = 0.0;
-  double ring_angle_rad = 0.0;     // integral of the speed from t = 0 (not wrapped)
-  std::string phase;               // name of the phase the time lies in ("" if none)
+  double ring_angle_rad = 0.0;  // integral of the speed from t = 0 (not wrapped)
+  std::string phase;            // name of the phase the time lies in ("" if none)
 };
 
 struct ScenarioDefectEvent {
@@ -54,7 +54,7 @@ class Scenario {
   const std::string& source() const { return source_; }
   double duration_s() const { return duration_s_; }
   std::uint64_t seed() const { return seed_; }
-  double sample_rate_hz() const { return sample_rate_hz_; }  // for the offline generator
+  double sample_rate_hz() const { return sample_rate_hz_; }          // for the offline generator
   const std::string& bearing_file() const { return bearing_file_; }  // resolved path
   const std::string& sensor_file() const { return sensor_file_; }    // resolved, may be empty
   const std::vector<ScenarioPhase>& phases() const { return phases_; }
@@ -111,7 +111,7 @@ class Scenario {
   std::vector<ScenarioPhase> phases_;
   std::vector<SpeedPiece> speed_;  // contiguous from t = 0 to infinity
   Vector5 initial_load_ = Vector5::Zero();
-  std::vector<LoadPiece> load_;     // sorted, not overlapping
+  std::vector<LoadPiece> load_;  // sorted, not overlapping
   Unbalance unbalance_;
   std::vector<ScenarioDefectEvent> defect_events_;
 };
