@@ -33,11 +33,6 @@ class SinkTimer {
   double start_;
 };
 
-// New inputs reset the dynamics' contact margin, which it otherwise keeps for 16 samples
-// (BearingDynamics::kSamplesPerBallSplit): inputs change once per block of 16 samples
-// (1.6 ms at 10 kHz, 625 updates per second: 200 per turn of a 180 rpm ring, far above
-// the bandwidth of a scenario's ramps and unbalance).
-constexpr std::uint64_t kInputBlock = 16;
 
 }  // namespace
 
@@ -160,16 +155,14 @@ RunStats ScenarioSimulation::run(const std::vector<DatasetSink*>& sinks, const s
   for (std::uint64_t i = 0; i < n; ++i) {
     if (i > 0) {
       apply_events(static_cast<double>(i - 1) / rate);
-      if ((i - 1) % kInputBlock == 0) {
-        // Inputs of the next kInputBlock steps: the scenario at the middle of the block,
-        // which for holds and ramps is the mean speed, so that the dynamics' ring angle
-        // follows the scenario's integral. Setters only on change.
-        const double t_mid = (static_cast<double>(i - 1) + 0.5 * kInputBlock) / rate;
-        const double speed = scenario_.ring_speed_at(t_mid);
-        if (speed != dynamics.ring_speed_rad_s()) dynamics.set_ring_speed(speed);
-        const Vector5 load = scenario_.load_at(t_mid);
-        if (load != dynamics.load()) dynamics.set_load(load);
-      }
+      // Inputs of the next step: the scenario at its middle, which for holds and ramps is the
+      // mean speed, so that the dynamics' ring angle follows the scenario's integral (and a
+      // rotating unbalance turns smoothly). Setters only on change.
+      const double t_mid = (static_cast<double>(i) - 0.5) / rate;
+      const double speed = scenario_.ring_speed_at(t_mid);
+      if (speed != dynamics.ring_speed_rad_s()) dynamics.set_ring_speed(speed);
+      const Vector5 load = scenario_.load_at(t_mid);
+      if (load != dynamics.load()) dynamics.set_load(load);
     }
     const SampleSource::Sample sample = source.next();
     if (sample.diverged) ++stats.divergences;
