@@ -32,6 +32,9 @@ constexpr double kRpm = 2.0 * M_PI / 60.0;
 constexpr double kChunk_s = 0.01;
 // Inputs reach the node at most this late on its clock (~max_lag_s).
 double kMaxLag_s = 1.0;
+// The scenario's times are those of scenario_short.yaml times this (~time_scale): the
+// fast-mode test stretches them to leave room for its larger lag.
+double kScale = 1.0;
 
 class ScenarioPlayerTest : public ::testing::Test {
  protected:
@@ -40,6 +43,7 @@ class ScenarioPlayerTest : public ::testing::Test {
     std::string file;
     ros::param::get("~scenario_file", file);
     ros::param::get("~max_lag_s", kMaxLag_s);
+    ros::param::get("~time_scale", kScale);
     scenario_ = std::make_unique<Scenario>(Scenario::load(file));
     health_sub_ = nh.subscribe("health", 1000, &ScenarioPlayerTest::on_health);
     balls_sub_ = nh.subscribe("ball_loads", 100000, &ScenarioPlayerTest::on_balls);
@@ -58,7 +62,7 @@ class ScenarioPlayerTest : public ::testing::Test {
     const bool done = wait([&] {
       if (states_.empty() || states_.back().scenario_time_s < duration || health_.empty()) return false;
       const double offset = states_.front().header.stamp.toSec() - states_.front().scenario_time_s;
-      return health_.back().header.stamp.toSec() > offset + duration + 1.5;
+      return health_.back().header.stamp.toSec() > offset + duration + 1.5 + kMaxLag_s;
     });
     ASSERT_TRUE(done) << "the scenario did not finish: " << states_.size() << " labels";
     spinner_->stop();
@@ -134,20 +138,20 @@ TEST_F(ScenarioPlayerTest, LabelsAreTheScenarioOnOneClockOffset) {
     EXPECT_EQ(s.phase, in.phase) << "t = " << t;
     EXPECT_EQ(s.ring_speed_rad_s, in.ring_speed_rad_s) << "t = " << t;
     for (int i = 0; i < 5; ++i) EXPECT_EQ(s.load[static_cast<std::size_t>(i)], in.load[i]);
-    if (t >= 2.0 && t < 6.5) {
+    if (t >= 2.0 * kScale && t < 6.5 * kScale) {
       ASSERT_EQ(s.defects.size(), 1u) << "t = " << t;
       EXPECT_EQ(s.defects[0].surface, "inner_race");
-      EXPECT_NEAR(s.defects[0].width_m, 1e-3 + 1e-4 * (t - 2.0), 1e-15);
-      EXPECT_NEAR(s.defects[0].depth_m, 10e-6 + 1e-6 * (t - 2.0), 1e-17);
-      EXPECT_NEAR(s.defects[0].age_s, t - 2.0, 1e-12);
+      EXPECT_NEAR(s.defects[0].width_m, 1e-3 + 1e-4 * (t - 2.0 * kScale), 1e-15);
+      EXPECT_NEAR(s.defects[0].depth_m, 10e-6 + 1e-6 * (t - 2.0 * kScale), 1e-17);
+      EXPECT_NEAR(s.defects[0].age_s, t - 2.0 * kScale, 1e-12);
     } else {
       EXPECT_TRUE(s.defects.empty()) << "t = " << t;
     }
   }
   // The phases are labelled as written.
-  EXPECT_EQ(sc.inputs_at(0.5).phase, "slow");
-  EXPECT_EQ(sc.inputs_at(2.0).phase, "ramp");
-  EXPECT_EQ(sc.inputs_at(7.0).phase, "fast");
+  EXPECT_EQ(sc.inputs_at(0.5 * kScale).phase, "slow");
+  EXPECT_EQ(sc.inputs_at(2.0 * kScale).phase, "ramp");
+  EXPECT_EQ(sc.inputs_at(7.0 * kScale).phase, "fast");
 }
 
 TEST_F(ScenarioPlayerTest, RingSpeedFromTheCageAngleFollowsTheScenario) {
@@ -160,7 +164,7 @@ TEST_F(ScenarioPlayerTest, RingSpeedFromTheCageAngleFollowsTheScenario) {
   ASSERT_GT(std::abs(cage_per_ring), 0.1);
   int before = 0, holds = 0, ramps = 0;
   double lag_sum = 0.0;
-  const double slope = (180.0 - 60.0) * kRpm / 2.0;  // rad/s^2 on the ramp
+  const double slope = (180.0 - 60.0) * kRpm / (2.0 * kScale);  // rad/s^2 on the ramp
   for (std::size_t i = 1; i < balls_.size(); ++i) {
     const double dt = (balls_[i].stamp - balls_[i - 1].stamp).toSec();
     if (!(dt > 0.0)) continue;
@@ -176,10 +180,10 @@ TEST_F(ScenarioPlayerTest, RingSpeedFromTheCageAngleFollowsTheScenario) {
       continue;
     }
     const double w0 = sc.inputs_at(t0).ring_speed_rad_s, w1 = sc.inputs_at(t1).ring_speed_rad_s;
-    if ((t1 < 1.0 - kChunk_s || (t0 > 3.0 + kMaxLag_s && t1 < sc.duration_s() + 1.0)) && w0 == w1) {
+    if ((t1 < 1.0 * kScale - kChunk_s || (t0 > 3.0 * kScale + kMaxLag_s && t1 < sc.duration_s() + 1.0)) && w0 == w1) {
       EXPECT_NEAR(measured, w0, 1e-6 * w0) << "hold at t = " << t0;
       ++holds;
-    } else if (t0 > 1.0 + kMaxLag_s && t1 < 3.0) {
+    } else if (t0 > 1.0 * kScale + kMaxLag_s && t1 < 3.0 * kScale) {
       // On the up-ramp the node runs at the speed the player sent a little earlier.
       const double mid = 0.5 * (t0 + t1);
       EXPECT_LE(measured, sc.inputs_at(mid + kChunk_s).ring_speed_rad_s + 1e-9) << "t = " << mid;
@@ -200,17 +204,17 @@ TEST_F(ScenarioPlayerTest, HealthSpeedAndLoadAreTheScenariosInTheHolds) {
   for (const BearingHealth& h : health_) {
     const double t = scenario_time(h.header.stamp);
     // Health reads the operating point when its worker runs, up to kMaxLag_s after the stamp.
-    if (t < 1.0 - kMaxLag_s) {
+    if (t < 1.0 * kScale - kMaxLag_s) {
       EXPECT_EQ(h.ring_speed_rad_s, sc.inputs_at(0.0).ring_speed_rad_s) << "t = " << t;
       EXPECT_EQ(h.radial_force_N, 6800.0) << "t = " << t;
-    } else if (t > 3.0 + kMaxLag_s) {
+    } else if (t > 3.0 * kScale + kMaxLag_s) {
       EXPECT_EQ(h.ring_speed_rad_s, sc.inputs_at(t).ring_speed_rad_s) << "t = " << t;
       EXPECT_NEAR(h.ring_speed_rad_s, 180.0 * kRpm, 1e-12);
       ++fast;
-      if (t > 5.0 + kMaxLag_s) {
+      if (t > 5.0 * kScale + kMaxLag_s) {
         EXPECT_EQ(h.radial_force_N, 9000.0) << "t = " << t;
         ++stepped;
-      } else if (t < 5.0 - kMaxLag_s) {
+      } else if (t < 5.0 * kScale - kMaxLag_s) {
         EXPECT_EQ(h.radial_force_N, 6800.0) << "t = " << t;
       }
     }
@@ -225,18 +229,18 @@ TEST_F(ScenarioPlayerTest, InjectedSpallInHealthAfterItsEventGrownByItsLaw) {
   int with = 0, without = 0;
   for (const BearingHealth& h : health_) {
     const double t = scenario_time(h.header.stamp);
-    if (t < 2.0 - kMaxLag_s || t > 6.5 + kMaxLag_s) {
+    if (t < 2.0 * kScale - kMaxLag_s || t > 6.5 * kScale + kMaxLag_s) {
       EXPECT_TRUE(h.defects.empty()) << "t = " << t;
       ++without;
-    } else if (t > 2.0 + kMaxLag_s && t < 6.5 - kMaxLag_s) {
+    } else if (t > 2.0 * kScale + kMaxLag_s && t < 6.5 * kScale - kMaxLag_s) {
       ASSERT_EQ(h.defects.size(), 1u) << "t = " << t;
       const DefectState& d = h.defects[0];
       EXPECT_EQ(d.surface, "inner_race");
       EXPECT_NEAR(d.position_rad, M_PI, 1e-12);
       // Injected after the event time on the node's clock, within the lag.
       const double injected = t - d.age_s;
-      EXPECT_GE(injected, 2.0 - kChunk_s - 1e-9) << "t = " << t;
-      EXPECT_LE(injected, 2.0 + kMaxLag_s) << "t = " << t;
+      EXPECT_GE(injected, 2.0 * kScale - kChunk_s - 1e-9) << "t = " << t;
+      EXPECT_LE(injected, 2.0 * kScale + kMaxLag_s) << "t = " << t;
       // The growth law of the scenario at the same age.
       EXPECT_NEAR(d.width_m, Scenario::spall_width_at(spall_event.spall, spall_event.time_s + d.age_s), 1e-15);
       EXPECT_NEAR(d.depth_m, Scenario::spall_depth_at(spall_event.spall, spall_event.time_s + d.age_s), 1e-17);
