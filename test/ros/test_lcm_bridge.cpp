@@ -150,6 +150,10 @@ TEST(LcmBridge, LogHoldsEveryMessageReceivedOnRosBitExact) {
   ros::NodeHandle nh, pnh("~");
   std::string path;
   ASSERT_TRUE(pnh.getParam("log_file", path));
+  struct RemoveLog {
+    std::string path;
+    ~RemoveLog() { std::remove(path.c_str()); }  // the bridge may still write: unlinked, it vanishes when closed
+  } remove_log{path};
   RosSide ros_side;
   ros_side.subscribe<bearing_sim::VibrationChunk>(nh, "vibration", &ros_side.vibration, 10000);
   ros_side.subscribe<bearing_sim::VibrationChunk>(nh, "vibration_ideal", &ros_side.ideal, 10000);
@@ -192,7 +196,6 @@ TEST(LcmBridge, LogHoldsEveryMessageReceivedOnRosBitExact) {
   compare_by_stamp("vibration_level", ros_side.levels, log.levels);
   compare_by_stamp("health", ros_side.health, log.health);
   compare_by_stamp("ball_loads", ros_side.ball_loads, log.ball_loads);
-  std::remove(path.c_str());
 }
 
 int main(int argc, char** argv) {
