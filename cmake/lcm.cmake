@@ -69,3 +69,11 @@ if(CATKIN_ENABLE_TESTING)
   target_link_libraries(test_lcm_bridge bearing_sim_lcm_ros ${catkin_LIBRARIES})
   bearing_sim_optimize(test_lcm_bridge)
 endif()
+
+# Per-message cost of the bridge's conversion and encoding.
+find_package(benchmark QUIET)
+if(benchmark_FOUND)
+  add_executable(bench_lcm_bridge bench/bench_lcm_bridge.cpp)
+  target_link_libraries(bench_lcm_bridge PRIVATE bearing_sim_lcm_ros benchmark::benchmark)
+  bearing_sim_optimize(bench_lcm_bridge)
+endif()
