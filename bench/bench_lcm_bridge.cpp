@@ -30,7 +30,8 @@ void convert_and_encode(benchmark::State& state) {
     std::vector<std::uint8_t> bytes = bearing_sim::ros_node::encode_lcm(bearing_sim::ros_node::to_lcm(ros));
     benchmark::DoNotOptimize(bytes.data());
   }
-  state.counters["chunks_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["chunks_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(convert_and_encode)->Arg(100)->Arg(10000);
 
@@ -42,7 +43,8 @@ void convert_encode_publish_memq(benchmark::State& state) {
     lcm.publish("BEARING_VIBRATION", bytes.data(), static_cast<unsigned int>(bytes.size()));
     lcm.handleTimeout(0);  // memq keeps what nobody handles
   }
-  state.counters["chunks_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["chunks_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(convert_encode_publish_memq)->Arg(100)->Arg(10000);
 

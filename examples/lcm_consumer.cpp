@@ -35,8 +35,8 @@ class PerSecond {
     const std::size_t per_second = static_cast<std::size_t>(msg->sample_rate + 0.5);
     for (std::int32_t i = 0; i < msg->num_samples; ++i) {
       if (window_.empty())  // time of this second's first sample, from the chunk's exact stamp
-        window_start_s_ = static_cast<double>(msg->header.stamp_sec) + 1e-9 * static_cast<double>(msg->header.stamp_nsec) +
-                          static_cast<double>(i) / msg->sample_rate;
+        window_start_s_ = static_cast<double>(msg->header.stamp_sec) +
+                          1e-9 * static_cast<double>(msg->header.stamp_nsec) + static_cast<double>(i) / msg->sample_rate;
       window_.push_back(msg->accel_x[static_cast<std::size_t>(i)]);
       if (window_.size() >= per_second) print();
     }
@@ -71,7 +71,8 @@ int main(int argc, char** argv) {
   double idle_exit_s = 0.0;
   app.add_option("--url", url, "LCM URL (a log: file:///path.lcm?speed=0)")->capture_default_str();
   app.add_option("--channel", channel, "vibration channel")->capture_default_str();
-  app.add_option("--seconds", seconds, "exit after this many lines; 0: run until stopped")->check(CLI::NonNegativeNumber);
+  app.add_option("--seconds", seconds, "exit after this many lines; 0: run until stopped")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--idle-exit-s", idle_exit_s, "exit when nothing arrived for this long; 0: never")
       ->check(CLI::NonNegativeNumber);
   CLI11_PARSE(app, argc, argv);

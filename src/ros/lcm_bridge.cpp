@@ -27,7 +27,8 @@ LcmBridge::LcmBridge(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pn
   const std::string url = param<std::string>(pnh_, "lcm_url", kDefaultUrl);
   // LCM's file provider only reads unless told to write: every publish would fail.
   if (url.rfind("file://", 0) == 0 && url.find("mode=w") == std::string::npos)
-    throw std::invalid_argument("~lcm_url '" + url + "': a file:// URL must end in ?mode=w to write a log");
+    throw std::invalid_argument("~lcm_url '" + url +
+                                "': a file:// URL needs mode=w to write a log, e.g. file:///tmp/run.lcm?mode=w");
   const double max_queue_mb = param(pnh_, "max_queue_mb", 64.0);
   if (!(max_queue_mb > 0.0))
     throw std::invalid_argument("~max_queue_mb must be positive, got " + std::to_string(max_queue_mb));
