@@ -3,9 +3,10 @@
 // sample bit-exact; the log's chunks must be contiguous (the bridge lost none); the log
 // must hold exactly as many level, health and ball-load messages over the same stamps.
 //
-// The node and the bridge keep running while the log is read, so the log is read only up
-// to the messages received here: it is re-read until it holds the last of them (the
-// bridge's stdio buffer reaches the file as more data follows).
+// This node subscribes once the bridge has logged every channel. The node and the bridge
+// keep running while the log is read, so the log is read only up to the messages received
+// here: it is re-read until it holds the last of them (the bridge's stdio buffer reaches
+// the file as more data follows).
 #include <cstdio>
 #include <functional>
 #include <map>
@@ -154,6 +155,13 @@ TEST(LcmBridge, LogHoldsEveryMessageReceivedOnRosBitExact) {
     std::string path;
     ~RemoveLog() { std::remove(path.c_str()); }  // the bridge may still write: unlinked, it vanishes when closed
   } remove_log{path};
+  // Subscribe only once the bridge has logged each channel: its subscriptions are then
+  // connected, so whatever this node receives, the bridge received too.
+  const ros::WallTime bridge_deadline = ros::WallTime::now() + ros::WallDuration(30.0);
+  while (read_log(path).channels.size() < 5) {
+    ASSERT_LT(ros::WallTime::now(), bridge_deadline) << "the bridge logged not all five channels in " << path;
+    ros::WallDuration(0.05).sleep();
+  }
   RosSide ros_side;
   ros_side.subscribe<bearing_sim::VibrationChunk>(nh, "vibration", &ros_side.vibration, 10000);
   ros_side.subscribe<bearing_sim::VibrationChunk>(nh, "vibration_ideal", &ros_side.ideal, 10000);
