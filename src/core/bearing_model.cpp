@@ -1,6 +1,7 @@
 #include "bearing_sim/core/bearing_model.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -29,9 +30,9 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
   moving_sign_ = c.rotating_ring == RotatingRing::Outer ? 1.0 : -1.0;
 
   const int n = c.rows * c.balls_per_row;
-  row_.resize(n);
   base_azimuth_.resize(n);
   balls_.ball.resize(n);
+  balls_.row.resize(n);
   balls_.base_azimuth.resize(n);
   balls_.cos_base.resize(n);
   balls_.sin_base.resize(n);
@@ -47,12 +48,12 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
     const double gz = row_axial_position_m(r) - (c.outer_groove_curvature - 0.5) * d * nz;
     for (int j = 0; j < c.balls_per_row; ++j) {
       const int b = r * c.balls_per_row + j;
-      row_[b] = r;
       const double jitter = c.imperfections.ball_spacing_jitter_m / (c.pitch_diameter_m / 2.0) * spacing(spacing_rng);
       const double azimuth =
           std::fmod(2.0 * kPi * j / c.balls_per_row + (r == 1 ? c.row_phase_rad : 0.0) + jitter + 2.0 * kPi, 2.0 * kPi);
       base_azimuth_[b] = azimuth < 0.0 ? azimuth + 2.0 * kPi : azimuth;  // in [0, 2 pi)
       balls_.ball[b] = b;
+      balls_.row[b] = r;
       balls_.base_azimuth[b] = base_azimuth_[b];
       balls_.cos_base[b] = std::cos(base_azimuth_[b]);
       balls_.sin_base[b] = std::sin(base_azimuth_[b]);
@@ -60,6 +61,8 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
       balls_.normal_z[b] = nz;
     }
     max_lever_arm_ = std::max(max_lever_arm_, std::hypot(groove_centre_radius_, gz));
+    const std::size_t first = static_cast<std::size_t>(r) * c.balls_per_row;
+    balls_.row_runs.push_back({r, first, first + c.balls_per_row});
   }
 
   Imperfections::Geometry g;
@@ -97,6 +100,8 @@ void BallArrays::clear() {
   static std::atomic<std::uint64_t> generations{0};
   generation = ++generations;
   ball.clear();
+  row.clear();
+  row_runs.clear();
   base_azimuth.clear();
   cos_base.clear();
   sin_base.clear();
@@ -106,7 +111,10 @@ void BallArrays::clear() {
 }
 
 void BallArrays::push_back(const BallArrays& from, std::size_t i) {
+  if (row_runs.empty() || row_runs.back().row != from.row[i]) row_runs.push_back({from.row[i], ball.size(), ball.size()});
+  ++row_runs.back().end;
   ball.push_back(from.ball[i]);
+  row.push_back(from.row[i]);
   base_azimuth.push_back(from.base_azimuth[i]);
   cos_base.push_back(from.cos_base[i]);
   sin_base.push_back(from.sin_base[i]);
@@ -174,44 +182,61 @@ inline Kinematics kinematics(double cphi, double sphi, double gz, double nz, dou
 
 const double* BearingModel::offsets_at(const RollingPhase& phase, const BallArrays& balls, bool include_spalls) const {
   if (!imperfections_.time_varying()) return balls.deflection_offset.data();
-  // The RK4 stages of a sample share phases (mid stages, step ends), and the subsets of one
-  // split share a phase with the full set: compute every ball's offset once per phase.
-  struct Cache {
+  // The RK4 stages of a sample share phases (the mid stages, a step's end and the next
+  // step's start), and a sample uses a few sets of balls (those integrated, those checked
+  // for contact): keep the offsets of the last phase of each of a few sets, per thread.
+  struct Entry {
     std::uint64_t stamp = 0;
+    const BallArrays* set = nullptr;
+    std::uint64_t generation = 0;
+    Imperfections::BallSet terms;  // of this set of balls
     RollingPhase phase;
     bool include_spalls = false;
-    std::vector<double> all, subset;
-    const BallArrays* subset_of = nullptr;
-    std::uint64_t subset_generation = 0;
+    bool has_values = false;
+    std::vector<double> values;
+    std::uint64_t last_use = 0;
   };
-  thread_local Cache cache;
-  const bool same = cache.stamp == stamp_ && cache.include_spalls == include_spalls &&
-                    cache.phase.cage == phase.cage && cache.phase.inner_ring == phase.inner_ring &&
-                    cache.phase.outer_ring == phase.outer_ring && cache.phase.ball_spin == phase.ball_spin &&
-                    cache.phase.time_s == phase.time_s;
+  thread_local std::array<Entry, 4> cache;
+  thread_local std::uint64_t uses = 0;
+  Entry* entry = nullptr;
+  for (Entry& e : cache)
+    if (e.stamp == stamp_ && e.set == &balls && e.generation == balls.generation) entry = &e;
+  if (!entry) {
+    entry = &*std::min_element(cache.begin(), cache.end(),
+                               [](const Entry& a, const Entry& b) { return a.last_use < b.last_use; });
+    entry->stamp = stamp_;
+    entry->set = &balls;
+    entry->generation = balls.generation;
+    imperfections_.fill_ball_set(balls.ball, &entry->terms);
+    entry->has_values = false;
+  }
+  entry->last_use = ++uses;
+  const RollingPhase& p = entry->phase;
+  const bool same = entry->has_values && entry->include_spalls == include_spalls && p.cage == phase.cage &&
+                    p.inner_ring == phase.inner_ring && p.outer_ring == phase.outer_ring &&
+                    p.ball_spin == phase.ball_spin && p.time_s == phase.time_s;
   if (!same) {
-    cache.all = balls_.deflection_offset;
-    imperfections_.add_offsets(phase, cache.all.data(), include_spalls);
-    cache.stamp = stamp_;
-    cache.phase = phase;
-    cache.include_spalls = include_spalls;
-    cache.subset_of = nullptr;
+    entry->values = balls.deflection_offset;
+    imperfections_.add_offsets(phase, entry->terms, entry->values.data(), include_spalls);
+    entry->phase = phase;
+    entry->include_spalls = include_spalls;
+    entry->has_values = true;
   }
-  if (&balls == &balls_) return cache.all.data();
-  if (cache.subset_of != &balls || cache.subset_generation != balls.generation) {
-    cache.subset.resize(balls.size());
-    for (std::size_t b = 0; b < balls.size(); ++b) cache.subset[b] = cache.all[balls.ball[b]];
-    cache.subset_of = &balls;
-    cache.subset_generation = balls.generation;
-  }
-  return cache.subset.data();
+  return entry->values.data();
 }
 
 Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
                                     const BallArrays& balls, ContactKernel kernel) const {
   detail::ContactKernelInput in;
-  in.cos_cage = std::cos(phase.cage);
-  in.sin_cage = std::sin(phase.cage);
+  // The stages of a sample come back to the same cage angle (mid stages, step ends).
+  thread_local double last_cage = 0.0, cos_cage = 1.0, sin_cage = 0.0;
+  if (phase.cage != last_cage) {
+    last_cage = phase.cage;
+    cos_cage = std::cos(phase.cage);
+    sin_cage = std::sin(phase.cage);
+  }
+  in.cos_cage = cos_cage;
+  in.sin_cage = sin_cage;
   in.groove_centre_radius = groove_centre_radius_;
   in.cos_a0 = cos_a0_;
   in.groove_centre_distance = groove_centre_distance_;
@@ -221,14 +246,26 @@ Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, cons
   in.damping = config_.contact_damping_Ns_per_m;
   in.q = q.data();
   in.q_dot = q_dot.data();
-  in.cos_base = balls.cos_base.data();
-  in.sin_base = balls.sin_base.data();
-  in.groove_centre_z = balls.groove_centre_z.data();
-  in.normal_z = balls.normal_z.data();
-  in.offset = offsets_at(phase, balls);
-  in.n = static_cast<int>(balls.size());
-  if (kernel == ContactKernel::Fastest && detail::avx512_kernel_available()) return detail::contact_force_avx512(in);
-  return detail::contact_force_portable(in);
+  const double* offset = offsets_at(phase, balls);
+  const bool fastest = kernel == ContactKernel::Fastest && detail::avx512_kernel_available();
+  // Per row: force = sign sum s v; moment = sign sum s (p x v) with p = (rho cphi, rho sphi, z_r).
+  Vector5 f = Vector5::Zero();
+  for (const BallArrays::RowRun& run : balls.row_runs) {
+    in.groove_centre_z = balls.groove_centre_z[run.begin];
+    in.normal_z = balls.normal_z[run.begin];
+    in.cos_base = balls.cos_base.data() + run.begin;
+    in.sin_base = balls.sin_base.data() + run.begin;
+    in.offset = offset + run.begin;
+    in.n = static_cast<int>(run.end - run.begin);
+    const detail::ContactSums s = fastest ? detail::contact_sums_avx512(in) : detail::contact_sums_portable(in);
+    const double pz = in.groove_centre_z, rho = groove_centre_radius_;
+    f[0] += s.x;
+    f[1] += s.y;
+    f[2] += s.z;
+    f[3] += rho * s.z_sin - pz * s.y;
+    f[4] += pz * s.x - rho * s.z_cos;
+  }
+  return moving_sign_ * f;
 }
 
 Vector5 BearingModel::contact_force_and_stiffness(const Vector5& q, const RollingPhase& phase, Matrix5* stiffness,
@@ -316,7 +353,7 @@ std::vector<BallState> BearingModel::ball_states(const Vector5& q, const Rolling
                                     off[b], groove_centre_radius_, cos_a0_, groove_centre_distance_,
                                     config_.clearance_m, moving_sign_, q.data());
     BallState& s = balls[b];
-    s.row = row_[b];
+    s.row = balls_.row[b];
     s.index_in_row = b % config_.balls_per_row;
     s.azimuth_rad = std::remainder(phi, 2.0 * kPi);
     s.deflection_m = k.deflection;

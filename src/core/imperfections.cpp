@@ -189,6 +189,9 @@ Imperfections::Imperfections(const ImperfectionSpec& spec, const Geometry& g) : 
       roughness_profile_[race] = std::move(profile);
     }
   }
+  std::vector<int> every_ball(n_balls);
+  for (int b = 0; b < n_balls; ++b) every_ball[b] = b;
+  all_balls_ = ball_set(every_ball);
   for (const Spall& s : spec.spalls) add_spall(s);
 }
 
@@ -238,25 +241,72 @@ double Imperfections::max_offset_change_m(double outer_race_angle, double inner_
   return change;
 }
 
-void Imperfections::add_offsets(const RollingPhase& phase, double* out, bool include_spalls) const {
-  const int n = static_cast<int>(ball_phase_.size());
-  const double* base = geometry_.base_azimuth.data();
-  for (const Harmonic& h : race_waviness_) {
-    // Race-frame angle of ball b: base_b + cage - ring.
-    const double shift = h.order * (phase.cage - (h.surface == Surface::OuterRace ? phase.outer_ring : phase.inner_ring));
-    const double c = h.amplitude_m * std::cos(shift), s = h.amplitude_m * std::sin(shift);
-    const double* cp = h.cos_phase.data();
-    const double* sp = h.sin_phase.data();
+Imperfections::BallSet Imperfections::ball_set(const std::vector<int>& balls) const {
+  BallSet set;
+  fill_ball_set(balls, &set);
+  return set;
+}
+
+void Imperfections::fill_ball_set(const std::vector<int>& balls, BallSet* set) const {
+  const std::size_t n = balls.size();
+  set->ball = balls;  // assignments keep the capacity: no allocation when the set is refilled
+  set->entry_of_ball.assign(geometry_.base_azimuth.size(), -1);
+  set->base_azimuth.resize(n);
+  for (std::size_t e = 0; e < n; ++e) {
+    set->entry_of_ball[balls[e]] = static_cast<int>(e);
+    set->base_azimuth[e] = geometry_.base_azimuth[balls[e]];
+  }
+  set->harmonic_terms.resize(2 * n * (race_waviness_.size() + ball_waviness_.size()));
+  double* column = set->harmonic_terms.data();
+  for (const auto* harmonics : {&race_waviness_, &ball_waviness_})
+    for (const Harmonic& h : *harmonics) {
+      for (std::size_t e = 0; e < n; ++e) column[e] = h.cos_phase[balls[e]];
+      for (std::size_t e = 0; e < n; ++e) column[n + e] = h.sin_phase[balls[e]];
+      column += 2 * n;
+    }
+}
+
+namespace {
+// out[b] += sum over H harmonics of c_h cos_hb - s_h sin_hb, in one pass over the balls.
+template <int H>
+void add_harmonics(const double* coefficients, const double* __restrict terms, int n, double* __restrict out) {
+  double c[2 * H];  // in registers, not reloaded per ball
+  for (int i = 0; i < 2 * H; ++i) c[i] = coefficients[i];
 #pragma omp simd
-    for (int b = 0; b < n; ++b) out[b] += c * cp[b] - s * sp[b];
+  for (int b = 0; b < n; ++b) {
+    double sum = 0.0;
+    for (int h = 0; h < H; ++h) sum += c[2 * h] * terms[2 * h * n + b] - c[2 * h + 1] * terms[(2 * h + 1) * n + b];
+    out[b] += sum;
+  }
+}
+}  // namespace
+
+void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, double* out, bool include_spalls) const {
+  const int n = static_cast<int>(set.ball.size());
+  const double* base = set.base_azimuth.data();
+  // Per harmonic: amplitude * (cos, sin) of its angle now. Race harmonics see the race-frame
+  // angle of ball b, base_b + cage - ring; ball harmonics the spin angle.
+  thread_local std::vector<double> coefficients;
+  coefficients.clear();
+  for (const Harmonic& h : race_waviness_) {
+    const double shift = h.order * (phase.cage - (h.surface == Surface::OuterRace ? phase.outer_ring : phase.inner_ring));
+    coefficients.push_back(h.amplitude_m * std::cos(shift));
+    coefficients.push_back(h.amplitude_m * std::sin(shift));
   }
   for (const Harmonic& h : ball_waviness_) {
-    const double c = h.amplitude_m * std::cos(h.order * phase.ball_spin);
-    const double s = h.amplitude_m * std::sin(h.order * phase.ball_spin);
-    const double* cp = h.cos_phase.data();
-    const double* sp = h.sin_phase.data();
-#pragma omp simd
-    for (int b = 0; b < n; ++b) out[b] += c * cp[b] - s * sp[b];
+    coefficients.push_back(h.amplitude_m * std::cos(h.order * phase.ball_spin));
+    coefficients.push_back(h.amplitude_m * std::sin(h.order * phase.ball_spin));
+  }
+  const int harmonics = static_cast<int>(coefficients.size() / 2);
+  for (int first = 0; first < harmonics; first += 4) {
+    const double* c = coefficients.data() + 2 * first;
+    const double* terms = set.harmonic_terms.data() + 2 * static_cast<std::size_t>(first) * n;
+    switch (std::min(4, harmonics - first)) {
+      case 1: add_harmonics<1>(c, terms, n, out); break;
+      case 2: add_harmonics<2>(c, terms, n, out); break;
+      case 3: add_harmonics<3>(c, terms, n, out); break;
+      default: add_harmonics<4>(c, terms, n, out); break;
+    }
   }
   if (has_roughness_) {
     constexpr double kScale = kProfilePoints / kTwoPi;
@@ -282,26 +332,31 @@ void Imperfections::add_offsets(const RollingPhase& phase, double* out, bool inc
     spall_size(s, phase.time_s, &angular_width, &depth);
     if (s.surface == Surface::Ball) {
       // The spot faces the outer and the inner race once each per spin turn.
+      const int entry = set.entry_of_ball[s.ball];
+      if (entry < 0) continue;
       const double x = std::remainder(phase.ball_spin + ball_phase_[s.ball] - s.position_rad, kPi);
-      out[s.ball] -= spall_dip(x, angular_width, depth);
+      out[entry] -= spall_dip(x, angular_width, depth);
     } else {
       // Only the few balls within half a width of the spall centre: find them by index,
       // since the balls of a row are evenly spaced.
       const double ring = s.surface == Surface::OuterRace ? phase.outer_ring : phase.inner_ring;
       const double start = phase.cage - ring - s.position_rad;
       const int z = geometry_.balls_per_row;
+      const double* all_base = geometry_.base_azimuth.data();
       const double pitch = kTwoPi / z;
       const int reach = static_cast<int>(std::ceil((0.5 * angular_width + max_spacing_error_) / pitch)) + 1;
       for (int row = 0; row < geometry_.rows; ++row) {
-        const double row_phase = base[row * z];
+        const double row_phase = all_base[row * z];
         const long centre = std::lround(-(start + row_phase) / pitch);
         const long first = 2 * reach + 1 < z ? centre - reach : 0;
         const long last = 2 * reach + 1 < z ? centre + reach : z - 1;  // a spall wider than the row: every ball once
-        for (long k = first; k <= last; ++k) {
-          const int j = static_cast<int>(((k % z) + z) % z);
-          double x = std::fmod(base[row * z + j] + start, kTwoPi);  // to (-pi, pi]
-          x += x > kPi ? -kTwoPi : (x <= -kPi ? kTwoPi : 0.0);
-          out[row * z + j] -= spall_dip(x, angular_width, depth);
+        int j = static_cast<int>(((first % z) + z) % z);
+        for (long k = first; k <= last; ++k, j = j + 1 == z ? 0 : j + 1) {
+          const int entry = set.entry_of_ball[row * z + j];
+          if (entry < 0) continue;
+          const double angle = all_base[row * z + j] + start;
+          const double x = angle - kTwoPi * std::nearbyint(angle / kTwoPi);  // to [-pi, pi]
+          out[entry] -= spall_dip(x, angular_width, depth);
         }
       }
     }

@@ -1,6 +1,6 @@
 // The fast contact-force loop (AVX-512 where the CPU has it) must give the portable
-// loop's forces: same formulas, only the square roots and the division are computed
-// differently (reciprocal square root with two Newton steps, full double precision).
+// loop's forces: same formulas and correctly rounded square roots, only the order of the
+// operations and of the sums differs.
 #include <gtest/gtest.h>
 
 #include <random>

@@ -106,7 +106,7 @@ class BearingDynamics {
   bool acceleration_current_ = false;
   BallArrays active_balls_, clear_balls_;  // per sample: near contact / clear by the margin
   std::uint64_t full_sample_retries_ = 0;
-  static constexpr int kSamplesPerBallSplit = 8;
+  static constexpr int kSamplesPerBallSplit = 16;
   int samples_since_split_ = 0;  // current_.acceleration matches load_ and model_
 };
 

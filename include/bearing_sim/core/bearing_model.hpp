@@ -32,7 +32,14 @@ struct BallState {
 // Per-ball constants in the structure-of-arrays layout of the vectorized force loop;
 // either every ball of the bearing or a subset of them.
 struct BallArrays {
+  // A stretch of consecutive entries whose balls are all in one row.
+  struct RowRun {
+    int row = 0;
+    std::size_t begin = 0, end = 0;
+  };
   std::vector<int> ball;  // index into the bearing's balls
+  std::vector<int> row;
+  std::vector<RowRun> row_runs;
   std::vector<double> base_azimuth;        // azimuth at cage angle 0, rad
   std::vector<double> cos_base, sin_base;  // of base_azimuth
   std::vector<double> groove_centre_z;     // axial coordinate of the outer-groove centre
@@ -60,7 +67,7 @@ class BearingModel {
   double pitch_radius_m() const { return config_.pitch_diameter_m / 2.0; }
   double row_axial_position_m(int row) const;  // z_r of the ball centres
   int row_contact_sign(int row) const;          // c_r
-  int row_of_ball(int ball) const { return row_[ball]; }
+  int row_of_ball(int ball) const { return balls_.row[ball]; }
   double base_azimuth_rad(int ball) const { return base_azimuth_[ball]; }
   // +1 when the outer ring is the moving body, -1 for the inner ring.
   double moving_sign() const { return moving_sign_; }
@@ -133,7 +140,6 @@ class BearingModel {
   double moving_sign_ = 1.0;
   // Per ball (structure of arrays, for the vectorized force loop).
   double max_lever_arm_ = 0.0;
-  std::vector<int> row_;
   std::vector<double> base_azimuth_;
   BallArrays balls_;
   Imperfections imperfections_;

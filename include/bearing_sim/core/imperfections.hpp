@@ -85,9 +85,23 @@ class Imperfections {
   }
   // Constant per-ball deflection change (ball diameter variation), m.
   const std::vector<double>& ball_diameter_deviation() const { return ball_diameter_deviation_; }
-  // Adds the time-varying deflection change of every ball to out[0..ball count).
+  // The per-ball terms add_offsets reads, gathered for a set of balls (every ball, or the
+  // subset the dynamics integrates), so that a subset costs only its own balls.
+  struct BallSet {
+    std::vector<int> ball;           // bearing ball of each entry
+    std::vector<int> entry_of_ball;  // inverse, per bearing ball; -1: not in the set
+    std::vector<double> base_azimuth;
+    std::vector<double> harmonic_terms;  // per harmonic: cos column, then sin column
+  };
+  BallSet ball_set(const std::vector<int>& balls) const;
+  void fill_ball_set(const std::vector<int>& balls, BallSet* set) const;  // reusing set's storage
+  // Adds the time-varying deflection change of each ball of the set to out[0..set size).
   // Spalls only ever remove deflection, so leaving them out gives an upper bound.
-  void add_offsets(const RollingPhase& phase, double* out, bool include_spalls = true) const;
+  void add_offsets(const RollingPhase& phase, const BallSet& set, double* out, bool include_spalls = true) const;
+  // Same, for every ball of the bearing.
+  void add_offsets(const RollingPhase& phase, double* out, bool include_spalls = true) const {
+    add_offsets(phase, all_balls_, out, include_spalls);
+  }
 
   void add_spall(const Spall& spall);  // validates; throws InvalidInputError
   void clear_spalls() { spalls_.clear(); }
@@ -120,6 +134,7 @@ class Imperfections {
   std::vector<double> ball_diameter_deviation_;
   std::vector<double> ball_phase_;  // random initial spin angle of each ball
   std::vector<Spall> spalls_;
+  BallSet all_balls_;
   double max_spacing_error_ = 0.0;  // largest deviation of a ball from even spacing, rad
   // Per surface (outer race, inner race, ball): largest slope (m/rad) and largest
   // peak-to-peak change (m) of the offsets, spalls left out.
