@@ -7,6 +7,8 @@
 
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/bearing_dynamics.hpp"
+#include "bearing_sim/core/virtual_accelerometer.hpp"
+#include "bearing_sim/ros/triaxial_sensor.hpp"
 
 namespace {
 
@@ -38,7 +40,7 @@ void BM_SimulateCtGantry(benchmark::State& state) {
 
 // The CT bearing with waviness on both races and the balls, and a 2 mm x 20 um spall on
 // the fixed inner race in the load zone.
-void BM_SimulateCtGantryWithDefects(benchmark::State& state) {
+bearing_sim::BearingConfig ct_gantry_with_defects() {
   bearing_sim::BearingConfig config = bearing("ct_gantry_lyc.yaml");
   config.imperfections = bearing_sim::parse_imperfections(YAML::Load(R"(
 waviness:
@@ -47,9 +49,37 @@ waviness:
   - {surface: outer_race, order: 8, amplitude_um: 0.5}
   - {surface: ball, order: 4, amplitude_um: 0.02}
 )"), YAML::Load("[{surface: inner_race, position_deg: 180, width_mm: 2.0, depth_um: 20}]"), "bench");
+  return config;
+}
+
+Vector5 ct_load() {
   Vector5 load;
   load << 6800.0, 0.0, 0.0, 0.0, 2100.0;
-  simulate(state, config, load, 180.0 * 2.0 * 3.14159265358979 / 60.0);
+  return load;
+}
+
+void BM_SimulateCtGantryWithDefects(benchmark::State& state) {
+  simulate(state, ct_gantry_with_defects(), ct_load(), 180.0 * 2.0 * 3.14159265358979 / 60.0);
+}
+
+// Issue 5's figure: the same, with the node's triaxial housing accelerometer on every sample.
+void BM_SimulateCtGantryWithDefectsAndSensor(benchmark::State& state) {
+  const bearing_sim::BearingModel model(ct_gantry_with_defects());
+  bearing_sim::BearingDynamics dynamics(model, ct_load(), 180.0 * 2.0 * 3.14159265358979 / 60.0, {10000.0, 0});
+  bearing_sim::ros_node::TriaxialSensor sensor(
+      bearing_sim::load_accelerometer_config(std::string(BEARING_SIM_SOURCE_DIR) +
+                                             "/config/sensors/ct_gantry_housing_accelerometer.yaml"),
+      dynamics.sample_rate_hz());
+  constexpr int kSamplesPerIteration = 1000;
+  Eigen::Vector3d measured;
+  for (auto _ : state) {
+    for (int i = 0; i < kSamplesPerIteration; ++i) {
+      if (sensor.push(dynamics.step(), &measured)) benchmark::DoNotOptimize(measured);
+    }
+  }
+  const double simulated_s = state.iterations() * kSamplesPerIteration / dynamics.sample_rate_hz();
+  state.counters["realtime_factor"] = benchmark::Counter(simulated_s, benchmark::Counter::kIsRate);
+  state.counters["substeps"] = dynamics.substeps();
 }
 
 void BM_SimulateIns61822(benchmark::State& state) {
@@ -62,5 +92,6 @@ void BM_SimulateIns61822(benchmark::State& state) {
 
 BENCHMARK(BM_SimulateCtGantry)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_SimulateCtGantryWithDefects)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_SimulateCtGantryWithDefectsAndSensor)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_SimulateIns61822)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_MAIN();

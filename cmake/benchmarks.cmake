@@ -1,7 +1,7 @@
 find_package(benchmark QUIET)
 if(benchmark_FOUND)
   add_executable(bench_simulate bench/bench_simulate.cpp)
-  target_link_libraries(bench_simulate PRIVATE bearing_sim_core benchmark::benchmark)
+  target_link_libraries(bench_simulate PRIVATE bearing_sim_core bearing_sim_ros_helpers benchmark::benchmark)
   target_compile_definitions(bench_simulate PRIVATE BEARING_SIM_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
   bearing_sim_optimize(bench_simulate)
 endif()

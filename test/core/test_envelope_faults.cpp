@@ -128,6 +128,8 @@ TEST(Envelope, OuterRaceSpallAtBpfo) {
   EXPECT_NE(c.diagnosis.reason.find("outer race defect suspected"), std::string::npos) << c.diagnosis.reason;
   // The outer race spall is the strongest finding: named first.
   EXPECT_EQ(c.diagnosis.reason.find("outer race"), c.diagnosis.reason.find("outer race defect suspected"));
+  // A spall on the fixed race under a fixed load has nothing turning at the cage speed.
+  EXPECT_FALSE(fault(c, FaultKind::Cage).suspected) << c.diagnosis.reason;
 }
 
 TEST(Envelope, InnerRaceSpallAtBpfiWithRingSpeedSidebands) {
@@ -136,6 +138,8 @@ TEST(Envelope, InnerRaceSpallAtBpfiWithRingSpeedSidebands) {
   const ConditionIndicators c = analyze(with_noise(simulate(model, 1.0)), model);
   expect_fault_line(c, FaultKind::InnerRace, bpfi);
   EXPECT_NE(c.diagnosis.reason.find("inner race defect suspected"), std::string::npos) << c.diagnosis.reason;
+  // Its modulation is at the ring speed (30 Hz), not at the cage's (11.95 Hz): no cage finding.
+  EXPECT_FALSE(fault(c, FaultKind::Cage).suspected) << c.diagnosis.reason;
   // The spall turns with the inner ring through the load zone: amplitude modulation at
   // f_r = 30 Hz, sidebands at BPFI -+ 30 Hz (10 dB as for the carrier).
   for (double sideband_hz : {bpfi - 30.0, bpfi + 30.0}) {

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "bearing_6205_yaml.hpp"
+
 namespace bearing_sim::test {
 
 std::string bearing_file(const std::string& name) {
@@ -82,18 +84,7 @@ Vector5 load5(double fx, double fy, double fz, double mx, double my) {
 }
 
 BearingModel bearing_6205(const std::string& extra_yaml) {
-  return BearingModel(bearing_config_from_string(
-      "name: 6205-like\n"
-      "balls_per_row: 9\n"
-      "ball_diameter_mm: 7.94\n"
-      "pitch_diameter_mm: 39.04\n"
-      "inner_groove_curvature: 0.52\n"
-      "outer_groove_curvature: 0.52\n"
-      "rotating_ring: inner\n"
-      "rotating_mass_kg: 0.5\n"
-      "damping: {contact_damping_Ns_per_m: 100}\n" +
-          extra_yaml,
-      "6205-like"));
+  return BearingModel(bearing_config_from_string(kBearing6205Yaml + extra_yaml, "6205-like"));
 }
 
 const FaultIndicator& fault(const ConditionIndicators& c, FaultKind kind) {

@@ -19,6 +19,7 @@
 #include "bearing_sim/core/condition_indicators.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/simulation_run.hpp"
+#include "../core/bearing_6205_yaml.hpp"
 #include "tool_runner.hpp"
 
 namespace {
@@ -27,18 +28,9 @@ using nlohmann::json;
 constexpr double kPi = 3.14159265358979323846;
 
 // 6205-like, inner ring rotating, a 1 mm x 30 um outer race spall (as test_envelope_faults).
-const char* const kBearing =
-    "name: 6205-like with an outer race spall\n"
-    "balls_per_row: 9\n"
-    "ball_diameter_mm: 7.94\n"
-    "pitch_diameter_mm: 39.04\n"
-    "inner_groove_curvature: 0.52\n"
-    "outer_groove_curvature: 0.52\n"
-    "rotating_ring: inner\n"
-    "rotating_mass_kg: 0.5\n"
-    "damping: {contact_damping_Ns_per_m: 100}\n"
-    "imperfections: {seed: 3, roughness_rms_um: 0.02}\n"
-    "defects: [{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 30}]\n";
+const std::string kBearing = bearing_sim::test::kBearing6205Yaml +
+                             "imperfections: {seed: 3, roughness_rms_um: 0.02}\n"
+                             "defects: [{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 30}]\n";
 
 using bearing_sim::test::RunResult;
 

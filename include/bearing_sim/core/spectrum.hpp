@@ -52,7 +52,9 @@ double band_velocity_rms(const std::vector<double>& accel, double sample_rate_hz
 // Peak search around an expected frequency.
 struct PeakSearchOptions {
   double tolerance_rel = 0.01;     // search expected * (1 +- tolerance_rel) ...
-  int tolerance_min_bins = 2;      // ... but at least +- this many bins
+  // ... but at least +- one bin: the nearest bin of a line is within half a bin of it, and a
+  // wider window near a low frequency (FTF) would catch unrelated lines.
+  int tolerance_min_bins = 1;
   int noise_half_width_bins = 30;  // noise floor from the bins within +- this of the peak ...
   int noise_exclude_bins = 3;      // ... leaving out the peak's own Hann main lobe (+- this)
 };
