@@ -66,21 +66,26 @@ void BearingDynamics::update_substeps() {
 
 void BearingDynamics::set_load(const Vector5& load) {
   if (!load.allFinite()) throw InvalidInputError("load is not finite");
+  // The contact forces do not depend on the external load: the current acceleration moves
+  // by the change over the mass, and stays the first RK4 stage of the next sample. The ball
+  // split stays too (inputs may change every sample, e.g. a rotating unbalance): a ball that
+  // the new load brings into contact is caught by the check after the sample.
+  current_.acceleration += (load - load_).cwiseProduct(inverse_mass_);
   load_ = load;
   // The contact stiffness grows with the load (as F^(1/3)): check the step again when
   // the load has changed a lot since it was chosen.
   if (substeps_load_norm_ > 0.0 &&
-      (load_.norm() > 1.5 * substeps_load_norm_ || load_.norm() < substeps_load_norm_ / 1.5))
+      (load_.norm() > 1.5 * substeps_load_norm_ || load_.norm() < substeps_load_norm_ / 1.5)) {
     update_substeps();
-  acceleration_current_ = false;
-  samples_since_split_ = 0;  // the contact margin depends on the inputs
+    samples_since_split_ = 0;
+  }
 }
 
 void BearingDynamics::set_ring_speed(double ring_speed_rad_s) {
   if (!std::isfinite(ring_speed_rad_s)) throw InvalidInputError("ring speed is not finite");
+  // Only the phases of the next samples change: acceleration and ball split stay.
   ring_speed_ = ring_speed_rad_s;
   update_cage_speed();
-  samples_since_split_ = 0;
 }
 
 void BearingDynamics::update_slip_fluctuation() {

@@ -63,18 +63,7 @@ void fill_bearing_health(const HealthReport& r, const std::string& signal, doubl
     msg->level = r.error.rfind("collecting", 0) == 0 ? BearingHealth::OK : BearingHealth::WARN;
     msg->reason = r.error;
   }
-  for (const DefectNow& d : r.defects) {
-    DefectState s;
-    s.surface = surface_name(d.spall.surface);
-    s.position_rad = d.spall.position_rad;
-    s.ball = d.spall.surface == Surface::Ball ? d.spall.ball : -1;
-    s.width_m = d.width_m;
-    s.depth_m = d.depth_m;
-    s.width_growth_m_per_s = d.spall.width_growth_m_per_s;
-    s.depth_growth_m_per_s = d.spall.depth_growth_m_per_s;
-    s.age_s = d.age_s;
-    msg->defects.push_back(s);
-  }
+  for (const DefectNow& d : r.defects) fill_defect_state(d, &msg->defects.emplace_back());
   msg->ring_speed_rad_s = r.ring_speed_rad_s;
   msg->radial_force_N = std::hypot(r.load[0], r.load[1]);
   msg->axial_force_N = std::abs(r.load[2]);
@@ -88,6 +77,17 @@ void fill_bearing_health(const HealthReport& r, const std::string& signal, doubl
   msg->remaining_life_hours = r.remaining_life_hours;
   msg->operated_s = r.operated_s;
   msg->revolutions = r.revolutions;
+}
+
+void fill_defect_state(const DefectNow& d, DefectState* s) {
+  s->surface = surface_name(d.spall.surface);
+  s->position_rad = d.spall.position_rad;
+  s->ball = d.spall.surface == Surface::Ball ? d.spall.ball : -1;
+  s->width_m = d.width_m;
+  s->depth_m = d.depth_m;
+  s->width_growth_m_per_s = d.spall.width_growth_m_per_s;
+  s->depth_growth_m_per_s = d.spall.depth_growth_m_per_s;
+  s->age_s = d.age_s;
 }
 
 void fill_ball_loads(const std::vector<BallState>& balls, int rows, int balls_per_row, double cage_angle_rad,

@@ -21,6 +21,7 @@ constexpr Register kCommands[] = {
     bearing_sim::tool::register_analyze_command,
     bearing_sim::tool::register_sweep_command,
     bearing_sim::tool::register_modes_command,
+    bearing_sim::tool::register_generate_command,
 };
 
 int fail(int code, const char* kind, const std::exception& e) {

@@ -13,5 +13,6 @@ void register_simulate_command(CLI::App& app);
 void register_analyze_command(CLI::App& app);
 void register_sweep_command(CLI::App& app);
 void register_modes_command(CLI::App& app);
+void register_generate_command(CLI::App& app);
 
 }  // namespace bearing_sim::tool

@@ -7,6 +7,7 @@
 
 #include "bearing_sim/BallLoads.h"
 #include "bearing_sim/BearingHealth.h"
+#include "bearing_sim/DefectState.h"
 #include "bearing_sim/VibrationChunk.h"
 #include "bearing_sim/core/bearing_model.hpp"
 #include "bearing_sim/ros/chunk_assembler.hpp"
@@ -25,6 +26,9 @@ void fill_vibration_chunk(SampleChunk&& chunk, const ros::Time& first_sample_sta
 // The health report as a message; `signal` says what was analysed.
 void fill_bearing_health(const HealthReport& report, const std::string& signal, double sample_rate_hz,
                          BearingHealth* msg);
+
+// One spall with its size now.
+void fill_defect_state(const DefectNow& defect, DefectState* msg);
 
 void fill_ball_loads(const std::vector<BallState>& balls, int rows, int balls_per_row, double cage_angle_rad,
                      BallLoads* msg);
