@@ -1,0 +1,19 @@
+// Republishes bearing_sim_node's topics on LCM (see docs/lcm.md).
+#include <exception>
+
+#include <ros/ros.h>
+
+#include "bearing_sim/ros/lcm_bridge.hpp"
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "lcm_bridge");
+  ros::NodeHandle nh, pnh("~");
+  try {
+    bearing_sim::ros_node::LcmBridge bridge(nh, pnh);
+    ros::spin();
+  } catch (const std::exception& e) {
+    ROS_FATAL("lcm_bridge: %s", e.what());
+    return 1;
+  }
+  return 0;
+}
