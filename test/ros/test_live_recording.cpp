@@ -14,39 +14,22 @@
 
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
-#include <ros/network.h>
 #include <ros/ros.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <tf2_msgs/TFMessage.h>
-#include <xmlrpcpp/XmlRpc.h>
 
 #include "bearing_sim/BallLoads.h"
 #include "bearing_sim/BearingHealth.h"
 #include "bearing_sim/VibrationChunk.h"
 #include "bearing_sim/VibrationLevel.h"
+#include "node_pid.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
 constexpr double kStampTolerance_s = 1e-6;  // stamps are simulated time, rounded to 1 ns
-
-// The PID of a ROS node, from its own XML-RPC server (getPid of the slave API).
-int node_pid(const std::string& node) {
-  XmlRpc::XmlRpcValue args, result, payload;
-  args[0] = ros::this_node::getName();
-  args[1] = node;
-  if (!ros::master::execute("lookupNode", args, result, payload, true)) return -1;
-  std::string host;
-  std::uint32_t port = 0;
-  if (!ros::network::splitURI(static_cast<std::string>(payload), host, port)) return -1;
-  XmlRpc::XmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
-  XmlRpc::XmlRpcValue pid_args, pid_result;
-  pid_args[0] = ros::this_node::getName();
-  if (!client.execute("getPid", pid_args, pid_result) || pid_result.size() < 3) return -1;
-  return static_cast<int>(pid_result[2]);
-}
 
 bool wait_wall(const std::function<bool()>& pred, double timeout_s) {
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
@@ -85,7 +68,7 @@ class LiveRecording : public ::testing::Test {
     const std::string active = bag_path_ + ".active";
     ASSERT_TRUE(wait_wall([&] { return fs::exists(active); }, 30.0)) << "no " << active;
     ros::WallDuration(record_s_).sleep();
-    const int pid = node_pid("/bearing/recorder");
+    const int pid = node_test::node_pid("/bearing/recorder");
     ASSERT_GT(pid, 0) << "cannot find the recorder's PID";
     ASSERT_EQ(::kill(pid, SIGINT), 0);
     ASSERT_TRUE(wait_wall([&] { return fs::exists(bag_path_) && !fs::exists(active); }, 30.0))

@@ -6,32 +6,14 @@
 #include <fstream>
 #include <sstream>
 
-#include <ros/master.h>
-#include <ros/network.h>
-#include <xmlrpcpp/XmlRpc.h>
 
+#include "node_pid.hpp"
 #include "node_test_support.hpp"
 
 using namespace node_test;
 
 namespace {
 constexpr double kRate = 10000.0;
-
-// pid of a node, through its XML-RPC getPid.
-int node_pid(const std::string& node) {
-  XmlRpc::XmlRpcValue args, result, payload;
-  args[0] = ros::this_node::getName();
-  args[1] = node;
-  if (!ros::master::execute("lookupNode", args, result, payload, true)) return -1;
-  std::string host;
-  uint32_t port = 0;
-  if (!ros::network::splitURI(static_cast<std::string>(payload), host, port)) return -1;
-  XmlRpc::XmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
-  XmlRpc::XmlRpcValue pid_args, pid_result;
-  pid_args[0] = ros::this_node::getName();
-  if (!client.execute("getPid", pid_args, pid_result) || pid_result.size() < 3) return -1;
-  return static_cast<int>(pid_result[2]);
-}
 
 // utime + stime of a process, s.
 double cpu_seconds(int pid) {
