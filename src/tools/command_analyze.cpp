@@ -27,8 +27,8 @@ struct AnalyzeCliOptions {
   double resonance_hz = 0.0;
   double band_width_hz = 2000.0;
   std::vector<double> zones{1.4, 2.8, 4.5};
-  double snr_db = 10.0;
-  double kurtosis_warn = 6.0;
+  double snr_db = bearing_sim::DiagnosisThresholds{}.fault_snr_db;
+  double kurtosis_warn = bearing_sim::DiagnosisThresholds{}.kurtosis_warn;
   bool json = false;
 };
 
