@@ -4,7 +4,7 @@ target_include_directories(bearing_sim_scenario_timeline PUBLIC ${CMAKE_CURRENT_
 target_link_libraries(bearing_sim_scenario_timeline PUBLIC bearing_sim_core)
 bearing_sim_optimize(bearing_sim_scenario_timeline)
 
-add_executable(scenario_player src/nodes/scenario_player_node.cpp src/ros/scenario_player.cpp)
+add_executable(scenario_player src/nodes/scenario_player_node.cpp src/ros/scenario_player.cpp src/ros/message_conversion.cpp)
 add_dependencies(scenario_player ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
 target_include_directories(scenario_player PRIVATE ${catkin_INCLUDE_DIRS}
   ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_INCLUDE_DESTINATION})

@@ -90,6 +90,27 @@ void fill_defect_state(const DefectNow& d, DefectState* s) {
   s->age_s = d.age_s;
 }
 
+std::vector<DefectNow> scenario_defects_at(const Scenario& scenario, double time_s) {
+  std::vector<DefectNow> defects;
+  for (const Spall& spall : scenario.spalls_at(time_s))
+    defects.push_back(DefectNow{spall, Scenario::spall_width_at(spall, time_s), Scenario::spall_depth_at(spall, time_s),
+                                time_s - spall.created_at_s});
+  return defects;
+}
+
+void fill_scenario_state(const std::string& scenario, const std::string& bearing, std::uint64_t seed, double time_s,
+                         const ScenarioInputs& inputs, const std::vector<DefectNow>& defects, ScenarioState* msg) {
+  msg->scenario = scenario;
+  msg->bearing = bearing;
+  msg->seed = seed;
+  msg->scenario_time_s = time_s;
+  msg->phase = inputs.phase;
+  msg->ring_speed_rad_s = inputs.ring_speed_rad_s;
+  for (int i = 0; i < 5; ++i) msg->load[static_cast<std::size_t>(i)] = inputs.load[i];
+  msg->defects.clear();
+  for (const DefectNow& d : defects) fill_defect_state(d, &msg->defects.emplace_back());
+}
+
 void fill_ball_loads(const std::vector<BallState>& balls, int rows, int balls_per_row, double cage_angle_rad,
                      BallLoads* msg) {
   msg->rows = static_cast<std::uint8_t>(rows);

@@ -13,6 +13,7 @@
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/imperfections.hpp"
+#include "bearing_sim/ros/message_conversion.hpp"
 
 namespace bearing_sim {
 namespace ros_node {
@@ -226,25 +227,7 @@ void ScenarioPlayer::publish_state(const TimelineCommand& c) {
   ScenarioState m;
   m.header.stamp = stamp_of(c);
   m.header.frame_id = "bearing";
-  m.scenario = scenario_.name();
-  m.bearing = bearing_name_;
-  m.seed = scenario_.seed();
-  m.scenario_time_s = t;
-  m.phase = in.phase;
-  m.ring_speed_rad_s = in.ring_speed_rad_s;
-  for (int i = 0; i < 5; ++i) m.load[static_cast<std::size_t>(i)] = in.load[i];
-  for (const Spall& s : scenario_.spalls_at(t)) {
-    DefectState d;
-    d.surface = surface_name(s.surface);
-    d.position_rad = s.position_rad;
-    d.ball = s.surface == Surface::Ball ? s.ball : -1;
-    d.width_m = Scenario::spall_width_at(s, t);
-    d.depth_m = Scenario::spall_depth_at(s, t);
-    d.width_growth_m_per_s = s.width_growth_m_per_s;
-    d.depth_growth_m_per_s = s.depth_growth_m_per_s;
-    d.age_s = t - s.created_at_s;
-    m.defects.push_back(d);
-  }
+  fill_scenario_state(scenario_.name(), bearing_name_, scenario_.seed(), t, in, scenario_defects_at(scenario_, t), &m);
   state_pub_.publish(m);
 }
 

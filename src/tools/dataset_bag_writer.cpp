@@ -119,14 +119,8 @@ void DatasetBagWriter::label(const LabelState& state) {
   ScenarioState msg;
   msg.header.stamp = stamp_of(state.index, info_.sample_rate_hz);
   msg.header.frame_id = info_.bearing_frame_id;
-  msg.scenario = info_.scenario;
-  msg.bearing = info_.bearing_name;
-  msg.seed = info_.seed;
-  msg.scenario_time_s = state.time_s;
-  msg.phase = state.inputs.phase;
-  msg.ring_speed_rad_s = state.inputs.ring_speed_rad_s;
-  for (int i = 0; i < 5; ++i) msg.load[i] = state.inputs.load[i];
-  for (const ros_node::DefectNow& d : state.defects) ros_node::fill_defect_state(d, &msg.defects.emplace_back());
+  ros_node::fill_scenario_state(info_.scenario, info_.bearing_name, info_.seed, state.time_s, state.inputs,
+                                state.defects, &msg);
   bag_->write(kScenarioState, record_time(msg.header.stamp), msg);
 }
 

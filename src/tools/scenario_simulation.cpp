@@ -9,6 +9,7 @@
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
+#include "bearing_sim/ros/message_conversion.hpp"
 #include "bearing_sim/ros/sample_divider.hpp"
 #include "bearing_sim/ros/sample_source.hpp"
 #include "bearing_sim/ros/triaxial_sensor.hpp"
@@ -41,9 +42,7 @@ LabelState scenario_label(const Scenario& scenario, std::uint64_t index, double 
   s.index = index;
   s.time_s = static_cast<double>(index) / sample_rate_hz;
   s.inputs = scenario.inputs_at(s.time_s);
-  for (const Spall& spall : scenario.spalls_at(s.time_s))
-    s.defects.push_back(ros_node::DefectNow{spall, Scenario::spall_width_at(spall, s.time_s),
-                                            Scenario::spall_depth_at(spall, s.time_s), s.time_s - spall.created_at_s});
+  s.defects = ros_node::scenario_defects_at(scenario, s.time_s);
   return s;
 }
 

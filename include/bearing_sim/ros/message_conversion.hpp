@@ -8,8 +8,10 @@
 #include "bearing_sim/BallLoads.h"
 #include "bearing_sim/BearingHealth.h"
 #include "bearing_sim/DefectState.h"
+#include "bearing_sim/ScenarioState.h"
 #include "bearing_sim/VibrationChunk.h"
 #include "bearing_sim/core/bearing_model.hpp"
+#include "bearing_sim/core/scenario.hpp"
 #include "bearing_sim/ros/chunk_assembler.hpp"
 #include "bearing_sim/ros/health_monitor.hpp"
 
@@ -29,6 +31,13 @@ void fill_bearing_health(const HealthReport& report, const std::string& signal, 
 
 // One spall with its size now.
 void fill_defect_state(const DefectNow& defect, DefectState* msg);
+
+// The spalls of a scenario at time_s, sized by its growth law.
+std::vector<DefectNow> scenario_defects_at(const Scenario& scenario, double time_s);
+
+// The labels of a scenario run at scenario time time_s (header left to the caller).
+void fill_scenario_state(const std::string& scenario, const std::string& bearing, std::uint64_t seed, double time_s,
+                         const ScenarioInputs& inputs, const std::vector<DefectNow>& defects, ScenarioState* msg);
 
 void fill_ball_loads(const std::vector<BallState>& balls, int rows, int balls_per_row, double cage_angle_rad,
                      BallLoads* msg);
