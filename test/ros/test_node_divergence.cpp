@@ -36,7 +36,7 @@ void expect_mean_at_static(std::uint64_t from, std::uint64_t to, const bearing_s
 }  // namespace
 
 TEST(NodeInputs, DivergenceIsReportedAsErrorAndResetNeverNaN) {
-  ASSERT_TRUE(recorder().wait_for_sample(0, 20.0)) << "no vibration samples";
+  ASSERT_TRUE(recorder().wait_for_sample(0, 60.0)) << "no vibration samples";
   // Independent check of the premise, from the core's linearization: |lambda| h of the
   // fastest mode is below the RK4 limit (~2.8) at 100 N*s/m and far above it at 2000.
   bearing_sim::BearingModel model = ct_model();
@@ -48,14 +48,14 @@ TEST(NodeInputs, DivergenceIsReportedAsErrorAndResetNeverNaN) {
 
   // Healthy first: no divergence at the file's damping.
   settle(recorder().next_index(), 0.5);
-  ASSERT_TRUE(recorder().wait_for_new_diagnostics(1, 5.0));
+  ASSERT_TRUE(recorder().wait_for_new_diagnostics(1, 15.0));
   diagnostic_msgs::DiagnosticStatus model_status;
   ASSERT_TRUE(recorder().diagnostic("Model", &model_status));
   EXPECT_EQ(Recorder::value(model_status, "divergences"), "0");
 
   ASSERT_TRUE(reconfigure("contact_damping_Ns_per_m", 2000.0));
   settle(recorder().next_index(), 0.5);
-  ASSERT_TRUE(recorder().wait_for_new_diagnostics(2, 5.0));
+  ASSERT_TRUE(recorder().wait_for_new_diagnostics(2, 15.0));
   ASSERT_TRUE(recorder().diagnostic("Model", &model_status));
   EXPECT_EQ(model_status.level, diagnostic_msgs::DiagnosticStatus::ERROR);
   EXPECT_GT(std::stoi(Recorder::value(model_status, "divergences")), 0);
@@ -66,10 +66,10 @@ TEST(NodeInputs, DivergenceIsReportedAsErrorAndResetNeverNaN) {
   const std::uint64_t sent = recorder().next_index();
   settle(sent, 1.0);
   expect_mean_at_static(sent + 5000, sent + 10000, model);
-  ASSERT_TRUE(recorder().wait_for_new_diagnostics(1, 5.0));
+  ASSERT_TRUE(recorder().wait_for_new_diagnostics(1, 15.0));
   ASSERT_TRUE(recorder().diagnostic("Model", &model_status));
   const int count = std::stoi(Recorder::value(model_status, "divergences"));
-  ASSERT_TRUE(recorder().wait_for_new_diagnostics(1, 5.0));
+  ASSERT_TRUE(recorder().wait_for_new_diagnostics(1, 15.0));
   ASSERT_TRUE(recorder().diagnostic("Model", &model_status));
   EXPECT_EQ(std::stoi(Recorder::value(model_status, "divergences")), count);
   EXPECT_EQ(recorder().gaps(), 0u);

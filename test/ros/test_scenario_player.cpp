@@ -6,7 +6,8 @@
 // health (exact in the holds), and the injected spall in health after its event time,
 // grown by its law, gone after the clear. ~max_lag_s bounds how late the inputs reach the
 // node on its clock: as fast as possible the node does not wait for the player, so
-// there it is the player's reaction time times the speed-up (measured 30-240 ms).
+// there it is the player's reaction time times the speed-up. The bounds are generous
+// time-outs, not speed figures.
 #include <cmath>
 #include <mutex>
 #include <string>
@@ -27,8 +28,8 @@ using namespace bearing_sim;
 namespace {
 
 constexpr double kRpm = 2.0 * M_PI / 60.0;
-// In real time the node computes a 10 ms chunk once its last sample is due, so an input
-// can apply from up to one chunk before the time it was sent at.
+// An input applies from the first chunk not yet computed; in real time that chunk may
+// start up to one chunk before the time the input was sent at.
 constexpr double kChunk_s = 0.01;
 // Inputs reach the node at most this late on its clock (~max_lag_s).
 double kMaxLag_s = 1.0;
@@ -86,7 +87,7 @@ class ScenarioPlayerTest : public ::testing::Test {
     states_.push_back(*m);
   }
   static bool wait(const std::function<bool()>& pred) {
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(90.0);
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(240.0);
     while (ros::WallTime::now() < end) {
       {
         std::lock_guard<std::mutex> lock(mutex_);
