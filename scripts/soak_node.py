@@ -37,7 +37,7 @@ from diagnostic_msgs.msg import DiagnosticArray
 from bearing_sim.msg import VibrationChunk
 from measure_node import cpu_seconds, node_pid, percentile
 
-LAUNCH_NODES = ['/bearing/bearing_sim_node', '/bearing/bearing_viz_node', '/bearing/recorder']
+LAUNCH_NODES = ['/bearing/bearing_sim_node', '/bearing/bearing_viz', '/bearing/recorder']
 
 
 def rss_mib(pid):
@@ -186,7 +186,7 @@ def main():
                 'overruns': listener.diag.get('overruns'),
                 'node_lag_ms': {k: listener.diag.get('lag %s (ms)' % k) for k in ('p50', 'p99', 'max')},
                 'node_memory_locked': listener.diag.get('memory locked'),
-                'node_scheduling': listener.diag.get('scheduling'),
+                'node_scheduling': listener.diag.get('simulation thread scheduling'),
                 'arrival_lag_ms': {'p50': 1e3 * percentile(lags, 0.5), 'p99': 1e3 * percentile(lags, 0.99),
                                    'max': 1e3 * lags[-1]},
                 'cpu_percent_of_one_core': {n: 100.0 * (cpu1[n] - cpu0[n]) / (t1 - t0) for n in cpu1},
