@@ -247,23 +247,39 @@ Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, cons
   in.q = q.data();
   in.q_dot = q_dot.data();
   const double* offset = offsets_at(phase, balls);
-  const bool fastest = kernel == ContactKernel::Fastest && detail::avx512_kernel_available();
   // Per row: force = sign sum s v; moment = sign sum s (p x v) with p = (rho cphi, rho sphi, z_r).
+  // The runs go to the SIMD kernel together, a few at a time (a bearing has one or two).
+  constexpr std::size_t kChunk = 4;
+  std::array<detail::ContactKernelInput, kChunk> runs;
+  std::array<detail::ContactSums, kChunk> sums;
   Vector5 f = Vector5::Zero();
-  for (const BallArrays::RowRun& run : balls.row_runs) {
-    in.groove_centre_z = balls.groove_centre_z[run.begin];
-    in.normal_z = balls.normal_z[run.begin];
-    in.cos_base = balls.cos_base.data() + run.begin;
-    in.sin_base = balls.sin_base.data() + run.begin;
-    in.offset = offset + run.begin;
-    in.n = static_cast<int>(run.end - run.begin);
-    const detail::ContactSums s = fastest ? detail::contact_sums_avx512(in) : detail::contact_sums_portable(in);
-    const double pz = in.groove_centre_z, rho = groove_centre_radius_;
-    f[0] += s.x;
-    f[1] += s.y;
-    f[2] += s.z;
-    f[3] += rho * s.z_sin - pz * s.y;
-    f[4] += pz * s.x - rho * s.z_cos;
+  for (std::size_t first = 0; first < balls.row_runs.size(); first += kChunk) {
+    const std::size_t count = std::min(kChunk, balls.row_runs.size() - first);
+    for (std::size_t i = 0; i < count; ++i) {
+      const BallArrays::RowRun& run = balls.row_runs[first + i];
+      detail::ContactKernelInput& r = runs[i];
+      r = in;
+      r.groove_centre_z = balls.groove_centre_z[run.begin];
+      r.normal_z = balls.normal_z[run.begin];
+      r.cos_base = balls.cos_base.data() + run.begin;
+      r.sin_base = balls.sin_base.data() + run.begin;
+      r.offset = offset + run.begin;
+      r.n = static_cast<int>(run.end - run.begin);
+    }
+    if (kernel == ContactKernel::Fastest) {
+      detail::contact_sums_simd(runs.data(), static_cast<int>(count), sums.data());
+    } else {
+      for (std::size_t i = 0; i < count; ++i) sums[i] = detail::contact_sums_scalar(runs[i]);
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+      const detail::ContactSums& s = sums[i];
+      const double pz = runs[i].groove_centre_z, rho = groove_centre_radius_;
+      f[0] += s.x;
+      f[1] += s.y;
+      f[2] += s.z;
+      f[3] += rho * s.z_sin - pz * s.y;
+      f[4] += pz * s.x - rho * s.z_cos;
+    }
   }
   return moving_sign_ * f;
 }
