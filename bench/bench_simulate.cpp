@@ -94,7 +94,7 @@ void BM_SimulateIns61822(benchmark::State& state) {
 void BM_SimulateDeepGroove6205WithSpall(benchmark::State& state) {
   bearing_sim::BearingConfig config = bearing("deep_groove_6205.yaml");
   config.imperfections = bearing_sim::parse_imperfections(
-      YAML::Node(), YAML::Load("[{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 20}]"), "bench");
+      YAML::Load("{}"), YAML::Load("[{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 20}]"), "bench");
   Vector5 load;
   load << 1000.0, 0.0, 0.0, 0.0, 0.0;
   simulate(state, config, load, 1797.0 * 2.0 * 3.14159265358979 / 60.0);

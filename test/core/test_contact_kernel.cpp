@@ -75,86 +75,84 @@ TEST(ContactKernel, SimdAndScalarLoopsAgreeForAPreloadedInnerRingBearing) {
   for_each_target([&] { expect_kernels_agree(model, test::load5(800.0, -300.0, 1500.0, 5.0, -3.0)); });
 }
 
-// Random rows straight into the kernel, with the edge cases placed on purpose: balls just
-// touching and just leaving (deflection +-1e-12 m), inside a spall (offset -1 mm), damping
-// pulling a touching ball's load negative, and run lengths that are not multiples of any
-// vector width.
-TEST(ContactKernel, SimdAndScalarKernelsAgreeOnRandomRowsWithEdgeCases) {
+// Random ball sets straight into the kernel (balls of two rows mixed), with the edge cases
+// placed on purpose: balls just touching and just leaving (deflection +-1e-12 m), inside a
+// spall (offset -1 mm), damping pulling a touching ball's load negative, and set sizes that
+// are not multiples of any vector width.
+TEST(ContactKernel, SimdAndScalarKernelsAgreeOnRandomBallsWithEdgeCases) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const double kn = 1.1e10, cn = 400.0;  // N/m^1.5, N s/m
-  const double A = 3.2e-4, g0 = 1e-5;
+  const double A = 3.2e-4, g0 = 1e-5, rho = 0.05, a0 = 0.3;
+  int pulled_negative = 0;
   for_each_target([&] {
     for (int n : {1, 3, 7, 8, 207}) {
       for (int trial = 0; trial < 50; ++trial) {
-        std::vector<double> cb(n), sb(n), off(n);
+        std::vector<double> cb(n), sb(n), gz(n), nz(n), off(n);
         double q[5], qd[5];
         for (int i = 0; i < 5; ++i) {
           q[i] = (i < 3 ? 2e-5 : 1e-4) * u(rng);
           qd[i] = (i < 3 ? 1e-3 : 1e-2) * u(rng);
         }
-        detail::ContactKernelInput in;
-        const double cage = 3.0 * u(rng);
-        in.cos_cage = std::cos(cage);
-        in.sin_cage = std::sin(cage);
-        in.groove_centre_radius = 0.05;
-        in.cos_a0 = std::cos(0.3);
-        in.groove_centre_distance = A;
-        in.clearance = g0;
-        in.sign = trial % 2 ? 1.0 : -1.0;
-        in.stiffness = kn;
-        in.damping = cn;
-        in.groove_centre_z = 0.01 * u(rng);
-        in.normal_z = std::sin(0.3) * (trial % 3 ? 1.0 : -1.0);
-        in.q = q;
-        in.q_dot = qd;
-        // Loaded-centre distance |v| of each ball, to place its deflection exactly.
+        const double cage = 3.0 * u(rng), sg = trial % 2 ? 1.0 : -1.0;
+        const double row_z = 0.01 * u(rng);
         for (int b = 0; b < n; ++b) {
           const double phi = 6.283185307179586 * b / n + 0.01 * u(rng);
           cb[b] = std::cos(phi);
           sb[b] = std::sin(phi);
-          off[b] = 2e-5 * u(rng);
+          const bool row0 = (b / 2) % 2 == 0;  // rows interleaved in runs of two
+          gz[b] = row0 ? row_z : -row_z;
+          nz[b] = (row0 ? 1.0 : -1.0) * std::sin(a0);
         }
-        in.cos_base = cb.data();
-        in.sin_base = sb.data();
-        in.offset = off.data();
-        in.n = n;
-        // Deflection without offsets, per ball, from a one-ball scalar run's geometry.
+        const detail::ContactKernelInput in{std::cos(cage), std::sin(cage), rho, std::cos(a0), A, g0, sg, kn, cn,
+                                            q, qd, cb.data(), sb.data(), gz.data(), nz.data(), off.data(), n};
+        // Place each ball's deflection: the bare one (no offset) from a one-ball scalar
+        // run's geometry, |v| - A - g0.
         for (int b = 0; b < n; ++b) {
           const double cphi = in.cos_cage * cb[b] - in.sin_cage * sb[b];
           const double sphi = in.sin_cage * cb[b] + in.cos_cage * sb[b];
-          const double s = in.sign, pz = in.groove_centre_z, rho = in.groove_centre_radius;
-          const double vx = A * in.cos_a0 * cphi - s * (q[0] + q[4] * pz);
-          const double vy = A * in.cos_a0 * sphi - s * (q[1] - q[3] * pz);
-          const double vz = A * in.normal_z - s * (q[2] + q[3] * rho * sphi - q[4] * rho * cphi);
+          const double vx = A * in.cos_a0 * cphi - sg * (q[0] + q[4] * gz[b]);
+          const double vy = A * in.cos_a0 * sphi - sg * (q[1] - q[3] * gz[b]);
+          const double vz = A * nz[b] - sg * (q[2] + q[3] * rho * sphi - q[4] * rho * cphi);
           const double bare = std::sqrt(vx * vx + vy * vy + vz * vz) - A - g0;
           switch (b % 5) {
             case 0: off[b] = 1e-12 - bare; break;   // just touching
             case 1: off[b] = -1e-12 - bare; break;  // just leaving
             case 2: off[b] = -1e-3; break;          // inside a spall
-            case 3: off[b] = 1e-9 - bare; break;    // light contact: damping can pull its load negative
-            default: break;                         // random
+            case 3: off[b] = 1e-9 - bare; break;    // light contact: damping may pull its load negative
+            default: off[b] = 2e-5 * u(rng); break; // random
+          }
+          if (b % 5 == 3) {
+            const detail::ContactKernelInput one{in.cos_cage, in.sin_cage, rho, in.cos_a0, A, g0, sg, kn, cn, q, qd,
+                                                 &cb[b], &sb[b], &gz[b], &nz[b], &off[b], 1};
+            const detail::ContactSums s = detail::contact_sums_scalar(one);
+            if (s.x == 0.0 && s.y == 0.0 && s.z == 0.0) ++pulled_negative;
           }
         }
         const detail::ContactSums ref = detail::contact_sums_scalar(in);
-        detail::ContactSums simd;
-        detail::contact_sums_simd(&in, 1, &simd);
-        // Load scale: what a ball at the largest deflection here would carry (N); the sums
-        // are of |v|-normalized loads times |v| (~A), i.e. forces. Each ball's force has
-        // relative rounding of a few 1e-16 (sqrt, div and FMA are correctly rounded, only
-        // their grouping differs), and n <= 207 terms summed in another order add at most
-        // ~n * 1e-16 of the total: 1e-12 of the scale bounds it with margin.
-        // Deflections here stay below ~3e-5 m and rates below ~0.1 m/s.
+        const detail::ContactSums simd = detail::contact_sums_simd(in);
+        // Load scale: n balls at the largest deflection here (~3e-5 m) and rate (~0.1 m/s),
+        // in N. Each ball's term has a relative rounding error of a few 1e-16 (sqrt and div
+        // are correctly rounded in both; only FMA contraction and grouping differ), but
+        // delta = |v| - A - g0 + offset cancels: |v| ~ A ~ 3e-4 m rounds to ~1e-20 m,
+        // ~1e-15 of a 1e-5 m deflection; and n <= 207 terms summed in another order add
+        // ~n 1e-16 of the sum. 1e-12 of the scale bounds both with a wide margin while
+        // still catching any wrong term (a ball missing or kept is >= 1e-6 of the scale).
         const double scale = n * (kn * std::pow(3e-5, 1.5) + cn * 0.1);
         const double tol = 1e-12 * scale;
+        const double lever = 0.01;  // m: the z-weighted sums are forces times |z| <= 0.01 m
         EXPECT_NEAR(simd.x, ref.x, tol) << "n " << n << " trial " << trial;
         EXPECT_NEAR(simd.y, ref.y, tol) << "n " << n << " trial " << trial;
         EXPECT_NEAR(simd.z, ref.z, tol) << "n " << n << " trial " << trial;
         EXPECT_NEAR(simd.z_cos, ref.z_cos, tol) << "n " << n << " trial " << trial;
         EXPECT_NEAR(simd.z_sin, ref.z_sin, tol) << "n " << n << " trial " << trial;
+        EXPECT_NEAR(simd.x_z, ref.x_z, tol * lever) << "n " << n << " trial " << trial;
+        EXPECT_NEAR(simd.y_z, ref.y_z, tol * lever) << "n " << n << " trial " << trial;
       }
     }
   });
+  // The damping case must really occur, or the test would not cover it.
+  EXPECT_GT(pulled_negative, 0);
 }
 
 TEST(ContactKernel, ReportsTheCpuAndSimdTarget) {
