@@ -297,6 +297,11 @@ Vector5 BearingModel::contact_force_and_stiffness(const Vector5& q, const Rollin
   return f;
 }
 
+// Also built for AVX2 and picked at load time (the default build is baseline x86-64);
+// "avx2" without "fma" keeps the arithmetic, and so the results, identical.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
 void BearingModel::deflections(const Vector5& q, const RollingPhase& phase, const BallArrays& balls,
                                std::vector<double>* out, bool include_spalls) const {
   const double cc = std::cos(phase.cage), sc = std::sin(phase.cage);
