@@ -16,3 +16,7 @@ foreach(test_source ${BEARING_SIM_CORE_TESTS})
     BEARING_SIM_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
   bearing_sim_optimize(${test_name})
 endforeach()
+# The kernel test forces the Highway dispatcher onto each SIMD target in turn.
+if(TARGET test_contact_kernel)
+  target_link_libraries(test_contact_kernel hwy::hwy)
+endif()

@@ -227,7 +227,6 @@ const double* BearingModel::offsets_at(const RollingPhase& phase, const BallArra
 
 Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
                                     const BallArrays& balls, ContactKernel kernel) const {
-  detail::ContactKernelInput in;
   // The stages of a sample come back to the same cage angle (mid stages, step ends).
   thread_local double last_cage = 0.0, cos_cage = 1.0, sin_cage = 0.0;
   if (phase.cage != last_cage) {
@@ -235,36 +234,31 @@ Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, cons
     cos_cage = std::cos(phase.cage);
     sin_cage = std::sin(phase.cage);
   }
-  in.cos_cage = cos_cage;
-  in.sin_cage = sin_cage;
-  in.groove_centre_radius = groove_centre_radius_;
-  in.cos_a0 = cos_a0_;
-  in.groove_centre_distance = groove_centre_distance_;
-  in.clearance = config_.clearance_m;
-  in.sign = moving_sign_;
-  in.stiffness = contact_stiffness_;
-  in.damping = config_.contact_damping_Ns_per_m;
-  in.q = q.data();
-  in.q_dot = q_dot.data();
-  const double* offset = offsets_at(phase, balls);
-  const bool fastest = kernel == ContactKernel::Fastest && detail::avx512_kernel_available();
-  // Per row: force = sign sum s v; moment = sign sum s (p x v) with p = (rho cphi, rho sphi, z_r).
-  Vector5 f = Vector5::Zero();
-  for (const BallArrays::RowRun& run : balls.row_runs) {
-    in.groove_centre_z = balls.groove_centre_z[run.begin];
-    in.normal_z = balls.normal_z[run.begin];
-    in.cos_base = balls.cos_base.data() + run.begin;
-    in.sin_base = balls.sin_base.data() + run.begin;
-    in.offset = offset + run.begin;
-    in.n = static_cast<int>(run.end - run.begin);
-    const detail::ContactSums s = fastest ? detail::contact_sums_avx512(in) : detail::contact_sums_portable(in);
-    const double pz = in.groove_centre_z, rho = groove_centre_radius_;
-    f[0] += s.x;
-    f[1] += s.y;
-    f[2] += s.z;
-    f[3] += rho * s.z_sin - pz * s.y;
-    f[4] += pz * s.x - rho * s.z_cos;
-  }
+  // All balls in one kernel call, whatever their row (each carries its groove centre's z
+  // and normal slope): one call per force evaluation keeps small bearings cheap.
+  const detail::ContactKernelInput in{cos_cage,
+                                      sin_cage,
+                                      groove_centre_radius_,
+                                      cos_a0_,
+                                      groove_centre_distance_,
+                                      config_.clearance_m,
+                                      moving_sign_,
+                                      contact_stiffness_,
+                                      config_.contact_damping_Ns_per_m,
+                                      q.data(),
+                                      q_dot.data(),
+                                      balls.cos_base.data(),
+                                      balls.sin_base.data(),
+                                      balls.groove_centre_z.data(),
+                                      balls.normal_z.data(),
+                                      offsets_at(phase, balls),
+                                      static_cast<int>(balls.size())};
+  const detail::ContactSums s =
+      kernel == ContactKernel::Fastest ? detail::contact_sums_simd(in) : detail::contact_sums_scalar(in);
+  // force = sign sum s v; moment = sign sum s (p x v) with p = (rho cphi, rho sphi, z).
+  const double rho = groove_centre_radius_;
+  Vector5 f;
+  f << s.x, s.y, s.z, rho * s.z_sin - s.y_z, s.x_z - rho * s.z_cos;
   return moving_sign_ * f;
 }
 
@@ -303,6 +297,11 @@ Vector5 BearingModel::contact_force_and_stiffness(const Vector5& q, const Rollin
   return f;
 }
 
+// Also built for AVX2 and picked at load time (the default build is baseline x86-64);
+// "avx2" without "fma" keeps the arithmetic, and so the results, identical.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
 void BearingModel::deflections(const Vector5& q, const RollingPhase& phase, const BallArrays& balls,
                                std::vector<double>* out, bool include_spalls) const {
   const double cc = std::cos(phase.cage), sc = std::sin(phase.cage);

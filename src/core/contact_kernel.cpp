@@ -1,130 +1,154 @@
+// Compiled once per Highway target (hwy/foreach_target.h re-includes this file with the
+// target's attributes); the dispatcher picks the best one the CPU runs.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "core/contact_kernel.cpp"
+#include "hwy/foreach_target.h"  // IWYU pragma: keep
+#include "hwy/highway.h"
+
 #include "contact_kernel.hpp"
 
 #include <cmath>
 
-#if defined(__AVX512F__)
-#include <immintrin.h>
-#endif
+// Per ball b, with z = groove_centre_z[b], nz = normal_z[b] and s = sign (MODEL.md section 2):
+//   loaded centre vector v = A e0 - s u = (a_ca cphi + vx0, a_ca sphi + vy0, vz0 + vz_s sphi + vz_c cphi),
+//     vx0 = -s (q0 + q4 z), vy0 = -s (q1 - q3 z), vz0 = A nz - s q2;
+//   w = s du/dt = (wx0, wy0, wz0 + wz_s sphi + wz_c cphi),
+//     wx0 = s (d0 + d4 z), wy0 = s (d1 - d3 z).
 
-#include "bearing_sim/core/errors.hpp"
-
+HWY_BEFORE_NAMESPACE();
 namespace bearing_sim::detail {
-namespace {
-// The terms of the loaded centre vector v = A e0 - sign u (MODEL.md section 2) and of the
-// rate sign G q_dot that do not depend on the ball within a row:
-//   v = (a_ca cphi + vx0, a_ca sphi + vy0, vz0 + vz_s sphi + vz_c cphi),
-//   w = (wx0, wy0, wz0 + wz_s sphi + wz_c cphi).
-struct RowTerms {
-  double a_ca, vx0, vy0, vz0, vz_s, vz_c, wx0, wy0, wz0, wz_s, wz_c, a_g0;
-};
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
 
-RowTerms row_terms(const ContactKernelInput& in) {
-  const double s = in.sign, rho = in.groove_centre_radius, pz = in.groove_centre_z;
+ContactSums ContactSumsAll(const ContactKernelInput& in) {
+  const hn::ScalableTag<double> d;
+  using V = hn::Vec<decltype(d)>;
+  const std::size_t N = hn::Lanes(d);
+  const double sg = in.sign, rho = in.groove_centre_radius, A = in.groove_centre_distance;
   const double* q = in.q;
-  const double* d = in.q_dot;
-  RowTerms t;
-  t.a_ca = in.groove_centre_distance * in.cos_a0;
-  t.vx0 = -s * (q[0] + q[4] * pz);
-  t.vy0 = -s * (q[1] - q[3] * pz);
-  t.vz0 = in.groove_centre_distance * in.normal_z - s * q[2];
-  t.vz_s = -s * rho * q[3];
-  t.vz_c = s * rho * q[4];
-  t.wx0 = s * (d[0] + d[4] * pz);
-  t.wy0 = s * (d[1] - d[3] * pz);
-  t.wz0 = s * d[2];
-  t.wz_s = s * rho * d[3];
-  t.wz_c = -s * rho * d[4];
-  t.a_g0 = in.groove_centre_distance + in.clearance;
-  return t;
+  const double* qd = in.q_dot;
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
+  const V cc = hn::Set(d, in.cos_cage), sc = hn::Set(d, in.sin_cage);
+  const V s_v = hn::Set(d, sg), ms_v = hn::Set(d, -sg);
+  const V a_ca = hn::Set(d, A * in.cos_a0), a_v = hn::Set(d, A);
+  const V q0 = hn::Set(d, q[0]), q1 = hn::Set(d, q[1]), q3 = hn::Set(d, q[3]), q4 = hn::Set(d, q[4]);
+  const V d0 = hn::Set(d, qd[0]), d1 = hn::Set(d, qd[1]), d3 = hn::Set(d, qd[3]), d4 = hn::Set(d, qd[4]);
+  const V ms_q2 = hn::Set(d, -sg * q[2]), wz0 = hn::Set(d, sg * qd[2]);
+  const V vz_s = hn::Set(d, -sg * rho * q[3]), vz_c = hn::Set(d, sg * rho * q[4]);
+  const V wz_s = hn::Set(d, sg * rho * qd[3]), wz_c = hn::Set(d, -sg * rho * qd[4]);
+  const V a_g0 = hn::Set(d, A + in.clearance);
+  const V kn = hn::Set(d, in.stiffness), cn = hn::Set(d, in.damping);
+  V sx = zero, sy = zero, sz = zero, szc = zero, szs = zero, sxz = zero, syz = zero;
+  auto balls = [&](V cb, V sb, V pz, V nz, V off) HWY_ATTR {
+    const V cphi = hn::MulSub(cc, cb, hn::Mul(sc, sb));
+    const V sphi = hn::MulAdd(sc, cb, hn::Mul(cc, sb));
+    const V vx = hn::MulAdd(a_ca, cphi, hn::Mul(ms_v, hn::MulAdd(q4, pz, q0)));
+    const V vy = hn::MulAdd(a_ca, sphi, hn::Mul(ms_v, hn::NegMulAdd(q3, pz, q1)));
+    const V vz = hn::MulAdd(vz_s, sphi, hn::MulAdd(vz_c, cphi, hn::MulAdd(a_v, nz, ms_q2)));
+    const V norm = hn::Sqrt(hn::MulAdd(vx, vx, hn::MulAdd(vy, vy, hn::Mul(vz, vz))));
+    const V deflection = hn::Add(hn::Sub(norm, a_g0), off);
+    const auto touching = hn::Gt(deflection, zero);
+    const V dp = hn::IfThenElseZero(touching, deflection);
+    const V inv_norm = hn::Div(one, norm);
+    // d(delta)/dt = -e . du/dt.
+    const V wx = hn::Mul(s_v, hn::MulAdd(d4, pz, d0));
+    const V wy = hn::Mul(s_v, hn::NegMulAdd(d3, pz, d1));
+    const V wz = hn::MulAdd(wz_s, sphi, hn::MulAdd(wz_c, cphi, wz0));
+    const V v_dot_w = hn::MulAdd(vx, wx, hn::MulAdd(vy, wy, hn::Mul(vz, wz)));
+    // Q = kn dp^1.5 - cn (v . w) / |v|, kept only while touching and pressing (damping
+    // can pull a leaving ball's load negative: the contact cannot pull).
+    const V load = hn::NegMulAdd(cn, hn::Mul(v_dot_w, inv_norm), hn::Mul(hn::Mul(kn, dp), hn::Sqrt(dp)));
+    const auto pressing = hn::And(touching, hn::Gt(load, zero));
+    const V s = hn::IfThenElseZero(pressing, hn::Mul(load, inv_norm));
+    const V s_vx = hn::Mul(s, vx), s_vy = hn::Mul(s, vy), s_vz = hn::Mul(s, vz);
+    sx = hn::Add(sx, s_vx);
+    sy = hn::Add(sy, s_vy);
+    sz = hn::Add(sz, s_vz);
+    szc = hn::MulAdd(s_vz, cphi, szc);
+    szs = hn::MulAdd(s_vz, sphi, szs);
+    sxz = hn::MulAdd(s_vx, pz, sxz);
+    syz = hn::MulAdd(s_vy, pz, syz);
+  };
+  const std::size_t n = static_cast<std::size_t>(in.n);
+  std::size_t b = 0;
+  for (; b + N <= n; b += N)
+    balls(hn::LoadU(d, in.cos_base + b), hn::LoadU(d, in.sin_base + b), hn::LoadU(d, in.groove_centre_z + b),
+          hn::LoadU(d, in.normal_z + b), hn::LoadU(d, in.offset + b));
+  if (b < n) {
+    // The tail through a padded copy (no read past the arrays): padding lanes are a ball
+    // at the cage angle with a 1 m gap, out of contact, so they add exact zeros.
+    constexpr std::size_t kMaxLanes = HWY_MAX_BYTES / sizeof(double);
+    HWY_ALIGN double cb[kMaxLanes], sb[kMaxLanes], pz[kMaxLanes], nz[kMaxLanes], off[kMaxLanes];
+    for (std::size_t i = 0; i < N; ++i) {
+      const bool real = b + i < n;
+      cb[i] = real ? in.cos_base[b + i] : 1.0;
+      sb[i] = real ? in.sin_base[b + i] : 0.0;
+      pz[i] = real ? in.groove_centre_z[b + i] : 0.0;
+      nz[i] = real ? in.normal_z[b + i] : 0.0;
+      off[i] = real ? in.offset[b + i] : -1.0;
+    }
+    balls(hn::Load(d, cb), hn::Load(d, sb), hn::Load(d, pz), hn::Load(d, nz), hn::Load(d, off));
+  }
+  return ContactSums{hn::GetLane(hn::SumOfLanes(d, sx)),  hn::GetLane(hn::SumOfLanes(d, sy)),
+                     hn::GetLane(hn::SumOfLanes(d, sz)),  hn::GetLane(hn::SumOfLanes(d, szc)),
+                     hn::GetLane(hn::SumOfLanes(d, szs)), hn::GetLane(hn::SumOfLanes(d, sxz)),
+                     hn::GetLane(hn::SumOfLanes(d, syz))};
 }
-}  // namespace
 
-ContactSums contact_sums_portable(const ContactKernelInput& in) {
-  const RowTerms t = row_terms(in);
+const char* TargetName() { return hwy::TargetName(HWY_TARGET); }
+
+}  // namespace HWY_NAMESPACE
+}  // namespace bearing_sim::detail
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace bearing_sim::detail {
+HWY_EXPORT(ContactSumsAll);
+HWY_EXPORT(TargetName);
+
+ContactSums contact_sums_simd(const ContactKernelInput& in) { return HWY_DYNAMIC_DISPATCH(ContactSumsAll)(in); }
+
+const char* contact_kernel_target_name() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }
+
+std::vector<std::int64_t> contact_kernel_compiled_targets() {
+  std::vector<std::int64_t> targets;
+  for (std::int64_t rest = HWY_TARGETS; rest != 0; rest &= rest - 1) targets.push_back(rest & ~(rest - 1));
+  return targets;
+}
+
+ContactSums contact_sums_scalar(const ContactKernelInput& in) {
+  const double sg = in.sign, rho = in.groove_centre_radius, A = in.groove_centre_distance;
+  const double* q = in.q;
+  const double* qd = in.q_dot;
   const double cc = in.cos_cage, sc = in.sin_cage, kn = in.stiffness, cn = in.damping;
-  double sx = 0, sy = 0, sz = 0, szc = 0, szs = 0;
-#pragma omp simd reduction(+ : sx, sy, sz, szc, szs)
+  ContactSums sum{0, 0, 0, 0, 0, 0, 0};
   for (int b = 0; b < in.n; ++b) {
+    const double pz = in.groove_centre_z[b], nz = in.normal_z[b];
     const double cphi = cc * in.cos_base[b] - sc * in.sin_base[b];
     const double sphi = sc * in.cos_base[b] + cc * in.sin_base[b];
-    const double vx = t.a_ca * cphi + t.vx0;
-    const double vy = t.a_ca * sphi + t.vy0;
-    const double vz = t.vz0 + t.vz_s * sphi + t.vz_c * cphi;
+    const double vx = A * in.cos_a0 * cphi - sg * (q[0] + q[4] * pz);
+    const double vy = A * in.cos_a0 * sphi - sg * (q[1] - q[3] * pz);
+    const double vz = A * nz - sg * (q[2] + q[3] * rho * sphi - q[4] * rho * cphi);
     const double norm = std::sqrt(vx * vx + vy * vy + vz * vz);
-    const double deflection = norm - t.a_g0 + in.offset[b];
-    const double dp = deflection > 0.0 ? deflection : 0.0;
+    const double deflection = norm - (A + in.clearance) + in.offset[b];
+    if (deflection <= 0.0) continue;
     // d(delta)/dt = -e . du/dt, with w = sign du/dt.
-    const double wz = t.wz0 + t.wz_s * sphi + t.wz_c * cphi;
-    const double inv_norm = 1.0 / norm;
-    const double rate = -(vx * t.wx0 + vy * t.wy0 + vz * wz) * inv_norm;
-    double load = kn * dp * std::sqrt(dp) + cn * rate;
-    load = (deflection > 0.0 && load > 0.0) ? load : 0.0;
-    const double s = load * inv_norm;
-    const double s_vz = s * vz;
-    sx += s * vx;
-    sy += s * vy;
-    sz += s_vz;
-    szc += s_vz * cphi;
-    szs += s_vz * sphi;
+    const double wx = sg * (qd[0] + qd[4] * pz);
+    const double wy = sg * (qd[1] - qd[3] * pz);
+    const double wz = sg * (qd[2] + qd[3] * rho * sphi - qd[4] * rho * cphi);
+    const double rate = -(vx * wx + vy * wy + vz * wz) / norm;
+    const double load = kn * deflection * std::sqrt(deflection) + cn * rate;
+    if (load <= 0.0) continue;
+    const double s = load / norm;
+    sum.x += s * vx;
+    sum.y += s * vy;
+    sum.z += s * vz;
+    sum.z_cos += s * vz * cphi;
+    sum.z_sin += s * vz * sphi;
+    sum.x_z += s * vx * pz;
+    sum.y_z += s * vy * pz;
   }
-  return ContactSums{sx, sy, sz, szc, szs};
+  return sum;
 }
-
-#if defined(__AVX512F__)
-bool avx512_kernel_available() { return true; }
-
-ContactSums contact_sums_avx512(const ContactKernelInput& in) {
-  const RowTerms t = row_terms(in);
-  const __m512d cc = _mm512_set1_pd(in.cos_cage), sc = _mm512_set1_pd(in.sin_cage);
-  const __m512d a_ca = _mm512_set1_pd(t.a_ca), vx0 = _mm512_set1_pd(t.vx0), vy0 = _mm512_set1_pd(t.vy0);
-  const __m512d vz0 = _mm512_set1_pd(t.vz0), vz_s = _mm512_set1_pd(t.vz_s), vz_c = _mm512_set1_pd(t.vz_c);
-  const __m512d wx0 = _mm512_set1_pd(t.wx0), wy0 = _mm512_set1_pd(t.wy0), wz0 = _mm512_set1_pd(t.wz0);
-  const __m512d wz_s = _mm512_set1_pd(t.wz_s), wz_c = _mm512_set1_pd(t.wz_c);
-  const __m512d a_g0 = _mm512_set1_pd(t.a_g0);
-  const __m512d kn = _mm512_set1_pd(in.stiffness), cn = _mm512_set1_pd(in.damping);
-  const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
-  __m512d sx = zero, sy = zero, sz = zero, szc = zero, szs = zero;
-  for (int b = 0; b < in.n; b += 8) {
-    const __mmask8 lanes = in.n - b >= 8 ? static_cast<__mmask8>(0xFF) : static_cast<__mmask8>((1u << (in.n - b)) - 1u);
-    const __m512d cb = _mm512_maskz_loadu_pd(lanes, in.cos_base + b);
-    const __m512d sb = _mm512_maskz_loadu_pd(lanes, in.sin_base + b);
-    const __m512d off = _mm512_maskz_loadu_pd(lanes, in.offset + b);
-    const __m512d cphi = _mm512_fmsub_pd(cc, cb, _mm512_mul_pd(sc, sb));
-    const __m512d sphi = _mm512_fmadd_pd(sc, cb, _mm512_mul_pd(cc, sb));
-    const __m512d vx = _mm512_fmadd_pd(a_ca, cphi, vx0);
-    const __m512d vy = _mm512_fmadd_pd(a_ca, sphi, vy0);
-    const __m512d vz = _mm512_fmadd_pd(vz_s, sphi, _mm512_fmadd_pd(vz_c, cphi, vz0));
-    const __m512d n2 = _mm512_fmadd_pd(vx, vx, _mm512_fmadd_pd(vy, vy, _mm512_mul_pd(vz, vz)));
-    // Masked-off lanes may hold a zero vector: give them a harmless norm.
-    const __m512d n2_safe = _mm512_mask_blend_pd(lanes, one, n2);
-    const __m512d norm = _mm512_sqrt_pd(n2_safe);
-    const __m512d deflection = _mm512_add_pd(norm, _mm512_sub_pd(off, a_g0));
-    const __m512d inv_norm = _mm512_div_pd(one, norm);
-    const __mmask8 touching = _mm512_mask_cmp_pd_mask(lanes, deflection, zero, _CMP_GT_OQ);
-    const __m512d dp = _mm512_max_pd(deflection, zero);
-    const __m512d sqrt_dp = _mm512_sqrt_pd(dp);
-    const __m512d wz = _mm512_fmadd_pd(wz_s, sphi, _mm512_fmadd_pd(wz_c, cphi, wz0));
-    const __m512d v_dot_w = _mm512_fmadd_pd(vx, wx0, _mm512_fmadd_pd(vy, wy0, _mm512_mul_pd(vz, wz)));
-    // Q = kn dp^1.5 - cn (v . w) / |v|
-    const __m512d load_raw =
-        _mm512_fnmadd_pd(cn, _mm512_mul_pd(v_dot_w, inv_norm), _mm512_mul_pd(_mm512_mul_pd(kn, dp), sqrt_dp));
-    const __mmask8 pressing = _mm512_mask_cmp_pd_mask(touching, load_raw, zero, _CMP_GT_OQ);
-    const __m512d s = _mm512_maskz_mul_pd(pressing, load_raw, inv_norm);
-    const __m512d s_vz = _mm512_mul_pd(s, vz);
-    sx = _mm512_fmadd_pd(s, vx, sx);
-    sy = _mm512_fmadd_pd(s, vy, sy);
-    sz = _mm512_add_pd(sz, s_vz);
-    szc = _mm512_fmadd_pd(s_vz, cphi, szc);
-    szs = _mm512_fmadd_pd(s_vz, sphi, szs);
-  }
-  return ContactSums{_mm512_reduce_add_pd(sx), _mm512_reduce_add_pd(sy), _mm512_reduce_add_pd(sz),
-                     _mm512_reduce_add_pd(szc), _mm512_reduce_add_pd(szs)};
-}
-#else
-bool avx512_kernel_available() { return false; }
-ContactSums contact_sums_avx512(const ContactKernelInput&) {
-  throw InvalidInputError("the AVX-512 contact kernel is not built for this CPU");
-}
-#endif
-
 }  // namespace bearing_sim::detail
+#endif  // HWY_ONCE

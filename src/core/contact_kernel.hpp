@@ -1,36 +1,48 @@
 #pragma once
-// The per-ball contact force loop of BearingModel::contact_force (internal to the core),
-// over one run of balls of the same row: in a row the groove centres share their axial
-// position and contact-normal slope, so the ring's translation and tilt enter as per-row
-// constants and the moments follow from two per-row sums (MODEL.md section 2).
-// One portable loop that the compiler vectorizes, and, where the CPU has AVX-512, the same
-// arithmetic written with its intrinsics: masked loads for the tail and a branch-free
-// contact test, about twice as fast as what the compiler makes of the portable loop.
+// The per-ball contact force loop of BearingModel::contact_force (internal to the core):
+// the force and the moments on the ring follow from seven sums over the balls
+// (MODEL.md section 2).
+// One Google Highway kernel compiled for every SIMD target of the architecture (SSE4, AVX2,
+// AVX-512, ...) and picked at run time for the CPU, so that a portable binary package runs
+// the widest vectors the machine has; and a plain scalar loop, the reference it is tested
+// against.
+#include <cstdint>
+#include <vector>
+
 #include "bearing_sim/core/bearing_model.hpp"
 
 namespace bearing_sim::detail {
 
+// Every ball of a set (both rows in one pass: for small bearings a call per row costs as
+// much as the balls). Plain aggregates, no default member initializers: the force
+// evaluation fills them on the stack for every call.
 struct ContactKernelInput {
-  double cos_cage = 1.0, sin_cage = 0.0;
-  double groove_centre_radius = 0.0, cos_a0 = 1.0, groove_centre_distance = 0.0;
-  double clearance = 0.0, sign = 1.0, stiffness = 0.0, damping = 0.0;
-  double groove_centre_z = 0.0;  // of the row
-  double normal_z = 0.0;         // of the row
-  const double* q = nullptr;
-  const double* q_dot = nullptr;
-  const double* cos_base = nullptr;
-  const double* sin_base = nullptr;
-  const double* offset = nullptr;
-  int n = 0;
+  double cos_cage, sin_cage;
+  double groove_centre_radius, cos_a0, groove_centre_distance;
+  double clearance, sign, stiffness, damping;
+  const double* q;
+  const double* q_dot;
+  const double* cos_base;
+  const double* sin_base;
+  const double* groove_centre_z;  // per ball (of its row)
+  const double* normal_z;         // per ball (of its row)
+  const double* offset;
+  int n;
 };
 
-// Sums over the run of s_b v_b (s_b = Q_b / |v_b|), and of s_b v_bz cos(phi_b), s_b v_bz sin(phi_b).
+// Sums over the balls of s_b v_b (s_b = Q_b / |v_b|), of s_b v_bz cos(phi_b), s_b v_bz sin(phi_b),
+// and of s_b v_bx z_b, s_b v_by z_b (z_b: axial coordinate of the ball's groove centre).
 struct ContactSums {
-  double x = 0.0, y = 0.0, z = 0.0, z_cos = 0.0, z_sin = 0.0;
+  double x, y, z, z_cos, z_sin, x_z, y_z;
 };
 
-ContactSums contact_sums_portable(const ContactKernelInput& in);
-bool avx512_kernel_available();
-ContactSums contact_sums_avx512(const ContactKernelInput& in);  // only if avx512_kernel_available()
+// The reference: one ball after the other, no SIMD.
+ContactSums contact_sums_scalar(const ContactKernelInput& in);
+// The SIMD kernel for the best target of this CPU.
+ContactSums contact_sums_simd(const ContactKernelInput& in);
+// Name of the Highway target contact_sums_simd runs on ("AVX2", "AVX3", "SSE4", ...).
+const char* contact_kernel_target_name();
+// Every Highway target compiled into the kernel (HWY_* bits), whether this CPU runs it or not.
+std::vector<std::int64_t> contact_kernel_compiled_targets();
 
 }  // namespace bearing_sim::detail

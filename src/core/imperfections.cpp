@@ -268,7 +268,12 @@ void Imperfections::fill_ball_set(const std::vector<int>& balls, BallSet* set) c
 
 namespace {
 // out[b] += sum over H harmonics of c_h cos_hb - s_h sin_hb, in one pass over the balls.
+// Also built for AVX2 and picked at load time (the default build is for baseline x86-64);
+// "avx2" without "fma" keeps every clone's arithmetic, and so its results, identical.
 template <int H>
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
 void add_harmonics(const double* coefficients, const double* __restrict terms, int n, double* __restrict out) {
   double c[2 * H];  // in registers, not reloaded per ball
   for (int i = 0; i < 2 * H; ++i) c[i] = coefficients[i];

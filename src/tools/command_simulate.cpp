@@ -10,6 +10,7 @@
 
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
+#include "bearing_sim/core/simd_info.hpp"
 #include "bearing_sim/core/simulation_run.hpp"
 #include "commands.hpp"
 #include "tool_common.hpp"
@@ -117,6 +118,9 @@ void run(const SimulateOptions& o) {
                 {"static_displacement", to_json(equilibrium.displacement)},
                 {"varying_compliance_hz", f.varying_compliance_hz},
                 {"realtime_factor", s.realtime_factor},
+                // The realtime factor depends on these: the CPU and the kernel's SIMD target.
+                {"cpu", cpu_model_name()},
+                {"simd_target", simd_target_name()},
                 {"csv", o.csv.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.csv)}});
     return;
   }
@@ -132,7 +136,8 @@ void run(const SimulateOptions& o) {
                               general(o.duration_s, 6) + " s)");
   run_info.add("integration", std::to_string(s.substeps) + " RK4 steps per sample, step " +
                                   general(s.internal_step_s * 1e6, 4) + " us");
-  run_info.add("realtime factor", general(s.realtime_factor, 4) + " (simulated s per wall s)");
+  run_info.add("realtime factor", general(s.realtime_factor, 4) + " (simulated s per wall s, " + cpu_model_name() +
+                                       ", SIMD " + simd_target_name() + ")");
   run_info.add("varying compliance", fixed(f.varying_compliance_hz, 3) + " Hz");
   if (csv) run_info.add("CSV", o.csv);
   run_info.print(out);

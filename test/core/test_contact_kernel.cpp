@@ -1,15 +1,46 @@
-// The fast contact-force loop (AVX-512 where the CPU has it) must give the portable
-// loop's forces: same formulas and correctly rounded square roots, only the order of the
-// operations and of the sums differs.
+// The SIMD contact kernel (Google Highway, one variant per SIMD target, picked at run time)
+// must give the plain scalar loop's forces, for every target compiled in that this CPU can
+// run: same formulas and correctly rounded square roots and divisions; only fused
+// multiply-adds and the order of the sums differ.
 #include <gtest/gtest.h>
 
+#include <hwy/targets.h>
+
+#include <cmath>
+#include <iostream>
 #include <random>
 
+#include "../../src/core/contact_kernel.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
+#include "bearing_sim/core/simd_info.hpp"
 #include "test_support.hpp"
 
 namespace bearing_sim {
 namespace {
+
+// Runs body() once per compiled Highway target the CPU supports, with the dispatcher
+// forced to that target; prints which targets were tested and which skipped.
+template <typename Body>
+void for_each_target(const Body& body) {
+  hwy::SetSupportedTargetsForTest(0);
+  const std::int64_t supported = hwy::SupportedTargets();
+  int tested = 0;
+  for (const std::int64_t target : detail::contact_kernel_compiled_targets()) {
+    if ((target & supported) == 0) {
+      std::cout << "[ SKIPPED  ] SIMD target " << hwy::TargetName(target) << ": this CPU cannot run it\n";
+      continue;
+    }
+    hwy::SetSupportedTargetsForTest(target);
+    const std::string name = detail::contact_kernel_target_name();
+    std::cout << "[ TARGET   ] " << name << "\n";
+    EXPECT_EQ(name, hwy::TargetName(target));
+    SCOPED_TRACE("SIMD target " + name);
+    body();
+    ++tested;
+  }
+  hwy::SetSupportedTargetsForTest(0);
+  EXPECT_GT(tested, 0);
+}
 
 void expect_kernels_agree(const BearingModel& model, const Vector5& load) {
   const Vector5 q0 = solve_static(model, load).displacement;
@@ -24,22 +55,110 @@ void expect_kernels_agree(const BearingModel& model, const Vector5& load) {
     }
     const RollingPhase phase{0.1 * trial};
     const Vector5 fast = model.contact_force(q, v, phase, model.balls(), BearingModel::ContactKernel::Fastest);
-    const Vector5 portable = model.contact_force(q, v, phase, model.balls(), BearingModel::ContactKernel::Portable);
-    Vector5 scaled = fast - portable;
+    const Vector5 scalar = model.contact_force(q, v, phase, model.balls(), BearingModel::ContactKernel::Scalar);
+    Vector5 scaled = fast - scalar;
     scaled.tail<2>() /= model.pitch_radius_m();
     // Rounding of a few hundred ball forces summed in a different order: 1e-12 of the load.
     EXPECT_LT(scaled.norm(), 1e-12 * scale) << "trial " << trial;
   }
 }
 
-TEST(ContactKernel, FastAndPortableLoopsAgreeForTheCtBearing) {
-  expect_kernels_agree(BearingModel(test::ct_bearing()), test::ct_load());
+TEST(ContactKernel, SimdAndScalarLoopsAgreeForTheCtBearing) {
+  const BearingModel model(test::ct_bearing());
+  for_each_target([&] { expect_kernels_agree(model, test::ct_load()); });
 }
 
-TEST(ContactKernel, FastAndPortableLoopsAgreeForAPreloadedInnerRingBearing) {
+TEST(ContactKernel, SimdAndScalarLoopsAgreeForAPreloadedInnerRingBearing) {
   BearingConfig c = test::single_row(13, 9.0, 46.0, 25.0, 0.52, 0.53, -3.0,
                                      "rotating_ring: inner\nrotating_mass_kg: 1\ndamping: {contact_damping_Ns_per_m: 300}\n");
-  expect_kernels_agree(BearingModel(c), test::load5(800.0, -300.0, 1500.0, 5.0, -3.0));
+  const BearingModel model(c);
+  for_each_target([&] { expect_kernels_agree(model, test::load5(800.0, -300.0, 1500.0, 5.0, -3.0)); });
+}
+
+// Random ball sets straight into the kernel (balls of two rows mixed), with the edge cases
+// placed on purpose: balls just touching and just leaving (deflection +-1e-12 m), inside a
+// spall (offset -1 mm), damping pulling a touching ball's load negative, and set sizes that
+// are not multiples of any vector width.
+TEST(ContactKernel, SimdAndScalarKernelsAgreeOnRandomBallsWithEdgeCases) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double kn = 1.1e10, cn = 400.0;  // N/m^1.5, N s/m
+  const double A = 3.2e-4, g0 = 1e-5, rho = 0.05, a0 = 0.3;
+  int pulled_negative = 0;
+  for_each_target([&] {
+    for (int n : {1, 3, 7, 8, 207}) {
+      for (int trial = 0; trial < 50; ++trial) {
+        std::vector<double> cb(n), sb(n), gz(n), nz(n), off(n);
+        double q[5], qd[5];
+        for (int i = 0; i < 5; ++i) {
+          q[i] = (i < 3 ? 2e-5 : 1e-4) * u(rng);
+          qd[i] = (i < 3 ? 1e-3 : 1e-2) * u(rng);
+        }
+        const double cage = 3.0 * u(rng), sg = trial % 2 ? 1.0 : -1.0;
+        const double row_z = 0.01 * u(rng);
+        for (int b = 0; b < n; ++b) {
+          const double phi = 6.283185307179586 * b / n + 0.01 * u(rng);
+          cb[b] = std::cos(phi);
+          sb[b] = std::sin(phi);
+          const bool row0 = (b / 2) % 2 == 0;  // rows interleaved in runs of two
+          gz[b] = row0 ? row_z : -row_z;
+          nz[b] = (row0 ? 1.0 : -1.0) * std::sin(a0);
+        }
+        const detail::ContactKernelInput in{std::cos(cage), std::sin(cage), rho, std::cos(a0), A, g0, sg, kn, cn,
+                                            q, qd, cb.data(), sb.data(), gz.data(), nz.data(), off.data(), n};
+        // Place each ball's deflection: the bare one (no offset) from a one-ball scalar
+        // run's geometry, |v| - A - g0.
+        for (int b = 0; b < n; ++b) {
+          const double cphi = in.cos_cage * cb[b] - in.sin_cage * sb[b];
+          const double sphi = in.sin_cage * cb[b] + in.cos_cage * sb[b];
+          const double vx = A * in.cos_a0 * cphi - sg * (q[0] + q[4] * gz[b]);
+          const double vy = A * in.cos_a0 * sphi - sg * (q[1] - q[3] * gz[b]);
+          const double vz = A * nz[b] - sg * (q[2] + q[3] * rho * sphi - q[4] * rho * cphi);
+          const double bare = std::sqrt(vx * vx + vy * vy + vz * vz) - A - g0;
+          switch (b % 5) {
+            case 0: off[b] = 1e-12 - bare; break;   // just touching
+            case 1: off[b] = -1e-12 - bare; break;  // just leaving
+            case 2: off[b] = -1e-3; break;          // inside a spall
+            case 3: off[b] = 1e-9 - bare; break;    // light contact: damping may pull its load negative
+            default: off[b] = 2e-5 * u(rng); break; // random
+          }
+          if (b % 5 == 3) {
+            const detail::ContactKernelInput one{in.cos_cage, in.sin_cage, rho, in.cos_a0, A, g0, sg, kn, cn, q, qd,
+                                                 &cb[b], &sb[b], &gz[b], &nz[b], &off[b], 1};
+            const detail::ContactSums s = detail::contact_sums_scalar(one);
+            if (s.x == 0.0 && s.y == 0.0 && s.z == 0.0) ++pulled_negative;
+          }
+        }
+        const detail::ContactSums ref = detail::contact_sums_scalar(in);
+        const detail::ContactSums simd = detail::contact_sums_simd(in);
+        // Load scale: n balls at the largest deflection here (~3e-5 m) and rate (~0.1 m/s),
+        // in N. Each ball's term has a relative rounding error of a few 1e-16 (sqrt and div
+        // are correctly rounded in both; only FMA contraction and grouping differ), but
+        // delta = |v| - A - g0 + offset cancels: |v| ~ A ~ 3e-4 m rounds to ~1e-20 m,
+        // ~1e-15 of a 1e-5 m deflection; and n <= 207 terms summed in another order add
+        // ~n 1e-16 of the sum. 1e-12 of the scale bounds both with a wide margin while
+        // still catching any wrong term (a ball missing or kept is >= 1e-6 of the scale).
+        const double scale = n * (kn * std::pow(3e-5, 1.5) + cn * 0.1);
+        const double tol = 1e-12 * scale;
+        const double lever = 0.01;  // m: the z-weighted sums are forces times |z| <= 0.01 m
+        EXPECT_NEAR(simd.x, ref.x, tol) << "n " << n << " trial " << trial;
+        EXPECT_NEAR(simd.y, ref.y, tol) << "n " << n << " trial " << trial;
+        EXPECT_NEAR(simd.z, ref.z, tol) << "n " << n << " trial " << trial;
+        EXPECT_NEAR(simd.z_cos, ref.z_cos, tol) << "n " << n << " trial " << trial;
+        EXPECT_NEAR(simd.z_sin, ref.z_sin, tol) << "n " << n << " trial " << trial;
+        EXPECT_NEAR(simd.x_z, ref.x_z, tol * lever) << "n " << n << " trial " << trial;
+        EXPECT_NEAR(simd.y_z, ref.y_z, tol * lever) << "n " << n << " trial " << trial;
+      }
+    }
+  });
+  // The damping case must really occur, or the test would not cover it.
+  EXPECT_GT(pulled_negative, 0);
+}
+
+TEST(ContactKernel, ReportsTheCpuAndSimdTarget) {
+  std::cout << "CPU: " << cpu_model_name() << ", SIMD target: " << simd_target_name() << "\n";
+  EXPECT_FALSE(simd_target_name().empty());
+  EXPECT_FALSE(cpu_model_name().empty());
 }
 
 }  // namespace

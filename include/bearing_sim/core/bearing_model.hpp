@@ -87,7 +87,9 @@ class BearingModel {
 
   // Contact forces and moments on the moving ring, with contact damping (hot path),
   // over every ball or a subset (the others known to be out of contact).
-  enum class ContactKernel { Fastest, Portable };  // Portable: for checking the fast one
+  // Fastest: the SIMD kernel for this CPU's best target (run-time dispatch); Scalar: the plain
+  // reference loop, for checking it.
+  enum class ContactKernel { Fastest, Scalar };
   Vector5 contact_force(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase, const BallArrays& balls,
                         ContactKernel kernel = ContactKernel::Fastest) const;
   Vector5 contact_force(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase) const {
