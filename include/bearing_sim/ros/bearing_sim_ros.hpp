@@ -2,6 +2,9 @@
 // ROS front end of the bearing model: parameters, topics, dynamic_reconfigure and the
 // real-time simulation thread. The physics is all in the core (BearingDynamics).
 #include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -24,6 +27,7 @@
 #include "bearing_sim/ros/health_monitor.hpp"
 #include "bearing_sim/ros/input_validator.hpp"
 #include "bearing_sim/ros/node_diagnostics.hpp"
+#include "bearing_sim/ros/realtime_pacer.hpp"
 #include "bearing_sim/ros/sample_divider.hpp"
 #include "bearing_sim/ros/sample_source.hpp"
 #include "bearing_sim/ros/triaxial_sensor.hpp"
@@ -68,9 +72,22 @@ class BearingSimRos {
   void reject_input(const std::string& reason);
   void publish_model_state();
 
+  // One computed chunk and everything that belongs to its time span (sensor chunks, level,
+  // ball loads, health hand-over, /clock), published together, in order, at its due time.
+  struct ChunkBundle {
+    std::uint64_t last_index = 0;  // of the chunk's last dynamics sample
+    std::size_t samples = 0;
+    std::vector<std::function<void()>> actions;
+  };
+
   // Sim thread only.
   void run();
-  void set_thread_scheduling();
+  ChunkBundle compute_chunk();
+  std::string set_thread_scheduling(int priority);  // description for /diagnostics
+  void lock_memory();
+  // Publisher thread (real time; the sim thread as fast as possible).
+  void run_publisher();
+  void publish_bundle(ChunkBundle& bundle);
   void apply_pending();
   void apply_settings(const OutputSettings& settings);
   void publish_level(const SampleSource::Sample& sample);
@@ -87,7 +104,9 @@ class BearingSimRos {
   LoadRamp load_ramp_;  // sim thread: a new load over ~load_ramp_s (0: a step)
   bool real_time_ = true;
   bool publish_clock_ = false;
-  int realtime_priority_ = 0;  // SCHED_FIFO priority of the sim thread in real time; 0: normal
+  int realtime_priority_ = 0;  // SCHED_FIFO priority of the publisher in real time (sim thread: one less); 0: normal
+  bool lock_memory_ = true;    // mlockall in real time
+  double lead_s_ = 0.03;       // real time: chunks computed up to this far ahead of their due time
   std::string frame_id_, bearing_frame_id_;
   std::string sensor_description_;  // "sensor: <name>" or "ideal ring acceleration"
   double measured_rate_hz_ = 10000.0;  // of `vibration`, L and health: the sensor's output rate, or sample_rate_hz_
@@ -124,8 +143,16 @@ class BearingSimRos {
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<BearingSimConfig>> reconfigure_server_;
 
+  // Real time: chunks computed ahead (sim thread) waiting for their due time (publisher).
+  std::optional<LeadScheduler> scheduler_;
+  RealtimePacer::Clock::time_point wall_start_;
+  std::mutex queue_mutex_;
+  std::condition_variable queue_cv_;
+  std::deque<ChunkBundle> ready_;
+  ChunkBundle* bundle_ = nullptr;  // sim thread: the bundle being filled by compute_chunk
+
   std::atomic<bool> stop_{false};
-  std::thread sim_thread_;
+  std::thread sim_thread_, publisher_thread_;
 };
 
 }  // namespace ros_node
