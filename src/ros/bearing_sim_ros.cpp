@@ -34,10 +34,6 @@ T param(const ros::NodeHandle& pnh, const std::string& name, const T& fallback) 
   return value;
 }
 
-std::size_t window_samples(double window_s, double sample_rate_hz) {
-  return static_cast<std::size_t>(std::max(1.0, std::round(window_s * sample_rate_hz)));
-}
-
 std::string fmt(double v, int decimals) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
@@ -49,11 +45,6 @@ std::string describe(const Spall& s) {
   if (s.surface == Surface::Ball) what += " on ball " + std::to_string(s.ball);
   return what + " at " + fmt(s.position_rad, 3) + " rad, " + fmt(s.width_m * 1e3, 2) + " mm wide, " +
          fmt(s.depth_m * 1e6, 1) + " um deep";
-}
-
-std::size_t sensor_chunk_samples(std::size_t ideal_chunk_samples, int decimation_ratio) {
-  // About the same time span as the ideal chunks.
-  return std::max<std::size_t>(1, ideal_chunk_samples / static_cast<std::size_t>(decimation_ratio));
 }
 
 }  // namespace
@@ -104,30 +95,24 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh),
   accepted_max_pressure_Pa_ = load_check.max_contact_pressure_Pa;
 
   validation_model_ = std::make_unique<BearingModel>(model);
-  source_ = std::make_unique<SampleSource>(
-      BearingDynamics(model, load, speed, DynamicsOptions{sample_rate_hz_, substeps}));
-  substeps_ = source_->dynamics().substeps();
-  assembler_ = std::make_unique<ChunkAssembler>(settings_.chunk_samples);
+  BearingDynamics dynamics(model, load, speed, DynamicsOptions{sample_rate_hz_, substeps});
+  substeps_ = dynamics.substeps();
 
   // Virtual sensor: `vibration` carries what it records, at its output rate.
   const std::string sensor_file = param<std::string>(pnh_, "sensor_file", "");
+  std::unique_ptr<TriaxialSensor> sensor;
   measured_rate_hz_ = sample_rate_hz_;
   sensor_description_ = "ideal ring acceleration";
   if (!sensor_file.empty()) {
     try {
-      sensor_ = std::make_unique<TriaxialSensor>(load_accelerometer_config(sensor_file), sample_rate_hz_);
+      sensor = std::make_unique<TriaxialSensor>(load_accelerometer_config(sensor_file), sample_rate_hz_);
     } catch (const InvalidInputError& e) {
       throw std::runtime_error("sensor file " + sensor_file + " at ~sample_rate_hz " + fmt(sample_rate_hz_, 1) +
                                " Hz: " + e.what());
     }
-    measured_rate_hz_ = sensor_->output_rate_hz();
-    sensor_description_ = "sensor: " + sensor_->config().name;
-    sensor_assembler_ = std::make_unique<ChunkAssembler>(
-        sensor_chunk_samples(settings_.chunk_samples, sensor_->decimation_ratio()));
+    measured_rate_hz_ = sensor->output_rate_hz();
+    sensor_description_ = "sensor: " + sensor->config().name;
   }
-  level_rms_ = std::make_unique<RunningRms>(window_samples(settings_.level_window_s, measured_rate_hz_));
-  level_divider_ = std::make_unique<SampleDivider>(settings_.level_rate_hz, sample_rate_hz_);
-  ball_loads_divider_ = std::make_unique<SampleDivider>(settings_.ball_loads_rate_hz, sample_rate_hz_);
 
   // As fast as possible, everything comes at ~15-30x its rate: deeper queues, so that a
   // subscriber descheduled for a moment (a recorder, the LCM bridge) loses nothing.
@@ -147,7 +132,7 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh),
   health.window_s = param(pnh_, "health_window_s", health.window_s);
   health.life.dynamic_load_rating_N = param(pnh_, "dynamic_load_rating_N", 0.0);
   // Envelope band around the sensor's transmission-path resonance, where impacts ring.
-  const double default_resonance_hz = sensor_ ? sensor_->config().path_resonance_hz : 0.0;
+  const double default_resonance_hz = sensor ? sensor->config().path_resonance_hz : 0.0;
   health.analysis.resonance_hz = param(pnh_, "envelope_resonance_hz", default_resonance_hz);
   health.analysis.envelope_band_width_hz =
       param(pnh_, "envelope_band_width_hz", health.analysis.envelope_band_width_hz);
@@ -157,8 +142,7 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh),
     throw std::runtime_error("~health_rate_hz must be in (0, 100]");
   health_ = std::make_unique<HealthMonitor>(model, load, speed, health,
                                             [this](const HealthReport& r) { publish_health(r); });
-  health_divider_ = std::make_unique<SampleDivider>(health_rate_hz, sample_rate_hz_);
-  health_samples_.reserve(static_cast<std::size_t>(measured_rate_hz_ / health_rate_hz) + 10000);
+  pipeline_ = std::make_unique<SamplePipeline>(std::move(dynamics), std::move(sensor), OutputSettings{}, health_rate_hz);
   publish_model_state();
   diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(diagnostic_period_s),
                                            [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
@@ -362,7 +346,7 @@ void BearingSimRos::apply_pending() {
     pending_ = Pending{};
     pending_flag_ = false;
   }
-  BearingDynamics& dynamics = source_->dynamics();
+  BearingDynamics& dynamics = pipeline_->source().dynamics();
   // Inputs were validated by the callbacks; the core only rejects non-finite values.
   try {
     if (p.model) {
@@ -391,19 +375,7 @@ void BearingSimRos::apply_pending() {
     }
     health_->set_defects(dynamics.model().imperfections().spalls());
   }
-  if (p.settings) apply_settings(*p.settings);
-}
-
-void BearingSimRos::apply_settings(const OutputSettings& s) {
-  if (s.chunk_samples != settings_.chunk_samples) assembler_->set_chunk_samples(s.chunk_samples);
-  if (s.level_window_s != settings_.level_window_s)
-    level_rms_->resize(window_samples(s.level_window_s, measured_rate_hz_));
-  if (sensor_ && s.chunk_samples != settings_.chunk_samples)
-    sensor_assembler_->set_chunk_samples(sensor_chunk_samples(s.chunk_samples, sensor_->decimation_ratio()));
-  if (s.level_rate_hz != settings_.level_rate_hz) level_divider_->set_rate(s.level_rate_hz, sample_rate_hz_);
-  if (s.ball_loads_rate_hz != settings_.ball_loads_rate_hz)
-    ball_loads_divider_->set_rate(s.ball_loads_rate_hz, sample_rate_hz_);
-  settings_ = s;
+  if (p.settings) pipeline_->apply_settings(*p.settings);
 }
 
 ros::Time BearingSimRos::stamp_of(std::uint64_t sample_index) const {
@@ -413,19 +385,21 @@ ros::Time BearingSimRos::stamp_of(std::uint64_t sample_index) const {
   return ros_start_ + offset;
 }
 
-void BearingSimRos::publish_level(const SampleSource::Sample& sample) {
+void BearingSimRos::level(const SampleSource::Sample& sample, double accel_rms, double window_s) {
   VibrationLevel msg;
   msg.header.stamp = stamp_of(sample.index);
   msg.header.frame_id = frame_id_;
-  msg.accel_rms = level_rms_->rms();
-  msg.level_db = vibration_level_db(msg.accel_rms);
-  msg.window_s = static_cast<double>(level_rms_->size()) / measured_rate_hz_;
+  msg.accel_rms = accel_rms;
+  msg.level_db = vibration_level_db(accel_rms);
+  msg.window_s = window_s;
   bundle_->actions.emplace_back([this, msg] { level_pub_.publish(msg); });
 }
 
-void BearingSimRos::publish_ball_loads(const SampleSource::Sample& sample) {
-  if (ball_loads_pub_.getNumSubscribers() == 0) return;  // per-ball states cost a few microseconds per ball
-  const BearingModel& model = source_->dynamics().model();
+bool BearingSimRos::wants_ball_loads() const {
+  return ball_loads_pub_.getNumSubscribers() > 0;  // per-ball states cost a few microseconds per ball
+}
+
+void BearingSimRos::ball_loads(const SampleSource::Sample& sample, const BearingModel& model) {
   BallLoads msg;
   msg.header.stamp = stamp_of(sample.index);
   msg.header.frame_id = bearing_frame_id_;
@@ -434,23 +408,52 @@ void BearingSimRos::publish_ball_loads(const SampleSource::Sample& sample) {
   bundle_->actions.emplace_back([this, msg = std::move(msg)] { ball_loads_pub_.publish(msg); });
 }
 
-void BearingSimRos::publish_sensor_chunk() {
-  SampleChunk chunk = sensor_assembler_->take();
+void BearingSimRos::measured_chunk(SampleChunk&& chunk) {
   // Sensor sample k is the output at dynamics sample (k + 1) R - 1 (docs/sensor.md).
-  const std::uint64_t r = static_cast<std::uint64_t>(sensor_->decimation_ratio());
+  const std::uint64_t r = static_cast<std::uint64_t>(pipeline_->sensor()->decimation_ratio());
   const ros::Time first_stamp = stamp_of((chunk.first_sample + 1) * r - 1);
   VibrationChunk msg;
   fill_vibration_chunk(std::move(chunk), first_stamp, frame_id_, measured_rate_hz_, &msg);
   bundle_->actions.emplace_back([this, msg = std::move(msg)] { vibration_pub_.publish(msg); });
 }
 
-void BearingSimRos::feed_health(bool request, double time_s) {
-  // At the samples' time, with the chunk: the monitor never sees the future.
-  bundle_->actions.emplace_back([this, samples = health_samples_, request, time_s] {
-    health_->push(samples.data(), samples.size());
-    if (request) health_->request_analysis(time_s);
+void BearingSimRos::ideal_chunk(SampleChunk&& chunk) {
+  bundle_->samples = chunk.size();
+  bundle_->last_index = chunk.first_sample + chunk.size() - 1;
+  const ros::Time first_stamp = stamp_of(chunk.first_sample);
+  VibrationChunk msg;
+  fill_vibration_chunk(std::move(chunk), first_stamp, frame_id_, sample_rate_hz_, &msg);
+  const bool ideal_is_vibration = pipeline_->sensor() == nullptr;
+  bundle_->actions.emplace_back([this, msg = std::move(msg), ideal_is_vibration] {
+    if (ideal_is_vibration) vibration_pub_.publish(msg);  // without a sensor `vibration` is the ideal acceleration
+    ideal_pub_.publish(msg);
   });
-  health_samples_.clear();
+}
+
+void BearingSimRos::health_samples(std::vector<float>&& x, std::optional<double> analysis_time_s) {
+  // At the samples' time, with the chunk: the monitor never sees the future.
+  bundle_->actions.emplace_back([this, x = std::move(x), analysis_time_s] {
+    health_->push(x.data(), x.size());
+    if (analysis_time_s) health_->request_analysis(*analysis_time_s);
+  });
+}
+
+void BearingSimRos::chunk_end(std::uint64_t last_index, std::size_t samples, const Vector5& load,
+                              double ring_speed_rad_s) {
+  const double chunk_s = static_cast<double>(samples) / sample_rate_hz_;
+  bundle_->actions.emplace_back([this, load, ring_speed_rad_s, chunk_s] {
+    health_->add_operation(load, ring_speed_rad_s, chunk_s);  // Miner damage for the chunk's inputs
+  });
+  if (publish_clock_) {
+    rosgraph_msgs::Clock clock;
+    clock.clock = stamp_of(last_index);
+    bundle_->actions.emplace_back([this, clock] { clock_pub_.publish(clock); });
+  }
+}
+
+void BearingSimRos::divergence(const std::string& message) {
+  ROS_ERROR_THROTTLE(1.0, "bearing_sim_node: %s; reset to the static equilibrium", message.c_str());
+  diagnostics_->record_divergence(message);
 }
 
 void BearingSimRos::publish_health(const HealthReport& report) {
@@ -527,58 +530,13 @@ void BearingSimRos::lock_memory() {
 BearingSimRos::ChunkBundle BearingSimRos::compute_chunk() {
   ChunkBundle bundle;
   bundle_ = &bundle;
+  SampleSource& source = pipeline_->source();
   bool full = false;
   while (!full) {
     // New inputs take effect from the next sample not yet computed.
     if (pending_flag_.load(std::memory_order_acquire)) apply_pending();
-    if (load_ramp_.active()) source_->dynamics().set_load(load_ramp_.next());
-    const SampleSource::Sample sample = source_->next();
-    if (sample.diverged) {
-      ROS_ERROR_THROTTLE(1.0, "bearing_sim_node: %s; reset to the static equilibrium",
-                         source_->last_divergence().c_str());
-      diagnostics_->record_divergence(source_->last_divergence());
-    }
-    full = assembler_->add(sample.index, *sample.state);
-    // The measured signal (sensor, or the ideal x without one): L and health.
-    bool measured = true;
-    double measured_x = sample.state->acceleration[0];
-    if (sensor_) {
-      Eigen::Vector3d y;
-      measured = sensor_->push(*sample.state, &y);
-      if (measured) {
-        measured_x = y[0];
-        if (sensor_assembler_->add(sensor_assembler_->next_sample(), y, sample.state->displacement))
-          publish_sensor_chunk();
-      }
-    }
-    if (measured) {
-      level_rms_->add(measured_x);
-      health_samples_.push_back(static_cast<float>(measured_x));
-    }
-    if (level_divider_->due(sample.index)) publish_level(sample);
-    if (ball_loads_divider_->due(sample.index)) publish_ball_loads(sample);
-    if (health_divider_->due(sample.index)) feed_health(true, sample.time_s);
-  }
-  SampleChunk chunk = assembler_->take();
-  bundle.samples = chunk.size();
-  bundle.last_index = chunk.first_sample + chunk.size() - 1;
-  const ros::Time first_stamp = stamp_of(chunk.first_sample);
-  VibrationChunk msg;
-  fill_vibration_chunk(std::move(chunk), first_stamp, frame_id_, sample_rate_hz_, &msg);
-  // Hand the measured samples over once per chunk; Miner damage for the chunk's inputs.
-  feed_health(false, 0.0);
-  const Vector5 load = source_->dynamics().load();
-  const double speed = source_->dynamics().ring_speed_rad_s();
-  const double chunk_s = static_cast<double>(bundle.samples) / sample_rate_hz_;
-  bundle.actions.emplace_back([this, msg = std::move(msg), load, speed, chunk_s] {
-    if (!sensor_) vibration_pub_.publish(msg);  // without a sensor `vibration` is the ideal acceleration
-    ideal_pub_.publish(msg);
-    health_->add_operation(load, speed, chunk_s);
-  });
-  if (publish_clock_) {
-    rosgraph_msgs::Clock clock;
-    clock.clock = stamp_of(bundle.last_index);
-    bundle.actions.emplace_back([this, clock] { clock_pub_.publish(clock); });
+    if (load_ramp_.active()) source.dynamics().set_load(load_ramp_.next());
+    full = pipeline_->step(*this);
   }
   bundle_ = nullptr;
   return bundle;
@@ -607,8 +565,8 @@ void BearingSimRos::run() {
       publish_bundle(bundle);
       continue;
     }
-    const std::size_t target = assembler_->current_target();
-    const std::uint64_t last_index = assembler_->next_sample() + target - 1;
+    const std::size_t target = pipeline_->current_chunk_samples();
+    const std::uint64_t last_index = pipeline_->current_chunk_last_index();
     {
       // Wait until the chunk may be computed (its start within the lead, room in the queue);
       // in slices, so that stop and new inputs are noticed.

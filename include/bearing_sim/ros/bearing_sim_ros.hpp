@@ -29,27 +29,22 @@
 #include "bearing_sim/ros/node_diagnostics.hpp"
 #include "bearing_sim/ros/realtime_pacer.hpp"
 #include "bearing_sim/ros/sample_divider.hpp"
+#include "bearing_sim/ros/sample_pipeline.hpp"
 #include "bearing_sim/ros/sample_source.hpp"
 #include "bearing_sim/ros/triaxial_sensor.hpp"
 
 namespace bearing_sim {
 namespace ros_node {
 
-// Outputs that dynamic_reconfigure may change while running.
-struct OutputSettings {
-  std::size_t chunk_samples = 100;
-  double level_window_s = 1.0;
-  double level_rate_hz = 10.0;
-  double ball_loads_rate_hz = 30.0;
-};
-
-class BearingSimRos {
+// The sink of the per-sample pipeline (shared with `bearing_tool generate`): turns its
+// outputs into messages, queued per chunk for their due time.
+class BearingSimRos : private PipelineSink {
  public:
   // Reads the parameters and the bearing file, builds the model at the static
   // equilibrium of the initial load. Throws (ConfigError, LoadNotCarriedError,
   // std::runtime_error) when it cannot start.
   BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh);
-  ~BearingSimRos();
+  ~BearingSimRos() override;
 
   void start();  // the simulation thread
   void stop();
@@ -89,11 +84,15 @@ class BearingSimRos {
   void run_publisher();
   void publish_bundle(ChunkBundle& bundle);
   void apply_pending();
-  void apply_settings(const OutputSettings& settings);
-  void publish_level(const SampleSource::Sample& sample);
-  void publish_ball_loads(const SampleSource::Sample& sample);
-  void publish_sensor_chunk();
-  void feed_health(bool request, double time_s);
+  // PipelineSink (sim thread, inside compute_chunk): into *bundle_.
+  void ideal_chunk(SampleChunk&& chunk) override;
+  void measured_chunk(SampleChunk&& chunk) override;
+  void level(const SampleSource::Sample& sample, double accel_rms, double window_s) override;
+  bool wants_ball_loads() const override;
+  void ball_loads(const SampleSource::Sample& sample, const BearingModel& model) override;
+  void health_samples(std::vector<float>&& x, std::optional<double> analysis_time_s) override;
+  void chunk_end(std::uint64_t last_index, std::size_t samples, const Vector5& load, double ring_speed_rad_s) override;
+  void divergence(const std::string& message) override;
   // Health worker thread.
   void publish_health(const HealthReport& report);
   ros::Time stamp_of(std::uint64_t sample_index) const;
@@ -124,15 +123,8 @@ class BearingSimRos {
   std::atomic<bool> pending_flag_{false};
 
   // Sim thread state.
-  std::unique_ptr<SampleSource> source_;
-  std::unique_ptr<ChunkAssembler> assembler_;
-  std::unique_ptr<RunningRms> level_rms_;
-  std::unique_ptr<SampleDivider> level_divider_, ball_loads_divider_, health_divider_;
-  std::unique_ptr<TriaxialSensor> sensor_;              // null: no sensor, `vibration` is the ideal acceleration
-  std::unique_ptr<ChunkAssembler> sensor_assembler_;    // numbered in sensor samples
-  std::vector<float> health_samples_;                   // measured x since the last hand-over to the monitor
+  std::unique_ptr<SamplePipeline> pipeline_;  // its sensor null: `vibration` is the ideal acceleration
   std::unique_ptr<HealthMonitor> health_;
-  OutputSettings settings_;
   ros::Time ros_start_;
 
   ros::Publisher vibration_pub_, ideal_pub_, level_pub_, ball_loads_pub_, clock_pub_, health_pub_;
