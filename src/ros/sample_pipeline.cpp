@@ -34,7 +34,7 @@ SamplePipeline::SamplePipeline(BearingDynamics dynamics, std::unique_ptr<Triaxia
         std::make_unique<ChunkAssembler>(sensor_chunk_samples(settings.chunk_samples, sensor_->decimation_ratio()));
   if (health_rate_hz > 0.0) {
     health_divider_.emplace(health_rate_hz, sample_rate_hz_);
-    health_samples_.reserve(static_cast<std::size_t>(measured_rate_hz_ / health_rate_hz) + 10000);
+    health_samples_.reserve(settings.chunk_samples + 1);
   }
 }
 
@@ -64,13 +64,20 @@ bool SamplePipeline::step(PipelineSink& sink) {
     sink.ball_loads(sample, source_.dynamics().model());
   sink.sample_done(sample);
   if (health_divider_ && health_divider_->due(sample.index)) {
-    std::vector<float> x = std::move(health_samples_);
-    health_samples_ = std::vector<float>();
-    health_samples_.reserve(x.capacity());
+    std::vector<float> x = take_health_samples();
     sink.health_samples(std::move(x), sample.time_s);
   }
   if (full) close_ideal_chunk(sink);
   return full;
+}
+
+std::vector<float> SamplePipeline::take_health_samples() {
+  // Handed over at least once per chunk: a chunk's worth never reallocates. The sink owns
+  // the vector (the node's publisher thread frees it), hence a fresh one each time.
+  std::vector<float> x = std::move(health_samples_);
+  health_samples_ = std::vector<float>();
+  health_samples_.reserve(assembler_.current_target() + 1);
+  return x;
 }
 
 void SamplePipeline::close_ideal_chunk(PipelineSink& sink) {
@@ -81,9 +88,7 @@ void SamplePipeline::close_ideal_chunk(PipelineSink& sink) {
   sink.ideal_chunk(std::move(chunk));
   // Hand the measured samples over once per chunk; Miner damage for the chunk's inputs.
   if (health_divider_) {
-    std::vector<float> x = std::move(health_samples_);
-    health_samples_ = std::vector<float>();
-    health_samples_.reserve(x.capacity());
+    std::vector<float> x = take_health_samples();
     sink.health_samples(std::move(x), std::nullopt);
   }
   sink.chunk_end(last_index, n, source_.dynamics().load(), source_.dynamics().ring_speed_rad_s());

@@ -97,6 +97,7 @@ class SamplePipeline {
  private:
   void close_ideal_chunk(PipelineSink& sink);
   void close_sensor_chunk(PipelineSink& sink);
+  std::vector<float> take_health_samples();
 
   SampleSource source_;
   std::unique_ptr<TriaxialSensor> sensor_;
