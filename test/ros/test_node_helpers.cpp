@@ -18,6 +18,7 @@
 #include "bearing_sim/ros/input_validator.hpp"
 #include "bearing_sim/ros/realtime_pacer.hpp"
 #include "bearing_sim/ros/sample_divider.hpp"
+#include "bearing_sim/ros/sample_pipeline.hpp"
 #include "bearing_sim/ros/sample_source.hpp"
 #include "bearing_sim/ros/timing_stats.hpp"
 
@@ -307,4 +308,57 @@ TEST(TimingStats, PercentilesOfTheRecentValues) {
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
+}
+
+namespace {
+// Records what the pipeline hands out, in order.
+struct RecordingSink : PipelineSink {
+  std::vector<std::pair<std::uint64_t, std::size_t>> chunks;  // first sample, size
+  std::vector<std::uint64_t> chunk_ends;
+  std::size_t health_handed = 0, levels = 0;
+  std::vector<double> analyses;
+  std::vector<std::string> order;  // per chunk: ideal, health, end
+  void ideal_chunk(SampleChunk&& c) override {
+    chunks.emplace_back(c.first_sample, c.size());
+    order.push_back("ideal");
+  }
+  void measured_chunk(SampleChunk&&) override { ADD_FAILURE() << "no sensor: no measured chunk"; }
+  void level(const SampleSource::Sample&, double, double) override { ++levels; }
+  void health_samples(std::vector<float>&& x, std::optional<double> t) override {
+    health_handed += x.size();
+    if (t) analyses.push_back(*t);
+    else order.push_back("health");
+  }
+  void chunk_end(std::uint64_t last, std::size_t, const Vector5&, double) override {
+    chunk_ends.push_back(last);
+    order.push_back("end");
+  }
+};
+}  // namespace
+
+TEST(SamplePipeline, ContiguousChunksEveryMeasuredSampleHandedOverOnceSettingsFromTheNextChunk) {
+  const BearingModel model(load_bearing_config(kCtBearing));
+  OutputSettings settings;
+  settings.chunk_samples = 100;
+  settings.level_rate_hz = 100.0;
+  SamplePipeline p(BearingDynamics(model, ct_load(), kCtSpeed, DynamicsOptions{10000.0, 0}), nullptr, settings, 50.0);
+  RecordingSink sink;
+  p.run_chunk(sink);
+  EXPECT_EQ(p.current_chunk_last_index(), 199u);
+  settings.chunk_samples = 60;
+  p.apply_settings(settings);  // from the next chunk started: the one from sample 100
+  EXPECT_EQ(p.current_chunk_last_index(), 159u);
+  for (int i = 0; i < 150; ++i) p.step(sink);
+  p.flush(sink);  // the short last one
+  const std::vector<std::pair<std::uint64_t, std::size_t>> expected = {{0, 100}, {100, 60}, {160, 60}, {220, 30}};
+  EXPECT_EQ(sink.chunks, expected);
+  EXPECT_EQ(sink.chunk_ends, (std::vector<std::uint64_t>{99, 159, 219, 249}));
+  EXPECT_EQ(sink.health_handed, 250u);  // every measured sample once
+  EXPECT_EQ(sink.analyses.size(), 1u);  // at 50 Hz: one due within 250 samples (sample 200)
+  EXPECT_EQ(sink.levels, 2u);           // at 100 Hz: samples 100 and 200
+  std::vector<std::string> order;
+  for (int k = 0; k < 4; ++k) order.insert(order.end(), {"ideal", "health", "end"});
+  EXPECT_EQ(sink.order, order);
+  EXPECT_EQ(p.ideal_samples(), 250u);
+  EXPECT_EQ(p.measured_samples(), 250u);
 }
