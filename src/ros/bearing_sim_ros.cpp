@@ -3,6 +3,8 @@
 #include <pthread.h>
 #include <sched.h>
 #include <sys/mman.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cmath>
@@ -516,6 +518,18 @@ void BearingSimRos::lock_memory() {
   // No page fault in the real-time path (the queue, messages, the dynamics' buffers).
   if (!real_time_ || !lock_memory_) {
     diagnostics_->set_realtime_value("memory locked", real_time_ ? "no (~lock_memory false)" : "no (not real time)");
+    return;
+  }
+  // With MCL_FUTURE every later allocation counts against RLIMIT_MEMLOCK and fails beyond
+  // it: lock only when the limit cannot bite (root, unlimited or >= 1 GiB; the node needs
+  // ~100 MB).
+  rlimit limit{};
+  const bool roomy = geteuid() == 0 || (getrlimit(RLIMIT_MEMLOCK, &limit) == 0 &&
+                                        (limit.rlim_cur == RLIM_INFINITY || limit.rlim_cur >= (rlim_t(1) << 30)));
+  if (!roomy) {
+    const std::string why = "RLIMIT_MEMLOCK " + std::to_string(limit.rlim_cur / 1024) + " kB";
+    ROS_WARN("bearing_sim_node: memory not locked (%s; raise it, e.g. ulimit -l unlimited)", why.c_str());
+    diagnostics_->set_realtime_value("memory locked", "no (" + why + ")");
     return;
   }
   if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
