@@ -10,6 +10,7 @@ add_library(bearing_sim_ros_helpers STATIC
   src/ros/timing_stats.cpp
   src/ros/health_monitor.cpp
   src/ros/triaxial_sensor.cpp
+  src/ros/sample_pipeline.cpp
 )
 target_include_directories(bearing_sim_ros_helpers PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
 target_link_libraries(bearing_sim_ros_helpers PUBLIC bearing_sim_core)

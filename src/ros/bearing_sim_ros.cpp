@@ -2,7 +2,11 @@
 
 #include <pthread.h>
 #include <sched.h>
+#include <sys/mman.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -32,10 +36,6 @@ T param(const ros::NodeHandle& pnh, const std::string& name, const T& fallback) 
   return value;
 }
 
-std::size_t window_samples(double window_s, double sample_rate_hz) {
-  return static_cast<std::size_t>(std::max(1.0, std::round(window_s * sample_rate_hz)));
-}
-
 std::string fmt(double v, int decimals) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
@@ -47,11 +47,6 @@ std::string describe(const Spall& s) {
   if (s.surface == Surface::Ball) what += " on ball " + std::to_string(s.ball);
   return what + " at " + fmt(s.position_rad, 3) + " rad, " + fmt(s.width_m * 1e3, 2) + " mm wide, " +
          fmt(s.depth_m * 1e6, 1) + " um deep";
-}
-
-std::size_t sensor_chunk_samples(std::size_t ideal_chunk_samples, int decimation_ratio) {
-  // About the same time span as the ideal chunks.
-  return std::max<std::size_t>(1, ideal_chunk_samples / static_cast<std::size_t>(decimation_ratio));
 }
 
 }  // namespace
@@ -71,6 +66,10 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh),
   real_time_ = param(pnh_, "real_time", true);
   publish_clock_ = param(pnh_, "publish_clock", !real_time_);
   realtime_priority_ = param(pnh_, "realtime_priority", 0);
+  lock_memory_ = param(pnh_, "lock_memory", true);
+  const double lead_ms = param(pnh_, "lead_ms", 30.0);
+  if (!(lead_ms >= 0.0) || lead_ms > 1000.0) throw std::runtime_error("~lead_ms must be in [0, 1000] ms");
+  lead_s_ = lead_ms * 1e-3;
   const bool outer = model.config().rotating_ring == RotatingRing::Outer;
   frame_id_ = param<std::string>(pnh_, "frame_id", outer ? "bearing_outer_ring" : "bearing_inner_ring");
   bearing_frame_id_ = param<std::string>(pnh_, "bearing_frame_id", "bearing");
@@ -98,30 +97,24 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh),
   accepted_max_pressure_Pa_ = load_check.max_contact_pressure_Pa;
 
   validation_model_ = std::make_unique<BearingModel>(model);
-  source_ = std::make_unique<SampleSource>(
-      BearingDynamics(model, load, speed, DynamicsOptions{sample_rate_hz_, substeps}));
-  substeps_ = source_->dynamics().substeps();
-  assembler_ = std::make_unique<ChunkAssembler>(settings_.chunk_samples);
+  BearingDynamics dynamics(model, load, speed, DynamicsOptions{sample_rate_hz_, substeps});
+  substeps_ = dynamics.substeps();
 
   // Virtual sensor: `vibration` carries what it records, at its output rate.
   const std::string sensor_file = param<std::string>(pnh_, "sensor_file", "");
+  std::unique_ptr<TriaxialSensor> sensor;
   measured_rate_hz_ = sample_rate_hz_;
   sensor_description_ = "ideal ring acceleration";
   if (!sensor_file.empty()) {
     try {
-      sensor_ = std::make_unique<TriaxialSensor>(load_accelerometer_config(sensor_file), sample_rate_hz_);
+      sensor = std::make_unique<TriaxialSensor>(load_accelerometer_config(sensor_file), sample_rate_hz_);
     } catch (const InvalidInputError& e) {
       throw std::runtime_error("sensor file " + sensor_file + " at ~sample_rate_hz " + fmt(sample_rate_hz_, 1) +
                                " Hz: " + e.what());
     }
-    measured_rate_hz_ = sensor_->output_rate_hz();
-    sensor_description_ = "sensor: " + sensor_->config().name;
-    sensor_assembler_ = std::make_unique<ChunkAssembler>(
-        sensor_chunk_samples(settings_.chunk_samples, sensor_->decimation_ratio()));
+    measured_rate_hz_ = sensor->output_rate_hz();
+    sensor_description_ = "sensor: " + sensor->config().name;
   }
-  level_rms_ = std::make_unique<RunningRms>(window_samples(settings_.level_window_s, measured_rate_hz_));
-  level_divider_ = std::make_unique<SampleDivider>(settings_.level_rate_hz, sample_rate_hz_);
-  ball_loads_divider_ = std::make_unique<SampleDivider>(settings_.ball_loads_rate_hz, sample_rate_hz_);
 
   // As fast as possible, everything comes at ~15-30x its rate: deeper queues, so that a
   // subscriber descheduled for a moment (a recorder, the LCM bridge) loses nothing.
@@ -141,7 +134,7 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh),
   health.window_s = param(pnh_, "health_window_s", health.window_s);
   health.life.dynamic_load_rating_N = param(pnh_, "dynamic_load_rating_N", 0.0);
   // Envelope band around the sensor's transmission-path resonance, where impacts ring.
-  const double default_resonance_hz = sensor_ ? sensor_->config().path_resonance_hz : 0.0;
+  const double default_resonance_hz = sensor ? sensor->config().path_resonance_hz : 0.0;
   health.analysis.resonance_hz = param(pnh_, "envelope_resonance_hz", default_resonance_hz);
   health.analysis.envelope_band_width_hz =
       param(pnh_, "envelope_band_width_hz", health.analysis.envelope_band_width_hz);
@@ -151,8 +144,7 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh),
     throw std::runtime_error("~health_rate_hz must be in (0, 100]");
   health_ = std::make_unique<HealthMonitor>(model, load, speed, health,
                                             [this](const HealthReport& r) { publish_health(r); });
-  health_divider_ = std::make_unique<SampleDivider>(health_rate_hz, sample_rate_hz_);
-  health_samples_.reserve(static_cast<std::size_t>(measured_rate_hz_ / health_rate_hz) + 10000);
+  pipeline_ = std::make_unique<SamplePipeline>(std::move(dynamics), std::move(sensor), OutputSettings{}, health_rate_hz);
   publish_model_state();
   diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(diagnostic_period_s),
                                            [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
@@ -186,13 +178,26 @@ BearingSimRos::~BearingSimRos() { stop(); }
 void BearingSimRos::start() {
   if (sim_thread_.joinable()) return;
   stop_ = false;
+  lock_memory();
   health_->start();
+  // Real time: stamps on the ROS clock, sample 0 at start. Otherwise simulated time itself
+  // is the clock (published on /clock).
+  wall_start_ = RealtimePacer::Clock::now();
+  ros_start_ = real_time_ ? ros::Time::now() : ros::Time(0, 0);
+  const auto lead = std::chrono::duration_cast<RealtimePacer::Clock::duration>(std::chrono::duration<double>(lead_s_));
+  scheduler_.emplace(RealtimePacer(sample_rate_hz_, wall_start_), lead);
+  if (real_time_) {
+    diagnostics_->set_realtime_value("lead (ms)", fmt(lead_s_ * 1e3, 1));
+    publisher_thread_ = std::thread([this] { run_publisher(); });
+  }
   sim_thread_ = std::thread([this] { run(); });
 }
 
 void BearingSimRos::stop() {
   stop_ = true;
+  queue_cv_.notify_all();
   if (sim_thread_.joinable()) sim_thread_.join();
+  if (publisher_thread_.joinable()) publisher_thread_.join();
   if (health_) health_->stop();  // its callback publishes: stop it before the publishers go
 }
 
@@ -343,7 +348,7 @@ void BearingSimRos::apply_pending() {
     pending_ = Pending{};
     pending_flag_ = false;
   }
-  BearingDynamics& dynamics = source_->dynamics();
+  BearingDynamics& dynamics = pipeline_->source().dynamics();
   // Inputs were validated by the callbacks; the core only rejects non-finite values.
   try {
     if (p.model) {
@@ -372,19 +377,7 @@ void BearingSimRos::apply_pending() {
     }
     health_->set_defects(dynamics.model().imperfections().spalls());
   }
-  if (p.settings) apply_settings(*p.settings);
-}
-
-void BearingSimRos::apply_settings(const OutputSettings& s) {
-  if (s.chunk_samples != settings_.chunk_samples) assembler_->set_chunk_samples(s.chunk_samples);
-  if (s.level_window_s != settings_.level_window_s)
-    level_rms_->resize(window_samples(s.level_window_s, measured_rate_hz_));
-  if (sensor_ && s.chunk_samples != settings_.chunk_samples)
-    sensor_assembler_->set_chunk_samples(sensor_chunk_samples(s.chunk_samples, sensor_->decimation_ratio()));
-  if (s.level_rate_hz != settings_.level_rate_hz) level_divider_->set_rate(s.level_rate_hz, sample_rate_hz_);
-  if (s.ball_loads_rate_hz != settings_.ball_loads_rate_hz)
-    ball_loads_divider_->set_rate(s.ball_loads_rate_hz, sample_rate_hz_);
-  settings_ = s;
+  if (p.settings) pipeline_->apply_settings(*p.settings);
 }
 
 ros::Time BearingSimRos::stamp_of(std::uint64_t sample_index) const {
@@ -394,41 +387,75 @@ ros::Time BearingSimRos::stamp_of(std::uint64_t sample_index) const {
   return ros_start_ + offset;
 }
 
-void BearingSimRos::publish_level(const SampleSource::Sample& sample) {
+void BearingSimRos::level(const SampleSource::Sample& sample, double accel_rms, double window_s) {
   VibrationLevel msg;
   msg.header.stamp = stamp_of(sample.index);
   msg.header.frame_id = frame_id_;
-  msg.accel_rms = level_rms_->rms();
-  msg.level_db = vibration_level_db(msg.accel_rms);
-  msg.window_s = static_cast<double>(level_rms_->size()) / measured_rate_hz_;
-  level_pub_.publish(msg);
+  msg.accel_rms = accel_rms;
+  msg.level_db = vibration_level_db(accel_rms);
+  msg.window_s = window_s;
+  bundle_->actions.emplace_back([this, msg] { level_pub_.publish(msg); });
 }
 
-void BearingSimRos::publish_ball_loads(const SampleSource::Sample& sample) {
-  if (ball_loads_pub_.getNumSubscribers() == 0) return;  // per-ball states cost a few microseconds per ball
-  const BearingModel& model = source_->dynamics().model();
+bool BearingSimRos::wants_ball_loads() const {
+  return ball_loads_pub_.getNumSubscribers() > 0;  // per-ball states cost a few microseconds per ball
+}
+
+void BearingSimRos::ball_loads(const SampleSource::Sample& sample, const BearingModel& model) {
   BallLoads msg;
   msg.header.stamp = stamp_of(sample.index);
   msg.header.frame_id = bearing_frame_id_;
   fill_ball_loads(model.ball_states(sample.state->displacement, sample.state->cage_angle_rad), model.rows(),
                   model.balls_per_row(), sample.state->cage_angle_rad, &msg);
-  ball_loads_pub_.publish(msg);
+  bundle_->actions.emplace_back([this, msg = std::move(msg)] { ball_loads_pub_.publish(msg); });
 }
 
-void BearingSimRos::publish_sensor_chunk() {
-  SampleChunk chunk = sensor_assembler_->take();
+void BearingSimRos::measured_chunk(SampleChunk&& chunk) {
   // Sensor sample k is the output at dynamics sample (k + 1) R - 1 (docs/sensor.md).
-  const std::uint64_t r = static_cast<std::uint64_t>(sensor_->decimation_ratio());
+  const std::uint64_t r = static_cast<std::uint64_t>(pipeline_->sensor()->decimation_ratio());
   const ros::Time first_stamp = stamp_of((chunk.first_sample + 1) * r - 1);
   VibrationChunk msg;
   fill_vibration_chunk(std::move(chunk), first_stamp, frame_id_, measured_rate_hz_, &msg);
-  vibration_pub_.publish(msg);
+  bundle_->actions.emplace_back([this, msg = std::move(msg)] { vibration_pub_.publish(msg); });
 }
 
-void BearingSimRos::feed_health(bool request, double time_s) {
-  health_->push(health_samples_.data(), health_samples_.size());
-  health_samples_.clear();
-  if (request) health_->request_analysis(time_s);
+void BearingSimRos::ideal_chunk(SampleChunk&& chunk) {
+  bundle_->samples = chunk.size();
+  bundle_->last_index = chunk.first_sample + chunk.size() - 1;
+  const ros::Time first_stamp = stamp_of(chunk.first_sample);
+  VibrationChunk msg;
+  fill_vibration_chunk(std::move(chunk), first_stamp, frame_id_, sample_rate_hz_, &msg);
+  const bool ideal_is_vibration = pipeline_->sensor() == nullptr;
+  bundle_->actions.emplace_back([this, msg = std::move(msg), ideal_is_vibration] {
+    if (ideal_is_vibration) vibration_pub_.publish(msg);  // without a sensor `vibration` is the ideal acceleration
+    ideal_pub_.publish(msg);
+  });
+}
+
+void BearingSimRos::health_samples(std::vector<float>&& x, std::optional<double> analysis_time_s) {
+  // At the samples' time, with the chunk: the monitor never sees the future.
+  bundle_->actions.emplace_back([this, x = std::move(x), analysis_time_s] {
+    health_->push(x.data(), x.size());
+    if (analysis_time_s) health_->request_analysis(*analysis_time_s);
+  });
+}
+
+void BearingSimRos::chunk_end(std::uint64_t last_index, std::size_t samples, const Vector5& load,
+                              double ring_speed_rad_s) {
+  const double chunk_s = static_cast<double>(samples) / sample_rate_hz_;
+  bundle_->actions.emplace_back([this, load, ring_speed_rad_s, chunk_s] {
+    health_->add_operation(load, ring_speed_rad_s, chunk_s);  // Miner damage for the chunk's inputs
+  });
+  if (publish_clock_) {
+    rosgraph_msgs::Clock clock;
+    clock.clock = stamp_of(last_index);
+    bundle_->actions.emplace_back([this, clock] { clock_pub_.publish(clock); });
+  }
+}
+
+void BearingSimRos::divergence(const std::string& message) {
+  ROS_ERROR_THROTTLE(1.0, "bearing_sim_node: %s; reset to the static equilibrium", message.c_str());
+  diagnostics_->record_divergence(message);
 }
 
 void BearingSimRos::publish_health(const HealthReport& report) {
@@ -471,94 +498,133 @@ void BearingSimRos::publish_health(const HealthReport& report) {
   diagnostics_->set_health(std::move(status));
 }
 
-void BearingSimRos::set_thread_scheduling() {
+std::string BearingSimRos::set_thread_scheduling(int priority) {
   // With other processes on both cores, a normal thread can wake 5-10 ms late; SCHED_FIFO
-  // wakes it on time. Safe: the thread sleeps about 95 % of each chunk period, and never
-  // asks for it when running as fast as possible.
-  if (!real_time_ || realtime_priority_ <= 0) {
-    diagnostics_->set_scheduling("normal (SCHED_OTHER)");
-    return;
-  }
+  // wakes it on time. Safe: both threads sleep most of each chunk period, and never ask
+  // for it when running as fast as possible.
+  if (!real_time_ || priority <= 0) return "normal (SCHED_OTHER)";
   sched_param p{};
-  p.sched_priority = std::min(realtime_priority_, sched_get_priority_max(SCHED_FIFO));
+  p.sched_priority = std::min(priority, sched_get_priority_max(SCHED_FIFO));
   const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p);
   if (err != 0) {
-    ROS_WARN("bearing_sim_node: cannot use SCHED_FIFO priority %d for the simulation thread (%s); "
-             "running with normal scheduling", p.sched_priority, std::strerror(err));
-    diagnostics_->set_scheduling(std::string("normal (SCHED_FIFO refused: ") + std::strerror(err) + ")");
-  } else {
-    diagnostics_->set_scheduling("SCHED_FIFO priority " + std::to_string(p.sched_priority));
+    ROS_WARN("bearing_sim_node: cannot use SCHED_FIFO priority %d (%s); running with normal scheduling",
+             p.sched_priority, std::strerror(err));
+    return std::string("normal (SCHED_FIFO refused: ") + std::strerror(err) + ")";
   }
+  return "SCHED_FIFO priority " + std::to_string(p.sched_priority);
+}
+
+void BearingSimRos::lock_memory() {
+  // No page fault in the real-time path (the queue, messages, the dynamics' buffers).
+  if (!real_time_ || !lock_memory_) {
+    diagnostics_->set_realtime_value("memory locked", real_time_ ? "no (~lock_memory false)" : "no (not real time)");
+    return;
+  }
+  // With MCL_FUTURE every later allocation counts against RLIMIT_MEMLOCK and fails beyond
+  // it: lock only when the limit cannot bite (root, unlimited or >= 1 GiB; the node needs
+  // ~100 MB).
+  rlimit limit{};
+  const bool roomy = geteuid() == 0 || (getrlimit(RLIMIT_MEMLOCK, &limit) == 0 &&
+                                        (limit.rlim_cur == RLIM_INFINITY || limit.rlim_cur >= (rlim_t(1) << 30)));
+  if (!roomy) {
+    const std::string why = "RLIMIT_MEMLOCK " + std::to_string(limit.rlim_cur / 1024) + " kB";
+    ROS_WARN("bearing_sim_node: memory not locked (%s; raise it, e.g. ulimit -l unlimited)", why.c_str());
+    diagnostics_->set_realtime_value("memory locked", "no (" + why + ")");
+    return;
+  }
+  if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
+    const int err = errno;
+    ROS_WARN("bearing_sim_node: mlockall refused (%s); memory not locked", std::strerror(err));
+    diagnostics_->set_realtime_value("memory locked", std::string("no (mlockall refused: ") + std::strerror(err) + ")");
+  } else {
+    diagnostics_->set_realtime_value("memory locked", "yes (mlockall)");
+  }
+}
+
+BearingSimRos::ChunkBundle BearingSimRos::compute_chunk() {
+  ChunkBundle bundle;
+  bundle_ = &bundle;
+  SampleSource& source = pipeline_->source();
+  bool full = false;
+  while (!full) {
+    // New inputs take effect from the next sample not yet computed.
+    if (pending_flag_.load(std::memory_order_acquire)) apply_pending();
+    if (load_ramp_.active()) source.dynamics().set_load(load_ramp_.next());
+    full = pipeline_->step(*this);
+  }
+  bundle_ = nullptr;
+  return bundle;
+}
+
+void BearingSimRos::publish_bundle(ChunkBundle& bundle) {
+  for (auto& action : bundle.actions) action();
+  const RealtimePacer::Clock::time_point now = RealtimePacer::Clock::now();
+  const double lateness_s = scheduler_->pacer().lateness_s(bundle.last_index, now);
+  const double chunk_period_s = static_cast<double>(bundle.samples) / sample_rate_hz_;
+  diagnostics_->record_chunk(lateness_s, real_time_ && lateness_s > chunk_period_s, bundle.last_index + 1,
+                             static_cast<double>(bundle.last_index + 1) / sample_rate_hz_,
+                             std::chrono::duration<double>(now - wall_start_).count());
 }
 
 void BearingSimRos::run() {
   using Clock = RealtimePacer::Clock;
-  set_thread_scheduling();
+  // Below the publisher: publishing on time matters more than computing ahead.
+  diagnostics_->set_scheduling(set_thread_scheduling(realtime_priority_ > 0 ? std::max(1, realtime_priority_ - 1) : 0));
   apply_pending();  // the initial dynamic_reconfigure settings
-  const Clock::time_point start = Clock::now();
-  // Real time: stamps on the ROS clock, sample 0 at start. Otherwise simulated time itself
-  // is the clock (published on /clock).
-  ros_start_ = real_time_ ? ros::Time::now() : ros::Time(0, 0);
-  const RealtimePacer pacer(sample_rate_hz_, start);
+  const LeadScheduler& scheduler = *scheduler_;
   while (!stop_ && ros::ok()) {
     if (pending_flag_.load(std::memory_order_acquire)) apply_pending();
-    const std::uint64_t last_index = assembler_->next_sample() + assembler_->current_target() - 1;
-    // Compute a chunk only once its last sample is due, so inputs received up to then apply.
-    if (real_time_ && !pacer.sleep_until_due(last_index, stop_)) break;
-    bool full = false;
-    while (!full) {
-      // New inputs take effect from the next sample.
-      if (pending_flag_.load(std::memory_order_acquire)) apply_pending();
-      if (load_ramp_.active()) source_->dynamics().set_load(load_ramp_.next());
-      const SampleSource::Sample sample = source_->next();
-      if (sample.diverged) {
-        ROS_ERROR_THROTTLE(1.0, "bearing_sim_node: %s; reset to the static equilibrium",
-                           source_->last_divergence().c_str());
-        diagnostics_->record_divergence(source_->last_divergence());
-      }
-      full = assembler_->add(sample.index, *sample.state);
-      // The measured signal (sensor, or the ideal x without one): L and health.
-      bool measured = true;
-      double measured_x = sample.state->acceleration[0];
-      if (sensor_) {
-        Eigen::Vector3d y;
-        measured = sensor_->push(*sample.state, &y);
-        if (measured) {
-          measured_x = y[0];
-          if (sensor_assembler_->add(sensor_assembler_->next_sample(), y, sample.state->displacement))
-            publish_sensor_chunk();
-        }
-      }
-      if (measured) {
-        level_rms_->add(measured_x);
-        health_samples_.push_back(static_cast<float>(measured_x));
-      }
-      if (level_divider_->due(sample.index)) publish_level(sample);
-      if (ball_loads_divider_->due(sample.index)) publish_ball_loads(sample);
-      if (health_divider_->due(sample.index)) feed_health(true, sample.time_s);
+    if (!real_time_) {  // as fast as possible: publish each chunk as soon as computed
+      ChunkBundle bundle = compute_chunk();
+      publish_bundle(bundle);
+      continue;
     }
-    SampleChunk chunk = assembler_->take();
-    const std::uint64_t chunk_size = chunk.size();
-    const ros::Time first_stamp = stamp_of(chunk.first_sample);
-    VibrationChunk msg;
-    fill_vibration_chunk(std::move(chunk), first_stamp, frame_id_, sample_rate_hz_, &msg);
-    if (!sensor_) vibration_pub_.publish(msg);  // without a sensor `vibration` is the ideal acceleration
-    ideal_pub_.publish(msg);
-    // Hand the measured samples over once per chunk; Miner damage for the chunk's inputs.
-    feed_health(false, 0.0);
-    health_->add_operation(source_->dynamics().load(), source_->dynamics().ring_speed_rad_s(),
-                           static_cast<double>(chunk_size) / sample_rate_hz_);
-    if (publish_clock_) {
-      rosgraph_msgs::Clock clock;
-      clock.clock = stamp_of(last_index);
-      clock_pub_.publish(clock);
+    const std::size_t target = pipeline_->current_chunk_samples();
+    const std::uint64_t last_index = pipeline_->current_chunk_last_index();
+    {
+      // Wait until the chunk may be computed (its start within the lead, room in the queue);
+      // in slices, so that stop and new inputs are noticed.
+      std::unique_lock<std::mutex> lock(queue_mutex_);
+      const Clock::time_point now = Clock::now();
+      if (!scheduler.may_compute(now, ready_.size(), last_index, target)) {
+        Clock::time_point wake = now + std::chrono::milliseconds(50);
+        if (ready_.size() < scheduler.max_queued(target)) wake = std::min(wake, scheduler.compute_start(last_index));
+        queue_cv_.wait_until(lock, wake);
+        continue;
+      }
     }
-    const Clock::time_point now = Clock::now();
-    const double lateness_s = pacer.lateness_s(last_index, now);
-    const double chunk_period_s = static_cast<double>(chunk_size) / sample_rate_hz_;
-    diagnostics_->record_chunk(lateness_s, real_time_ && lateness_s > chunk_period_s, last_index + 1,
-                               static_cast<double>(last_index + 1) / sample_rate_hz_,
-                               std::chrono::duration<double>(now - start).count());
+    ChunkBundle bundle = compute_chunk();
+    {
+      std::lock_guard<std::mutex> lock(queue_mutex_);
+      ready_.push_back(std::move(bundle));
+    }
+    queue_cv_.notify_all();
+  }
+}
+
+void BearingSimRos::run_publisher() {
+  diagnostics_->set_realtime_value("publisher thread scheduling", set_thread_scheduling(realtime_priority_));
+  const RealtimePacer& pacer = scheduler_->pacer();
+  while (!stop_ && ros::ok()) {
+    std::uint64_t last_index = 0;
+    {
+      std::unique_lock<std::mutex> lock(queue_mutex_);
+      if (ready_.empty()) {
+        queue_cv_.wait_for(lock, std::chrono::milliseconds(50));
+        continue;
+      }
+      last_index = ready_.front().last_index;  // only this thread pops: the head stays
+    }
+    // Never before its time; at once when late (catching up, every chunk once, in order).
+    if (!pacer.sleep_until_due(last_index, stop_)) break;
+    ChunkBundle bundle;
+    {
+      std::lock_guard<std::mutex> lock(queue_mutex_);
+      bundle = std::move(ready_.front());
+      ready_.pop_front();
+    }
+    queue_cv_.notify_all();  // room for the sim thread
+    publish_bundle(bundle);
   }
 }
 

@@ -57,6 +57,16 @@ void NodeDiagnostics::set_scheduling(const std::string& description) {
   scheduling_ = description;
 }
 
+void NodeDiagnostics::set_realtime_value(const std::string& key, const std::string& value) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (auto& kv : realtime_values_)
+    if (kv.first == key) {
+      kv.second = value;
+      return;
+    }
+  realtime_values_.emplace_back(key, value);
+}
+
 void NodeDiagnostics::set_health(HealthStatus status) {
   std::lock_guard<std::mutex> lock(mutex_);
   health_ = std::move(status);
@@ -78,6 +88,7 @@ void NodeDiagnostics::realtime_task(diagnostic_updater::DiagnosticStatusWrapper&
   std::lock_guard<std::mutex> lock(mutex_);
   status.add("mode", settings_.real_time ? "real time" : "as fast as possible");
   status.add("simulation thread scheduling", scheduling_);
+  for (const auto& kv : realtime_values_) status.add(kv.first, kv.second);
   status.add("samples published", samples_published_);
   status.addf("simulated time (s)", "%.4f", simulated_s_);
   status.addf("real-time factor", "%.3f", wall_elapsed_s_ > 0.0 ? simulated_s_ / wall_elapsed_s_ : 0.0);

@@ -37,5 +37,14 @@ double RealtimePacer::lateness_s(std::uint64_t sample_index, Clock::time_point n
   return std::chrono::duration<double>(now - due_time(sample_index)).count();
 }
 
+LeadScheduler::LeadScheduler(const RealtimePacer& pacer, Clock::duration lead) : pacer_(pacer), lead_(lead) {
+  if (lead < Clock::duration::zero()) throw std::invalid_argument("the lead must be >= 0");
+}
+
+std::size_t LeadScheduler::max_queued(std::size_t chunk_samples) const {
+  const double lead_samples = std::chrono::duration<double>(lead_).count() * pacer_.sample_rate_hz();
+  return static_cast<std::size_t>(std::floor(lead_samples / static_cast<double>(std::max<std::size_t>(1, chunk_samples)))) + 1;
+}
+
 }  // namespace ros_node
 }  // namespace bearing_sim

@@ -10,9 +10,7 @@
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
 #include "bearing_sim/ros/message_conversion.hpp"
-#include "bearing_sim/ros/sample_divider.hpp"
-#include "bearing_sim/ros/sample_source.hpp"
-#include "bearing_sim/ros/triaxial_sensor.hpp"
+#include "bearing_sim/ros/sample_pipeline.hpp"
 
 namespace bearing_sim::tool {
 namespace {
@@ -89,6 +87,78 @@ ScenarioSimulation::ScenarioSimulation(Scenario scenario, const std::string& sce
   }
 }
 
+namespace {
+
+// generate's end of the shared pipeline: to the dataset sinks; health analysed here,
+// synchronously (the node does it on its worker thread).
+class DatasetPipelineSink : public ros_node::PipelineSink {
+ public:
+  DatasetPipelineSink(const std::vector<DatasetSink*>& sinks, RunStats* stats, ros_node::HealthMonitor* health,
+                      const Scenario& scenario, std::uint64_t label_period, double rate, bool want_balls,
+                      const std::function<void(double)>& progress)
+      : sinks_(sinks), stats_(stats), health_(health), scenario_(scenario), label_period_(label_period),
+        rate_(rate), want_balls_(want_balls), progress_(progress) {}
+
+  void ideal_chunk(ros_node::SampleChunk&& chunk) override {
+    SinkTimer t(&stats_->sink_cpu_s);
+    for (DatasetSink* s : sinks_) {
+      s->ideal_chunk(chunk);
+      if (!has_sensor_) s->measured_chunk(chunk);  // without a sensor the measured signal is the ideal one
+    }
+  }
+  void measured_chunk(ros_node::SampleChunk&& chunk) override {
+    SinkTimer t(&stats_->sink_cpu_s);
+    for (DatasetSink* s : sinks_) s->measured_chunk(chunk);
+  }
+  void level(const ros_node::SampleSource::Sample& sample, double accel_rms, double window_s) override {
+    SinkTimer t(&stats_->sink_cpu_s);
+    for (DatasetSink* s : sinks_) s->level(sample.index, accel_rms, window_s);
+  }
+  bool wants_ball_loads() const override { return want_balls_; }
+  void ball_loads(const ros_node::SampleSource::Sample& sample, const BearingModel& model) override {
+    SinkTimer t(&stats_->sink_cpu_s);
+    const std::vector<BallState> balls = model.ball_states(sample.state->displacement, sample.state->cage_angle_rad);
+    for (DatasetSink* s : sinks_)
+      s->ball_loads(sample.index, balls, model.rows(), model.balls_per_row(), sample.state->cage_angle_rad);
+  }
+  void sample_done(const ros_node::SampleSource::Sample& sample) override {
+    if (sample.index % label_period_ != 0) return;
+    SinkTimer t(&stats_->sink_cpu_s);
+    const LabelState label = scenario_label(scenario_, sample.index, rate_);
+    for (DatasetSink* s : sinks_) s->label(label);
+  }
+  void health_samples(std::vector<float>&& x, std::optional<double> analysis_time_s) override {
+    health_->push(x.data(), x.size());
+    if (!analysis_time_s) return;
+    ros_node::HealthReport report;
+    {
+      SinkTimer t(&stats_->health_cpu_s);
+      report = health_->analyze_now(*analysis_time_s);
+    }
+    SinkTimer t(&stats_->sink_cpu_s);
+    for (DatasetSink* s : sinks_) s->health(report);
+  }
+  void chunk_end(std::uint64_t last_index, std::size_t samples, const Vector5& load,
+                 double ring_speed_rad_s) override {
+    if (health_) health_->add_operation(load, ring_speed_rad_s, static_cast<double>(samples) / rate_);
+    if (progress_) progress_(static_cast<double>(last_index + 1) / rate_);
+  }
+
+  bool has_sensor_ = false;
+
+ private:
+  const std::vector<DatasetSink*>& sinks_;
+  RunStats* stats_;
+  ros_node::HealthMonitor* health_;
+  const Scenario& scenario_;
+  std::uint64_t label_period_;
+  double rate_;
+  bool want_balls_;
+  const std::function<void(double)>& progress_;
+};
+
+}  // namespace
+
 RunStats ScenarioSimulation::run(const std::vector<DatasetSink*>& sinks, const std::function<void(double)>& progress) {
   using namespace ros_node;
   const double cpu_start = thread_cpu_s();
@@ -97,33 +167,29 @@ RunStats ScenarioSimulation::run(const std::vector<DatasetSink*>& sinks, const s
   const std::uint64_t n = info_.ideal_samples;
 
   const ScenarioInputs start = scenario_.inputs_at(0.0);
-  SampleSource source(BearingDynamics(*model_, start.load, start.ring_speed_rad_s, DynamicsOptions{rate, 0}));
-  BearingDynamics& dynamics = source.dynamics();
-  std::unique_ptr<TriaxialSensor> sensor;
-  std::unique_ptr<ChunkAssembler> measured_assembler;
-  ChunkAssembler ideal_assembler(settings_.chunk_samples);
-  if (sensor_config_) {
-    sensor = std::make_unique<TriaxialSensor>(*sensor_config_, rate);
-    // About the same time span per chunk as the ideal ones (as the live node).
-    measured_assembler = std::make_unique<ChunkAssembler>(
-        std::max<std::size_t>(1, settings_.chunk_samples / static_cast<std::size_t>(sensor->decimation_ratio())));
-  }
   const bool want_balls = std::any_of(sinks.begin(), sinks.end(), [](DatasetSink* s) { return s->wants_ball_loads(); });
   const bool want_health = settings_.health_rate_hz > 0.0 &&
                            std::any_of(sinks.begin(), sinks.end(), [](DatasetSink* s) { return s->wants_health(); });
-  RunningRms level_rms(
-      static_cast<std::size_t>(std::max(1.0, std::round(settings_.level_window_s * info_.measured_rate_hz))));
-  SampleDivider level_divider(settings_.level_rate_hz, rate), ball_divider(settings_.ball_loads_rate_hz, rate),
-      health_divider(want_health ? settings_.health_rate_hz : 1.0, rate);
+  OutputSettings outputs;
+  outputs.chunk_samples = settings_.chunk_samples;
+  outputs.level_window_s = settings_.level_window_s;
+  outputs.level_rate_hz = settings_.level_rate_hz;
+  outputs.ball_loads_rate_hz = settings_.ball_loads_rate_hz;
+  // The live node's pipeline: same chunks, sensor, level, dividers and health hand-over.
+  SamplePipeline pipeline(BearingDynamics(*model_, start.load, start.ring_speed_rad_s, DynamicsOptions{rate, 0}),
+                          sensor_config_ ? std::make_unique<TriaxialSensor>(*sensor_config_, rate) : nullptr, outputs,
+                          want_health ? settings_.health_rate_hz : 0.0);
+  BearingDynamics& dynamics = pipeline.source().dynamics();
   std::unique_ptr<HealthMonitor> health;
-  std::vector<float> health_samples;
   if (want_health) {
     HealthSettings hs;
     hs.sample_rate_hz = info_.measured_rate_hz;
     hs.window_s = settings_.health_window_s;
-    hs.analysis.resonance_hz = sensor ? sensor->config().path_resonance_hz : 0.0;  // envelope band, as the node
+    hs.analysis.resonance_hz = sensor_config_ ? sensor_config_->path_resonance_hz : 0.0;  // envelope band, as the node
     health = std::make_unique<HealthMonitor>(*model_, start.load, start.ring_speed_rad_s, hs, nullptr);
   }
+  DatasetPipelineSink sink(sinks, &stats, health.get(), scenario_, label_period_, rate, want_balls, progress);
+  sink.has_sensor_ = pipeline.sensor() != nullptr;
 
   for (DatasetSink* s : sinks) {
     SinkTimer t(&stats.sink_cpu_s);
@@ -144,13 +210,6 @@ RunStats ScenarioSimulation::run(const std::vector<DatasetSink*>& sinks, const s
   };
   apply_events(0.0);
 
-  std::uint64_t measured_emitted = 0;
-  auto emit_measured = [&]() {
-    SampleChunk chunk = measured_assembler->take();
-    measured_emitted += chunk.size();
-    SinkTimer t(&stats.sink_cpu_s);
-    for (DatasetSink* s : sinks) s->measured_chunk(chunk);
-  };
   for (std::uint64_t i = 0; i < n; ++i) {
     if (i > 0) {
       apply_events(static_cast<double>(i - 1) / rate);
@@ -163,79 +222,17 @@ RunStats ScenarioSimulation::run(const std::vector<DatasetSink*>& sinks, const s
       const Vector5 load = scenario_.load_at(t_mid);
       if (load != dynamics.load()) dynamics.set_load(load);
     }
-    const SampleSource::Sample sample = source.next();
-    if (sample.diverged) ++stats.divergences;
-    const bool full = ideal_assembler.add(sample.index, *sample.state);
-    bool measured = true;
-    double measured_x = sample.state->acceleration[0];
-    if (sensor) {
-      Eigen::Vector3d y;
-      measured = sensor->push(*sample.state, &y);
-      if (measured) {
-        measured_x = y[0];
-        if (measured_assembler->add(measured_assembler->next_sample(), y, sample.state->displacement)) emit_measured();
-      }
-    }
-    if (measured) {
-      level_rms.add(measured_x);
-      if (health) health_samples.push_back(static_cast<float>(measured_x));
-    }
-    if (level_divider.due(sample.index)) {
-      SinkTimer t(&stats.sink_cpu_s);
-      for (DatasetSink* s : sinks)
-        s->level(sample.index, level_rms.rms(), static_cast<double>(level_rms.size()) / info_.measured_rate_hz);
-    }
-    if (want_balls && ball_divider.due(sample.index)) {
-      SinkTimer t(&stats.sink_cpu_s);
-      const std::vector<BallState> balls =
-          dynamics.model().ball_states(sample.state->displacement, sample.state->cage_angle_rad);
-      for (DatasetSink* s : sinks)
-        s->ball_loads(sample.index, balls, dynamics.model().rows(), dynamics.model().balls_per_row(),
-                      sample.state->cage_angle_rad);
-    }
-    if (sample.index % label_period_ == 0) {
-      SinkTimer t(&stats.sink_cpu_s);
-      const LabelState label = scenario_label(scenario_, sample.index, rate);
-      for (DatasetSink* s : sinks) s->label(label);
-    }
-    if (health && health_divider.due(sample.index)) {
-      health->push(health_samples.data(), health_samples.size());
-      health_samples.clear();
-      ros_node::HealthReport report;
-      {
-        SinkTimer t(&stats.health_cpu_s);
-        report = health->analyze_now(sample.time_s);
-      }
-      SinkTimer t(&stats.sink_cpu_s);
-      for (DatasetSink* s : sinks) s->health(report);
-    }
-    if (full || i + 1 == n) {  // the last chunk may be short
-      SampleChunk chunk = ideal_assembler.take();
-      const double chunk_s = static_cast<double>(chunk.size()) / rate;
-      {
-        SinkTimer t(&stats.sink_cpu_s);
-        for (DatasetSink* s : sinks) {
-          s->ideal_chunk(chunk);
-          if (!sensor) s->measured_chunk(chunk);
-        }
-      }
-      if (health) {
-        health->push(health_samples.data(), health_samples.size());
-        health_samples.clear();
-        health->add_operation(dynamics.load(), dynamics.ring_speed_rad_s(), chunk_s);
-      }
-      if (progress) progress(static_cast<double>(i + 1) / rate);
-    }
+    pipeline.step(sink);
   }
-  if (sensor && measured_assembler->next_sample() > measured_emitted) emit_measured();  // the short last chunk
+  pipeline.flush(sink);  // the short last chunks
   for (DatasetSink* s : sinks) {
     SinkTimer t(&stats.sink_cpu_s);
     s->end();
   }
   stats.simulated_s = static_cast<double>(n) / rate;
   stats.ideal_samples = n;
-  stats.measured_samples = sensor ? measured_assembler->next_sample() : n;
-  stats.divergences = source.divergence_count();
+  stats.measured_samples = pipeline.measured_samples();
+  stats.divergences = pipeline.source().divergence_count();
   stats.cpu_s = thread_cpu_s() - cpu_start;
   return stats;
 }

@@ -1,7 +1,7 @@
 #pragma once
 // One scenario run of `bearing_tool generate`: drives the dynamics from the scenario
-// (speed, load, defect events), runs the virtual sensor, chunks the samples as the live
-// node does (ChunkAssembler, SampleDivider, TriaxialSensor, HealthMonitor) and hands
+// (speed, load, defect events) through the live node's per-sample pipeline
+// (ros_node::SamplePipeline: chunks, sensor, level, dividers, health hand-over) and hands
 // everything to the dataset sinks. Faster than real time, no ROS, deterministic for a
 // seed: every random source (imperfections, cage slip, sensor noise) is seeded from it.
 #include <cstdint>

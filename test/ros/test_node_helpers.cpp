@@ -2,7 +2,10 @@
 // divergence-safe sample source, the sample-rate divider and the timing statistics.
 #include <atomic>
 #include <chrono>
+#include <algorithm>
 #include <cmath>
+#include <deque>
+#include <optional>
 #include <limits>
 #include <stdexcept>
 #include <thread>
@@ -15,6 +18,7 @@
 #include "bearing_sim/ros/input_validator.hpp"
 #include "bearing_sim/ros/realtime_pacer.hpp"
 #include "bearing_sim/ros/sample_divider.hpp"
+#include "bearing_sim/ros/sample_pipeline.hpp"
 #include "bearing_sim/ros/sample_source.hpp"
 #include "bearing_sim/ros/timing_stats.hpp"
 
@@ -64,6 +68,104 @@ TEST(RealtimePacer, SleepsUntilTheDeadlineAndStopsOnRequest) {
   const auto t0 = RealtimePacer::Clock::now();
   EXPECT_FALSE(pacer.sleep_until_due(100000, stop));  // 100 s away, returns at once
   EXPECT_LT(std::chrono::duration<double>(RealtimePacer::Clock::now() - t0).count(), 0.01);
+}
+
+namespace {
+// The node's two threads on a simulated clock: the simulation thread computes when
+// may_compute() (each chunk costing `cost`; chunk `stall_chunk` costs `stall` more, a
+// scheduling delay), the publisher publishes the oldest chunk at max(its due time, when it
+// was computed). Events are processed in time order.
+struct LeadRun {
+  std::vector<std::uint64_t> published;  // last sample index of each published chunk, in order
+  std::vector<double> publish_late_s;    // publish time - due time
+  std::vector<double> compute_ahead_s;   // due time - compute start
+  std::size_t max_queue = 0;
+};
+LeadRun run_lead(std::chrono::milliseconds lead, std::size_t chunk, std::size_t chunks, std::size_t stall_chunk,
+                 RealtimePacer::Clock::duration stall) {
+  using C = RealtimePacer::Clock;
+  const C::time_point start(std::chrono::seconds(100));
+  const RealtimePacer pacer(10000.0, start);
+  const LeadScheduler s(pacer, lead);
+  const C::duration cost = std::chrono::milliseconds(4);  // 40 % of a 10 ms chunk
+  LeadRun r;
+  std::deque<std::pair<std::uint64_t, C::time_point>> queue;  // last index, ready at
+  std::uint64_t next_first = 0;
+  std::size_t computed = 0;
+  C::time_point sim_free = start;  // the simulation thread is busy until then
+  C::time_point now = start;
+  while (r.published.size() < chunks) {
+    const std::uint64_t next_last = next_first + chunk - 1;
+    // Publisher first: the oldest chunk, once it is ready and due.
+    if (!queue.empty() && now >= queue.front().second && now >= s.publish_time(queue.front().first)) {
+      r.published.push_back(queue.front().first);
+      r.publish_late_s.push_back(std::chrono::duration<double>(now - s.publish_time(queue.front().first)).count());
+      queue.pop_front();
+      continue;
+    }
+    if (now >= sim_free && s.may_compute(now, queue.size(), next_last, chunk)) {
+      r.compute_ahead_s.push_back(std::chrono::duration<double>(s.publish_time(next_last) - now).count());
+      sim_free = now + cost + (computed == stall_chunk ? stall : C::duration::zero());
+      queue.emplace_back(next_last, sim_free);
+      ++computed;
+      next_first += chunk;
+      r.max_queue = std::max(r.max_queue, queue.size());
+      continue;
+    }
+    // Next event: the head ready and due, the simulation thread free, or its compute start.
+    C::time_point wake = C::time_point::max();
+    if (!queue.empty()) wake = std::max(queue.front().second, s.publish_time(queue.front().first));
+    wake = std::min(wake, std::max(sim_free, s.compute_start(next_last)));
+    EXPECT_GT(wake, now);
+    now = wake;
+  }
+  return r;
+}
+}  // namespace
+
+TEST(LeadScheduler, ComputesAheadByTheLeadAndPublishesAtTheDueTime) {
+  using C = RealtimePacer::Clock;
+  const RealtimePacer pacer(10000.0, C::time_point(std::chrono::seconds(100)));
+  const LeadScheduler s(pacer, std::chrono::milliseconds(30));
+  // Chunk with last sample 99 (due 10 ms) may start at -20 ms, is published at 10 ms.
+  EXPECT_EQ(s.publish_time(99), pacer.due_time(99));
+  EXPECT_EQ(pacer.due_time(99) - s.compute_start(99), std::chrono::milliseconds(30));
+  EXPECT_EQ(s.max_queued(100), 4u);  // 30 ms of 10 ms chunks + the one being published
+  EXPECT_EQ(s.max_queued(1000), 1u);
+  EXPECT_FALSE(s.may_compute(pacer.due_time(99) - std::chrono::milliseconds(31), 0, 99, 100));
+  EXPECT_TRUE(s.may_compute(pacer.due_time(99) - std::chrono::milliseconds(30), 0, 99, 100));
+  EXPECT_FALSE(s.may_compute(pacer.due_time(99), 4, 99, 100));  // queue full: wait for the publisher
+  EXPECT_EQ(LeadScheduler(pacer, std::chrono::milliseconds(0)).max_queued(100), 1u);
+  EXPECT_THROW(LeadScheduler(pacer, std::chrono::milliseconds(-1)), std::invalid_argument);
+
+  const LeadRun r = run_lead(std::chrono::milliseconds(30), 100, 50, 1000, {});
+  ASSERT_EQ(r.published.size(), 50u);
+  for (std::size_t k = 0; k < r.published.size(); ++k) {
+    EXPECT_EQ(r.published[k], 100 * k + 99);     // every chunk once, in order
+    EXPECT_DOUBLE_EQ(r.publish_late_s[k], 0.0);  // never early, and on time
+  }
+  for (double ahead : r.compute_ahead_s) EXPECT_LE(ahead, 0.030 + 1e-12);  // never more than the lead ahead
+  EXPECT_LE(r.max_queue, 4u);
+}
+
+TEST(LeadScheduler, ADelayShorterThanTheLeadIsNoLatenessALongerOneIsCaughtUp) {
+  // The simulation thread held 20 ms (plus 4 ms of computing) with a 30 ms lead: on time.
+  const LeadRun hidden = run_lead(std::chrono::milliseconds(30), 100, 40, 10, std::chrono::milliseconds(20));
+  for (double late : hidden.publish_late_s) EXPECT_DOUBLE_EQ(late, 0.0);
+  // Just in time (lead 0), every chunk is late by its computing time and the same delay
+  // is an overrun.
+  const LeadRun jit = run_lead(std::chrono::milliseconds(0), 100, 40, 10, std::chrono::milliseconds(20));
+  for (double ahead : jit.compute_ahead_s) EXPECT_LE(ahead, 0.0);  // never before its last sample is due
+  EXPECT_EQ(jit.max_queue, 1u);
+  EXPECT_GT(*std::max_element(jit.publish_late_s.begin(), jit.publish_late_s.end()), 0.010);
+  // Held 200 ms: late chunks are published as soon as computed, each once and in order,
+  // and the node is back on time afterwards.
+  const LeadRun late = run_lead(std::chrono::milliseconds(30), 100, 60, 10, std::chrono::milliseconds(200));
+  ASSERT_EQ(late.published.size(), 60u);
+  for (std::size_t k = 0; k < late.published.size(); ++k) EXPECT_EQ(late.published[k], 100 * k + 99);
+  EXPECT_GT(*std::max_element(late.publish_late_s.begin(), late.publish_late_s.end()), 0.010);  // an overrun
+  EXPECT_DOUBLE_EQ(late.publish_late_s.back(), 0.0);
+  EXPECT_LE(late.max_queue, 4u);
 }
 
 TEST(ChunkAssembler, ChunksAreContiguousAndSizeChangesApplyToTheNextChunk) {
@@ -206,4 +308,57 @@ TEST(TimingStats, PercentilesOfTheRecentValues) {
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
+}
+
+namespace {
+// Records what the pipeline hands out, in order.
+struct RecordingSink : PipelineSink {
+  std::vector<std::pair<std::uint64_t, std::size_t>> chunks;  // first sample, size
+  std::vector<std::uint64_t> chunk_ends;
+  std::size_t health_handed = 0, levels = 0;
+  std::vector<double> analyses;
+  std::vector<std::string> order;  // per chunk: ideal, health, end
+  void ideal_chunk(SampleChunk&& c) override {
+    chunks.emplace_back(c.first_sample, c.size());
+    order.push_back("ideal");
+  }
+  void measured_chunk(SampleChunk&&) override { ADD_FAILURE() << "no sensor: no measured chunk"; }
+  void level(const SampleSource::Sample&, double, double) override { ++levels; }
+  void health_samples(std::vector<float>&& x, std::optional<double> t) override {
+    health_handed += x.size();
+    if (t) analyses.push_back(*t);
+    else order.push_back("health");
+  }
+  void chunk_end(std::uint64_t last, std::size_t, const Vector5&, double) override {
+    chunk_ends.push_back(last);
+    order.push_back("end");
+  }
+};
+}  // namespace
+
+TEST(SamplePipeline, ContiguousChunksEveryMeasuredSampleHandedOverOnceSettingsFromTheNextChunk) {
+  const BearingModel model(load_bearing_config(kCtBearing));
+  OutputSettings settings;
+  settings.chunk_samples = 100;
+  settings.level_rate_hz = 100.0;
+  SamplePipeline p(BearingDynamics(model, ct_load(), kCtSpeed, DynamicsOptions{10000.0, 0}), nullptr, settings, 50.0);
+  RecordingSink sink;
+  p.run_chunk(sink);
+  EXPECT_EQ(p.current_chunk_last_index(), 199u);
+  settings.chunk_samples = 60;
+  p.apply_settings(settings);  // from the next chunk started: the one from sample 100
+  EXPECT_EQ(p.current_chunk_last_index(), 159u);
+  for (int i = 0; i < 150; ++i) p.step(sink);
+  p.flush(sink);  // the short last one
+  const std::vector<std::pair<std::uint64_t, std::size_t>> expected = {{0, 100}, {100, 60}, {160, 60}, {220, 30}};
+  EXPECT_EQ(sink.chunks, expected);
+  EXPECT_EQ(sink.chunk_ends, (std::vector<std::uint64_t>{99, 159, 219, 249}));
+  EXPECT_EQ(sink.health_handed, 250u);  // every measured sample once
+  EXPECT_EQ(sink.analyses.size(), 1u);  // at 50 Hz: one due within 250 samples (sample 200)
+  EXPECT_EQ(sink.levels, 2u);           // at 100 Hz: samples 100 and 200
+  std::vector<std::string> order;
+  for (int k = 0; k < 4; ++k) order.insert(order.end(), {"ideal", "health", "end"});
+  EXPECT_EQ(sink.order, order);
+  EXPECT_EQ(p.ideal_samples(), 250u);
+  EXPECT_EQ(p.measured_samples(), 250u);
 }

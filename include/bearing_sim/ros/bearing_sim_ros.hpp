@@ -2,6 +2,9 @@
 // ROS front end of the bearing model: parameters, topics, dynamic_reconfigure and the
 // real-time simulation thread. The physics is all in the core (BearingDynamics).
 #include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -24,28 +27,24 @@
 #include "bearing_sim/ros/health_monitor.hpp"
 #include "bearing_sim/ros/input_validator.hpp"
 #include "bearing_sim/ros/node_diagnostics.hpp"
+#include "bearing_sim/ros/realtime_pacer.hpp"
 #include "bearing_sim/ros/sample_divider.hpp"
+#include "bearing_sim/ros/sample_pipeline.hpp"
 #include "bearing_sim/ros/sample_source.hpp"
 #include "bearing_sim/ros/triaxial_sensor.hpp"
 
 namespace bearing_sim {
 namespace ros_node {
 
-// Outputs that dynamic_reconfigure may change while running.
-struct OutputSettings {
-  std::size_t chunk_samples = 100;
-  double level_window_s = 1.0;
-  double level_rate_hz = 10.0;
-  double ball_loads_rate_hz = 30.0;
-};
-
-class BearingSimRos {
+// The sink of the per-sample pipeline (shared with `bearing_tool generate`): turns its
+// outputs into messages, queued per chunk for their due time.
+class BearingSimRos : private PipelineSink {
  public:
   // Reads the parameters and the bearing file, builds the model at the static
   // equilibrium of the initial load. Throws (ConfigError, LoadNotCarriedError,
   // std::runtime_error) when it cannot start.
   BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh);
-  ~BearingSimRos();
+  ~BearingSimRos() override;
 
   void start();  // the simulation thread
   void stop();
@@ -68,15 +67,32 @@ class BearingSimRos {
   void reject_input(const std::string& reason);
   void publish_model_state();
 
+  // One computed chunk and everything that belongs to its time span (sensor chunks, level,
+  // ball loads, health hand-over, /clock), published together, in order, at its due time.
+  struct ChunkBundle {
+    std::uint64_t last_index = 0;  // of the chunk's last dynamics sample
+    std::size_t samples = 0;
+    std::vector<std::function<void()>> actions;
+  };
+
   // Sim thread only.
   void run();
-  void set_thread_scheduling();
+  ChunkBundle compute_chunk();
+  std::string set_thread_scheduling(int priority);  // description for /diagnostics
+  void lock_memory();
+  // Publisher thread (real time; the sim thread as fast as possible).
+  void run_publisher();
+  void publish_bundle(ChunkBundle& bundle);
   void apply_pending();
-  void apply_settings(const OutputSettings& settings);
-  void publish_level(const SampleSource::Sample& sample);
-  void publish_ball_loads(const SampleSource::Sample& sample);
-  void publish_sensor_chunk();
-  void feed_health(bool request, double time_s);
+  // PipelineSink (sim thread, inside compute_chunk): into *bundle_.
+  void ideal_chunk(SampleChunk&& chunk) override;
+  void measured_chunk(SampleChunk&& chunk) override;
+  void level(const SampleSource::Sample& sample, double accel_rms, double window_s) override;
+  bool wants_ball_loads() const override;
+  void ball_loads(const SampleSource::Sample& sample, const BearingModel& model) override;
+  void health_samples(std::vector<float>&& x, std::optional<double> analysis_time_s) override;
+  void chunk_end(std::uint64_t last_index, std::size_t samples, const Vector5& load, double ring_speed_rad_s) override;
+  void divergence(const std::string& message) override;
   // Health worker thread.
   void publish_health(const HealthReport& report);
   ros::Time stamp_of(std::uint64_t sample_index) const;
@@ -87,7 +103,9 @@ class BearingSimRos {
   LoadRamp load_ramp_;  // sim thread: a new load over ~load_ramp_s (0: a step)
   bool real_time_ = true;
   bool publish_clock_ = false;
-  int realtime_priority_ = 0;  // SCHED_FIFO priority of the sim thread in real time; 0: normal
+  int realtime_priority_ = 0;  // SCHED_FIFO priority of the publisher in real time (sim thread: one less); 0: normal
+  bool lock_memory_ = true;    // mlockall in real time
+  double lead_s_ = 0.03;       // real time: chunks computed up to this far ahead of their due time
   std::string frame_id_, bearing_frame_id_;
   std::string sensor_description_;  // "sensor: <name>" or "ideal ring acceleration"
   double measured_rate_hz_ = 10000.0;  // of `vibration`, L and health: the sensor's output rate, or sample_rate_hz_
@@ -105,15 +123,8 @@ class BearingSimRos {
   std::atomic<bool> pending_flag_{false};
 
   // Sim thread state.
-  std::unique_ptr<SampleSource> source_;
-  std::unique_ptr<ChunkAssembler> assembler_;
-  std::unique_ptr<RunningRms> level_rms_;
-  std::unique_ptr<SampleDivider> level_divider_, ball_loads_divider_, health_divider_;
-  std::unique_ptr<TriaxialSensor> sensor_;              // null: no sensor, `vibration` is the ideal acceleration
-  std::unique_ptr<ChunkAssembler> sensor_assembler_;    // numbered in sensor samples
-  std::vector<float> health_samples_;                   // measured x since the last hand-over to the monitor
+  std::unique_ptr<SamplePipeline> pipeline_;  // its sensor null: `vibration` is the ideal acceleration
   std::unique_ptr<HealthMonitor> health_;
-  OutputSettings settings_;
   ros::Time ros_start_;
 
   ros::Publisher vibration_pub_, ideal_pub_, level_pub_, ball_loads_pub_, clock_pub_, health_pub_;
@@ -124,8 +135,16 @@ class BearingSimRos {
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<BearingSimConfig>> reconfigure_server_;
 
+  // Real time: chunks computed ahead (sim thread) waiting for their due time (publisher).
+  std::optional<LeadScheduler> scheduler_;
+  RealtimePacer::Clock::time_point wall_start_;
+  std::mutex queue_mutex_;
+  std::condition_variable queue_cv_;
+  std::deque<ChunkBundle> ready_;
+  ChunkBundle* bundle_ = nullptr;  // sim thread: the bundle being filled by compute_chunk
+
   std::atomic<bool> stop_{false};
-  std::thread sim_thread_;
+  std::thread sim_thread_, publisher_thread_;
 };
 
 }  // namespace ros_node

@@ -54,6 +54,8 @@ class NodeDiagnostics {
   void record_divergence(const std::string& message);
   void set_model_state(const ModelState& state);
   void set_scheduling(const std::string& description);
+  // Further facts of the real-time setup shown in the status (e.g. "memory locked", "lead (ms)").
+  void set_realtime_value(const std::string& key, const std::string& value);
   void set_health(HealthStatus status);
   void update();  // publish now
 
@@ -81,6 +83,7 @@ class NodeDiagnostics {
   Clock::time_point last_divergence_time_;
   ModelState model_;
   std::string scheduling_;
+  std::vector<std::pair<std::string, std::string>> realtime_values_;
   HealthStatus health_;
 };
 

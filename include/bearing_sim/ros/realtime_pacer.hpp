@@ -4,7 +4,9 @@
 // change needs no re-anchoring because the deadline depends only on the sample index.
 #include <atomic>
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
+#include <optional>
 
 namespace bearing_sim {
 namespace ros_node {
@@ -30,6 +32,37 @@ class RealtimePacer {
  private:
   double sample_rate_hz_;
   Clock::time_point start_;
+};
+
+// Computing ahead of wall time by a bounded lead (the node's ~lead_ms). Two threads: the
+// simulation thread may compute chunk k (last sample L) from due(L) - lead, with at most
+// max_queued() chunks computed and not yet published; the publisher thread publishes it at
+// due(L), never earlier, or at once when it comes late (catching up: every chunk once, in
+// order). A delay of the simulation thread shorter than the lead thus costs no lateness,
+// and inputs apply at the first chunk not yet computed (input latency <= the lead).
+// lead 0: computed when its last sample is due, published at once (just in time).
+class LeadScheduler {
+ public:
+  using Clock = RealtimePacer::Clock;
+
+  LeadScheduler(const RealtimePacer& pacer, Clock::duration lead);
+
+  Clock::time_point compute_start(std::uint64_t last_index) const { return pacer_.due_time(last_index) - lead_; }
+  Clock::time_point publish_time(std::uint64_t last_index) const { return pacer_.due_time(last_index); }
+  // Most chunks computed and not yet published for this chunk size: what the lead spans, + 1.
+  std::size_t max_queued(std::size_t chunk_samples) const;
+  // Whether the simulation thread may compute the chunk ending at next_last now, with
+  // `queued` chunks waiting for the publisher.
+  bool may_compute(Clock::time_point now, std::size_t queued, std::uint64_t next_last,
+                   std::size_t chunk_samples) const {
+    return queued < max_queued(chunk_samples) && now >= compute_start(next_last);
+  }
+  Clock::duration lead() const { return lead_; }
+  const RealtimePacer& pacer() const { return pacer_; }
+
+ private:
+  RealtimePacer pacer_;
+  Clock::duration lead_;
 };
 
 }  // namespace ros_node
