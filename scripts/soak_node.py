@@ -186,7 +186,10 @@ def main():
                 'overruns': listener.diag.get('overruns'),
                 'node_lag_ms': {k: listener.diag.get('lag %s (ms)' % k) for k in ('p50', 'p99', 'max')},
                 'node_memory_locked': listener.diag.get('memory locked'),
-                'node_scheduling': listener.diag.get('simulation thread scheduling'),
+                'node_scheduling': '%s (simulation), %s (publisher)' % (
+                    listener.diag.get('simulation thread scheduling'), listener.diag.get('publisher thread scheduling')),
+                'node_lead_ms': listener.diag.get('lead (ms)'),
+                'simd_target': listener.diag.get('SIMD target'),
                 'arrival_lag_ms': {'p50': 1e3 * percentile(lags, 0.5), 'p99': 1e3 * percentile(lags, 0.99),
                                    'max': 1e3 * lags[-1]},
                 'cpu_percent_of_one_core': {n: 100.0 * (cpu1[n] - cpu0[n]) / (t1 - t0) for n in cpu1},
@@ -202,16 +205,16 @@ def main():
             subprocess.call(['rm', '-rf', bag_dir])
 
     r = report
-    print('soak of ct_gantry.launch (display on, record:=true) on %s, load average at the end %.2f %.2f %.2f' % (
-        (r['cpu_model'],) + tuple(r['load_average_end'])))
+    print('soak of ct_gantry.launch (display on, record:=true) on %s (SIMD target %s), load average at the end '
+          '%.2f %.2f %.2f' % ((r['cpu_model'], r['simd_target']) + tuple(r['load_average_end'])))
     print('  %.0f s measured, %d chunks' % (r['duration_s'], r['chunks']))
     print('  samples received %d, expected from wall time %.0f (difference %.0f)' % (
         r['samples_received'], r['samples_expected_from_wall_time'],
         r['samples_received'] - r['samples_expected_from_wall_time']))
     print('  gaps %d, repeats %d, overruns %s' % (r['gaps'], r['repeats'], r['overruns']))
-    print('  node lag at publication (ms): p50 %s, p99 %s, max %s; scheduling: %s; memory locked: %s' % (
-        r['node_lag_ms']['p50'], r['node_lag_ms']['p99'], r['node_lag_ms']['max'], r['node_scheduling'],
-        r['node_memory_locked']))
+    print('  node lag at publication (ms, its last minute): p50 %s, p99 %s, max %s; lead %s ms' % (
+        r['node_lag_ms']['p50'], r['node_lag_ms']['p99'], r['node_lag_ms']['max'], r['node_lead_ms']))
+    print('  scheduling: %s; memory locked: %s' % (r['node_scheduling'], r['node_memory_locked']))
     print('  lag at arrival here (ms): p50 %.2f, p99 %.2f, max %.2f' % (
         r['arrival_lag_ms']['p50'], r['arrival_lag_ms']['p99'], r['arrival_lag_ms']['max']))
     for n, c in r['cpu_percent_of_one_core'].items():

@@ -21,6 +21,7 @@
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
+#include "bearing_sim/core/simd_info.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
 #include "bearing_sim/ros/message_conversion.hpp"
 #include "bearing_sim/ros/realtime_pacer.hpp"
@@ -186,6 +187,9 @@ void BearingSimRos::start() {
   ros_start_ = real_time_ ? ros::Time::now() : ros::Time(0, 0);
   const auto lead = std::chrono::duration_cast<RealtimePacer::Clock::duration>(std::chrono::duration<double>(lead_s_));
   scheduler_.emplace(RealtimePacer(sample_rate_hz_, wall_start_), lead);
+  // Speed figures mean little without the CPU and the SIMD code path that produced them.
+  diagnostics_->set_realtime_value("CPU", cpu_model_name());
+  diagnostics_->set_realtime_value("SIMD target", simd_target_name());
   if (real_time_) {
     diagnostics_->set_realtime_value("lead (ms)", fmt(lead_s_ * 1e3, 1));
     publisher_thread_ = std::thread([this] { run_publisher(); });
