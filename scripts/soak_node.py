@@ -147,6 +147,7 @@ def main():
         rss_max = rss_start
         with listener.lock:
             listener.recording = True
+            overruns_before = int(listener.diag.get('overruns', 0))  # start-up is not the soak's
         t0 = time.time()
         next_print = t0 + 60.0
         while time.time() - t0 < args.duration:
@@ -159,7 +160,7 @@ def main():
                 with listener.lock:
                     print('%6.0f s: %d chunks, gaps %d, repeats %d, overruns %s, RSS %.1f MiB' % (
                         time.time() - t0, listener.chunks, listener.gaps, listener.repeats,
-                        listener.diag.get('overruns', '?'), rss_mib(pids[node])), flush=True)
+                        int(listener.diag.get('overruns', 0)) - overruns_before, rss_mib(pids[node])), flush=True)
         t1 = time.time()
         with listener.lock:
             listener.recording = False
@@ -183,7 +184,8 @@ def main():
                 'samples_expected_from_wall_time': expected,
                 'gaps': listener.gaps,
                 'repeats': listener.repeats,
-                'overruns': listener.diag.get('overruns'),
+                'overruns': int(listener.diag.get('overruns', 0)) - overruns_before,
+                'overruns_since_node_start': listener.diag.get('overruns'),
                 'node_lag_ms': {k: listener.diag.get('lag %s (ms)' % k) for k in ('p50', 'p99', 'max')},
                 'node_memory_locked': listener.diag.get('memory locked'),
                 'node_scheduling': '%s (simulation), %s (publisher)' % (
@@ -211,7 +213,8 @@ def main():
     print('  samples received %d, expected from wall time %.0f (difference %.0f)' % (
         r['samples_received'], r['samples_expected_from_wall_time'],
         r['samples_received'] - r['samples_expected_from_wall_time']))
-    print('  gaps %d, repeats %d, overruns %s' % (r['gaps'], r['repeats'], r['overruns']))
+    print('  gaps %d, repeats %d, overruns %d (since the node started, warm-up included: %s)' % (
+        r['gaps'], r['repeats'], r['overruns'], r['overruns_since_node_start']))
     print('  node lag at publication (ms, its last minute): p50 %s, p99 %s, max %s; lead %s ms' % (
         r['node_lag_ms']['p50'], r['node_lag_ms']['p99'], r['node_lag_ms']['max'], r['node_lead_ms']))
     print('  scheduling: %s; memory locked: %s' % (r['node_scheduling'], r['node_memory_locked']))

@@ -223,7 +223,7 @@ void BearingSimRos::on_load(const geometry_msgs::WrenchStamped::ConstPtr& msg) {
   accepted_load_ = load;
   accepted_max_pressure_Pa_ = check.max_contact_pressure_Pa;
   {
-    std::lock_guard<std::mutex> lock(pending_mutex_);
+    std::lock_guard<PriorityInheritanceMutex> lock(pending_mutex_);
     pending_.load = load;
   }
   pending_flag_ = true;
@@ -235,7 +235,7 @@ void BearingSimRos::on_speed(const std_msgs::Float64::ConstPtr& msg) {
   if (!check.accepted) return reject_input(check.reason);
   accepted_speed_rad_s_ = msg->data;
   {
-    std::lock_guard<std::mutex> lock(pending_mutex_);
+    std::lock_guard<PriorityInheritanceMutex> lock(pending_mutex_);
     pending_.ring_speed_rad_s = msg->data;
   }
   pending_flag_ = true;
@@ -263,7 +263,7 @@ bool BearingSimRos::on_inject_defect(InjectDefect::Request& req, InjectDefect::R
     return true;
   }
   {
-    std::lock_guard<std::mutex> lock(pending_mutex_);
+    std::lock_guard<PriorityInheritanceMutex> lock(pending_mutex_);
     pending_.defect_commands.emplace_back(spall);
   }
   pending_flag_ = true;
@@ -278,7 +278,7 @@ bool BearingSimRos::on_clear_defects(std_srvs::Trigger::Request& /*req*/, std_sr
   const std::size_t n = validation_model_->imperfections().spalls().size();
   validation_model_->clear_spalls();
   {
-    std::lock_guard<std::mutex> lock(pending_mutex_);
+    std::lock_guard<PriorityInheritanceMutex> lock(pending_mutex_);
     pending_.defect_commands.emplace_back(std::nullopt);
   }
   pending_flag_ = true;
@@ -319,7 +319,7 @@ void BearingSimRos::on_reconfigure(BearingSimConfig& config, std::uint32_t /*lev
   settings.ball_loads_rate_hz = config.ball_loads_rate_hz;
   if (new_model) *validation_model_ = *new_model;
   {
-    std::lock_guard<std::mutex> lock(pending_mutex_);
+    std::lock_guard<PriorityInheritanceMutex> lock(pending_mutex_);
     if (new_model) pending_.model = std::move(new_model);
     pending_.settings = settings;
   }
@@ -347,7 +347,7 @@ void BearingSimRos::publish_model_state() {
 void BearingSimRos::apply_pending() {
   Pending p;
   {
-    std::lock_guard<std::mutex> lock(pending_mutex_);
+    std::lock_guard<PriorityInheritanceMutex> lock(pending_mutex_);
     p = std::move(pending_);
     pending_ = Pending{};
     pending_flag_ = false;

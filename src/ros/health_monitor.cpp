@@ -51,7 +51,7 @@ HealthMonitor::~HealthMonitor() { stop(); }
 void HealthMonitor::start() {
   if (thread_.joinable()) return;
   {
-    std::lock_guard<std::mutex> lock(mutex_);
+    std::lock_guard<PriorityInheritanceMutex> lock(mutex_);
     stop_ = false;
   }
   thread_ = std::thread([this] { worker(); });
@@ -59,7 +59,7 @@ void HealthMonitor::start() {
 
 void HealthMonitor::stop() {
   {
-    std::lock_guard<std::mutex> lock(mutex_);
+    std::lock_guard<PriorityInheritanceMutex> lock(mutex_);
     stop_ = true;
   }
   wake_.notify_all();
@@ -67,7 +67,7 @@ void HealthMonitor::stop() {
 }
 
 void HealthMonitor::push(const float* samples, std::size_t n) {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::lock_guard<PriorityInheritanceMutex> lock(mutex_);
   for (std::size_t i = 0; i < n; ++i) {
     ring_[ring_next_] = samples[i];
     if (++ring_next_ == ring_.size()) ring_next_ = 0;
@@ -76,7 +76,7 @@ void HealthMonitor::push(const float* samples, std::size_t n) {
 }
 
 void HealthMonitor::add_operation(const Vector5& load, double ring_speed_rad_s, double dt_s) {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::lock_guard<PriorityInheritanceMutex> lock(mutex_);
   // The load was validated (finite, within limits) before it reached the dynamics.
   miner_.add(equivalent_load_N(model_->config(), load), ring_speed_rad_s, dt_s);
   load_ = load;
@@ -84,38 +84,38 @@ void HealthMonitor::add_operation(const Vector5& load, double ring_speed_rad_s, 
 }
 
 void HealthMonitor::set_defects(const std::vector<Spall>& spalls) {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::lock_guard<PriorityInheritanceMutex> lock(mutex_);
   spalls_ = spalls;
 }
 
 void HealthMonitor::set_model(const BearingModel& model) {
   auto copy = std::make_shared<const BearingModel>(model);
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::lock_guard<PriorityInheritanceMutex> lock(mutex_);
   model_ = std::move(copy);
 }
 
 void HealthMonitor::request_analysis(double end_time_s) {
   {
-    std::lock_guard<std::mutex> lock(mutex_);
+    std::lock_guard<PriorityInheritanceMutex> lock(mutex_);
     requested_end_time_s_ = end_time_s;
   }
   wake_.notify_one();
 }
 
 std::uint64_t HealthMonitor::samples_pushed() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::lock_guard<PriorityInheritanceMutex> lock(mutex_);
   return pushed_;
 }
 
 std::uint64_t HealthMonitor::analyses() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::lock_guard<PriorityInheritanceMutex> lock(mutex_);
   return analyses_;
 }
 
 HealthMonitor::Snapshot HealthMonitor::take_snapshot(double end_time_s) {
   Snapshot s;
   s.window.reserve(window_samples_);
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::lock_guard<PriorityInheritanceMutex> lock(mutex_);
   s.end_sample = pushed_;
   s.end_time_s = end_time_s;
   if (pushed_ >= window_samples_) {  // oldest first
@@ -178,7 +178,7 @@ void HealthMonitor::worker() {
   for (;;) {
     double end_time_s = 0.0;
     {
-      std::unique_lock<std::mutex> lock(mutex_);
+      std::unique_lock<PriorityInheritanceMutex> lock(mutex_);
       wake_.wait(lock, [this] { return stop_ || requested_end_time_s_.has_value(); });
       if (stop_) return;
       end_time_s = *requested_end_time_s_;
@@ -186,7 +186,7 @@ void HealthMonitor::worker() {
     }
     HealthReport report = analyze_now(end_time_s);
     {
-      std::lock_guard<std::mutex> lock(mutex_);
+      std::lock_guard<PriorityInheritanceMutex> lock(mutex_);
       ++analyses_;
     }
     if (callback_) callback_(report);

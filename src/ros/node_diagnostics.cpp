@@ -12,6 +12,7 @@ using diagnostic_msgs::DiagnosticStatus;
 NodeDiagnostics::NodeDiagnostics(ros::NodeHandle nh, ros::NodeHandle pnh, const std::string& hardware_id,
                                  const DiagnosticsSettings& settings)
     : settings_(settings), updater_(nh, pnh), lateness_(6000) {
+  unrecorded_lateness_s_.reserve(1000);  // no allocation in the real-time thread
   updater_.setHardwareID(hardware_id);
   updater_.add("Real time", this, &NodeDiagnostics::realtime_task);
   updater_.add("Inputs", this, &NodeDiagnostics::inputs_task);
@@ -21,11 +22,20 @@ NodeDiagnostics::NodeDiagnostics(ros::NodeHandle nh, ros::NodeHandle pnh, const 
 
 void NodeDiagnostics::record_chunk(double lateness_s, bool overrun, std::uint64_t samples_published,
                                    double simulated_s, double wall_elapsed_s) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  lateness_.add(lateness_s);
+  // Called by the real-time publisher thread: it must never wait for the diagnostics
+  // publisher (a normal-priority thread that a busy machine can deschedule while it holds
+  // the lock: priority inversion). If the lock is taken, the record waits here, touched
+  // only by the calling thread, and goes in with the next chunk.
+  unrecorded_lateness_s_.push_back(lateness_s);
+  unrecorded_overruns_ += overrun ? 1 : 0;
+  std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
+  if (!lock.owns_lock()) return;
+  for (double l : unrecorded_lateness_s_) lateness_.add(l);
+  unrecorded_lateness_s_.clear();
   last_lateness_s_ = lateness_s;
-  if (overrun) {
-    ++overruns_;
+  if (unrecorded_overruns_ > 0) {
+    overruns_ += unrecorded_overruns_;
+    unrecorded_overruns_ = 0;
     last_overrun_ = Clock::now();
   }
   samples_published_ = samples_published;

@@ -27,6 +27,7 @@
 #include "bearing_sim/ros/health_monitor.hpp"
 #include "bearing_sim/ros/input_validator.hpp"
 #include "bearing_sim/ros/node_diagnostics.hpp"
+#include "bearing_sim/ros/priority_inheritance_mutex.hpp"
 #include "bearing_sim/ros/realtime_pacer.hpp"
 #include "bearing_sim/ros/sample_divider.hpp"
 #include "bearing_sim/ros/sample_pipeline.hpp"
@@ -118,7 +119,9 @@ class BearingSimRos : private PipelineSink {
   double accepted_max_pressure_Pa_ = 0.0;
   int substeps_ = 0;
 
-  std::mutex pending_mutex_;
+  // Priority inheritance: the ROS callbacks (normal priority) hold it while the SCHED_FIFO
+  // simulation thread may wait for it.
+  PriorityInheritanceMutex pending_mutex_;
   Pending pending_;
   std::atomic<bool> pending_flag_{false};
 

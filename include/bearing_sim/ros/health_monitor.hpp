@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "bearing_sim/ros/priority_inheritance_mutex.hpp"
 #include "bearing_sim/core/bearing_life.hpp"
 #include "bearing_sim/core/bearing_model.hpp"
 #include "bearing_sim/core/condition_indicators.hpp"
@@ -114,8 +115,10 @@ class HealthMonitor {
   Callback callback_;
   std::size_t window_samples_ = 0;
 
-  mutable std::mutex mutex_;  // everything below
-  std::condition_variable wake_;
+  // Priority inheritance: the real-time publisher pushes samples while this normal-priority
+  // worker may hold the lock.
+  mutable PriorityInheritanceMutex mutex_;  // everything below
+  std::condition_variable_any wake_;
   std::vector<double> ring_;  // circular, capacity window_samples_
   std::size_t ring_next_ = 0;
   std::uint64_t pushed_ = 0;

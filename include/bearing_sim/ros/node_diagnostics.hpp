@@ -46,7 +46,8 @@ class NodeDiagnostics {
   NodeDiagnostics(ros::NodeHandle nh, ros::NodeHandle pnh, const std::string& hardware_id,
                   const DiagnosticsSettings& settings);
 
-  // After each published chunk (sim thread). lateness_s: wall time minus the due time of
+  // After each published chunk, from one thread only (the publisher, or the sim thread as
+  // fast as possible); never blocks. lateness_s: wall time minus the due time of
   // the chunk's last sample; overrun: later than one chunk period.
   void record_chunk(double lateness_s, bool overrun, std::uint64_t samples_published, double simulated_s,
                     double wall_elapsed_s);
@@ -71,6 +72,9 @@ class NodeDiagnostics {
   diagnostic_updater::Updater updater_;
   std::mutex mutex_;
   TimingStats lateness_;  // last minute of chunks at 100 Hz
+  // record_chunk's records not yet under mutex_ (only the recording thread touches them).
+  std::vector<double> unrecorded_lateness_s_;
+  std::uint64_t unrecorded_overruns_ = 0;
   double last_lateness_s_ = 0.0;
   std::uint64_t overruns_ = 0, samples_published_ = 0;
   double simulated_s_ = 0.0, wall_elapsed_s_ = 0.0;
