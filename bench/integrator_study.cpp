@@ -10,7 +10,11 @@
 // is output anyway, is the first stage of the next sample), and the real-time factor.
 //
 // Usage: bearing_sim_integrator_study [duration_s (default 0.3)] [case name part]
+//        bearing_sim_integrator_study barrier
+#include <atomic>
 #include <chrono>
+#include <thread>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -76,7 +80,10 @@ waviness:
       "damping: {contact_damping_Ns_per_m: 100}\n"
       "defects: [{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 30}]\n",
       "study 6205");
-  out.push_back({"6205 outer spall", small, load5(1000, 0, 200, 0, 0), 1800.0 * 2.0 * kPi / 60.0});
+  out.push_back({"6205 outer spall 30 um", small, load5(1000, 0, 200, 0, 0), 1800.0 * 2.0 * kPi / 60.0});
+  BearingConfig shallow = small;
+  shallow.imperfections.spalls.at(0).depth_m = 3e-6;
+  out.push_back({"6205 outer spall 3 um", shallow, load5(1000, 0, 200, 0, 0), 1800.0 * 2.0 * kPi / 60.0});
   return out;
 }
 
@@ -344,7 +351,43 @@ double band_error_db(const std::vector<double>& x, const std::vector<double>& re
 
 }  // namespace
 
+// Round trip of a two-thread spin barrier (the cost of splitting one force evaluation
+// over two cores: one release and one join per evaluation), median of 2000 batches.
+void barrier_round_trip() {
+  std::atomic<long> go{0}, done{0};
+  std::atomic<bool> stop{false};
+  std::thread worker([&] {
+    long seen = 0;
+    while (!stop.load(std::memory_order_relaxed)) {
+      const long g = go.load(std::memory_order_acquire);
+      if (g == seen) continue;
+      seen = g;
+      done.store(g, std::memory_order_release);
+    }
+  });
+  std::vector<double> ns;
+  long k = 0;
+  for (int batch = 0; batch < 2000; ++batch) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < 100; ++i) {
+      go.store(++k, std::memory_order_release);
+      while (done.load(std::memory_order_acquire) != k) {
+      }
+    }
+    ns.push_back(std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count() / 100.0);
+  }
+  stop = true;
+  worker.join();
+  std::sort(ns.begin(), ns.end());
+  std::printf("two-thread spin barrier round trip: median %.0f ns, 10th percentile %.0f ns, 90th percentile %.0f ns\n",
+              ns[ns.size() / 2], ns[ns.size() / 10], ns[9 * ns.size() / 10]);
+}
+
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "barrier") {
+    barrier_round_trip();
+    return 0;
+  }
   const double duration = argc > 1 ? std::stod(argv[1]) : 0.3;
   const double rate = 10000.0;
   std::printf("Integrator study: %.2f s simulated per run, output %.0f Hz, all balls integrated\n\n", duration, rate);
@@ -366,6 +409,8 @@ int main(int argc, char** argv) {
                  c.name.c_str(), model.ball_count(), rate_max, rate_max / rate,
                  BearingDynamics::choose_substeps(model, c.load, rate));
     const Result ref = run(c, model, runge_kutta(rk4(), 16), duration, rate);
+    std::fprintf(stderr, "%s: %.2f us per evaluation (all balls)\n", c.name.c_str(),
+                 1e6 / (ref.realtime_factor * rate * ref.evals_per_sample));
     std::printf("| %s | RK4 x16 (reference) | %.0f | a_rms %.4e m/s^2 | L %.2f dB | - | %.2f |\n", c.name.c_str(),
                 ref.evals_per_sample, ref.a_rms, ref.level_db, ref.realtime_factor);
     const std::vector<std::pair<std::string, Stepper>> methods = {
