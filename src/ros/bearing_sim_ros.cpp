@@ -175,7 +175,7 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh),
   inject_srv_ = nh_.advertiseService("inject_defect", &BearingSimRos::on_inject_defect, this);
   clear_srv_ = nh_.advertiseService("clear_defects", &BearingSimRos::on_clear_defects, this);
   speed_sub_ = nh_.subscribe("speed", 10, &BearingSimRos::on_speed, this);
-  ROS_INFO("bearing_sim_node: '%s', %d balls, %.0f Hz dynamics, %d RK4 substeps per sample, %s; "
+  ROS_INFO("bearing_sim_node: '%s', %d balls, %.0f Hz dynamics, %d ETDRK4 substeps per sample, %s; "
            "vibration: %s at %.0f Hz",
            model.config().name.c_str(), model.ball_count(), sample_rate_hz_, substeps_,
            real_time_ ? "real time" : "as fast as possible", sensor_description_.c_str(), measured_rate_hz_);
