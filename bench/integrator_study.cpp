@@ -415,6 +415,37 @@ int main(int argc, char** argv) {
     std::printf("| case | method | evaluations per sample | a_rms error | L error (dB) | worst octave band (dB) | real-time factor |\n");
     std::printf("|---|---|---|---|---|---|---|\n");
     for (const Case& c : cases()) production(c, duration);
+    // Cost of one relinearization (static solution and two matrix exponentials): the
+    // sample after a load change of 30%, less an ordinary sample.
+    const Case ct = cases().front();
+    BearingDynamics d(BearingModel(ct.config), ct.load, ct.ring_speed_rad_s);
+    for (int i = 0; i < 100; ++i) d.step();
+    double with = 0, without = 0;
+    for (int i = 0; i < 200; ++i) {
+      for (int k = 0; k < BearingDynamics::kSamplesPerLinearization; ++k) d.step();
+      d.set_load(i % 2 ? ct.load : Vector5(1.3 * ct.load));
+      auto t0 = std::chrono::steady_clock::now();
+      d.step();
+      auto t1 = std::chrono::steady_clock::now();
+      d.step();
+      auto t2 = std::chrono::steady_clock::now();
+      with += std::chrono::duration<double, std::micro>(t1 - t0).count();
+      without += std::chrono::duration<double, std::micro>(t2 - t1).count();
+    }
+    {
+      const BearingModel m(ct.config);
+      const auto t0 = std::chrono::steady_clock::now();
+      for (int i = 0; i < 20; ++i) linearise(m, ct.load);
+      const auto t1 = std::chrono::steady_clock::now();
+      const Linearisation lin = linearise(m, ct.load);
+      for (int i = 0; i < 20; ++i) phi_functions(lin.L, 1e-4);
+      const auto t2 = std::chrono::steady_clock::now();
+      std::printf("static solution and stiffness %.0f us, one 40x40 matrix exponential %.0f us\n",
+                  std::chrono::duration<double, std::micro>(t1 - t0).count() / 20,
+                  std::chrono::duration<double, std::micro>(t2 - t1).count() / 20);
+    }
+    std::printf("\nCT bearing: a sample with a relinearization %.0f us, without %.0f us (%llu linearizations)\n",
+                with / 200, without / 200, static_cast<unsigned long long>(d.linearizations()));
     return 0;
   }
   if (argc > 1 && std::string(argv[1]) == "barrier") {

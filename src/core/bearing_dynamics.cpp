@@ -66,32 +66,46 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
   lin_accel_.leftCols<5>() = -(inverse_mass_.asDiagonal() * stiffness);
   lin_accel_.rightCols<5>() = -(inverse_mass_.asDiagonal() * damping);
   // The exponential of [hL I 0 0; 0 0 I 0; 0 0 0 I; 0 0 0 0] holds e^{hL} and
-  // phi_1..phi_3(hL) in its first block row (phi_k(z) = (e^z - sum_{j<k} z^j/j!) / z^k).
-  const auto phi = [this](double h, Matrix10* e, Matrix10* phi1, Matrix10* phi2, Matrix10* phi3) {
-    Eigen::Matrix<double, 40, 40> w = Eigen::Matrix<double, 40, 40>::Zero();
-    w.block<5, 5>(0, 5).setIdentity();
-    w.block<5, 10>(5, 0) = lin_accel_;
-    w.block<10, 10>(0, 0) *= h;
-    w.block<10, 10>(0, 10).setIdentity();
-    w.block<10, 10>(10, 20).setIdentity();
-    w.block<10, 10>(20, 30).setIdentity();
-    const Eigen::Matrix<double, 40, 40> x = w.exp();
-    *e = x.block<10, 10>(0, 0);
-    *phi1 = x.block<10, 10>(0, 10);
-    *phi2 = x.block<10, 10>(0, 20);
-    *phi3 = x.block<10, 10>(0, 30);
+  // phi_1..phi_3(hL) in its first block row (phi_k(z) = (e^z - sum_{j<k} z^j/j!) / z^k);
+  // of [hL I; 0 0], e^{hL} and phi_1(hL). In SI units L is far from normal (|M^-1 K| ~ 1e8
+  // next to 1), which costs the scaling and squaring many squarings: it works on the
+  // balanced D L D^-1, D = diag(w I, I) with w^2 = |M^-1 K|, and f(L) = D^-1 f(D L D^-1) D.
+  const double w = std::max(1.0, std::sqrt(lin_accel_.leftCols<5>().lpNorm<Eigen::Infinity>()));
+  Matrix10 balanced = Matrix10::Zero();
+  balanced.topRightCorner<5, 5>() = w * Matrix5::Identity();
+  balanced.bottomLeftCorner<5, 5>() = lin_accel_.leftCols<5>() / w;
+  balanced.bottomRightCorner<5, 5>() = lin_accel_.rightCols<5>();
+  Eigen::Matrix<double, 10, 1> d;
+  d << Vector5::Constant(w), Vector5::Ones();
+  const auto unbalance = [&d](const Matrix10& f) -> Matrix10 {
+    return d.cwiseInverse().asDiagonal() * f * d.asDiagonal();
   };
   const double h = 1.0 / (options_.sample_rate_hz * substeps_);
-  Matrix10 phi1, phi2, phi3;
-  phi(0.5 * h, &exp_half_, &phi1, &phi2, &phi3);
-  phi_half_ = 0.5 * h * phi1.rightCols<5>();
-  phi(h, &exp_full_, &phi1, &phi2, &phi3);
+  {
+    Eigen::Matrix<double, 20, 20> x = Eigen::Matrix<double, 20, 20>::Zero();
+    x.block<10, 10>(0, 0) = 0.5 * h * balanced;
+    x.block<10, 10>(0, 10).setIdentity();
+    const Eigen::Matrix<double, 20, 20> e = x.exp();
+    exp_half_ = unbalance(e.block<10, 10>(0, 0));
+    phi_half_ = 0.5 * h * unbalance(e.block<10, 10>(0, 10)).rightCols<5>();
+  }
+  Eigen::Matrix<double, 40, 40> x = Eigen::Matrix<double, 40, 40>::Zero();
+  x.block<10, 10>(0, 0) = h * balanced;
+  x.block<10, 10>(0, 10).setIdentity();
+  x.block<10, 10>(10, 20).setIdentity();
+  x.block<10, 10>(20, 30).setIdentity();
+  const Eigen::Matrix<double, 40, 40> e = x.exp();
+  exp_full_ = unbalance(e.block<10, 10>(0, 0));
+  const Matrix10 phi1 = unbalance(e.block<10, 10>(0, 10));
+  const Matrix10 phi2 = unbalance(e.block<10, 10>(0, 20));
+  const Matrix10 phi3 = unbalance(e.block<10, 10>(0, 30));
   // Cox-Matthews weights of the four remainders (the remainder has no displacement part,
   // so only the right half of each matrix is kept).
   w1_ = h * (phi1 - 3.0 * phi2 + 4.0 * phi3).rightCols<5>();
   w2_ = 2.0 * h * (phi2 - 2.0 * phi3).rightCols<5>();
   w3_ = h * (4.0 * phi3 - phi2).rightCols<5>();
   linearized_substeps_ = substeps_;
+  samples_since_linearization_ = 0;
   ++linearizations_;
 }
 
@@ -287,8 +301,13 @@ DynamicSample BearingDynamics::step() {
     model_.split_by_deflection(q0, phase_, margin, &active_balls_, &clear_balls_);
   }
   samples_since_split_ = (samples_since_split_ + 1) % kSamplesPerBallSplit;
-  if (exponential() && (linearized_substeps_ != substeps_ ||
-                        (load_ - load_lin_).norm() > kRelinearizeLoadChange * load_lin_.norm())) {
+  // A moving load is followed at most every kSamplesPerLinearization samples, so that an
+  // input changing every sample cannot make every sample pay for a linearization.
+  ++samples_since_linearization_;
+  if (exponential() &&
+      (linearized_substeps_ != substeps_ ||
+       (samples_since_linearization_ >= kSamplesPerLinearization &&
+        (load_ - load_lin_).norm() > kRelinearizeLoadChange * load_lin_.norm()))) {
     // About the equilibrium of the current load (the ring vibrates about it), or about the
     // current displacement when there is none.
     Vector5 q_eq = q0;

@@ -91,4 +91,12 @@ TEST(ExponentialIntegrator, RelinearizesWhenTheLoadMovesAndStaysAccurate) {
   const Vector5 q_static = solve_static(model, load5(0.0, 6800.0, 0.0, -2100.0, 0.0)).displacement;
   EXPECT_LT((mean - q_static).head<3>().norm(), 0.02 * q_static.head<3>().norm()) << mean.transpose() << " vs "
                                                                                   << q_static.transpose();
+  // A load jumping by 30% every sample: at most one linearization per kSamplesPerLinearization.
+  const std::uint64_t jumping = dynamics.linearizations();
+  for (int i = 0; i < 160; ++i) {
+    dynamics.set_load((i % 2 ? 1.0 : 1.3) * load5(0.0, 6800.0, 0.0, -2100.0, 0.0));
+    dynamics.step();
+  }
+  EXPECT_LE(dynamics.linearizations() - jumping, 160u / BearingDynamics::kSamplesPerLinearization);
+  EXPECT_GT(dynamics.linearizations() - jumping, 0u);
 }

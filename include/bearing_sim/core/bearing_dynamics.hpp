@@ -87,9 +87,11 @@ class BearingDynamics {
   static constexpr double kStepTimesOmegaMax = 0.5;
   static constexpr double kExponentialStepTimesOmegaMax = 1.0;
   // Linearizations of the exponential integrator since construction (it is redone when
-  // the load has moved by more than kRelinearizeLoadChange of its size, or the model changed).
+  // the load has moved by more than kRelinearizeLoadChange of its size, at most every
+  // kSamplesPerLinearization samples, or the model changed).
   std::uint64_t linearizations() const { return linearizations_; }
   static constexpr double kRelinearizeLoadChange = 0.2;
+  static constexpr int kSamplesPerLinearization = 16;  // at most one per this many samples
 
  private:
   Vector5 acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
@@ -144,6 +146,7 @@ class BearingDynamics {
   Matrix10x5 phi_half_ = Matrix10x5::Zero();  // (h/2) phi1(hL/2)
   Matrix10x5 w1_ = Matrix10x5::Zero(), w2_ = Matrix10x5::Zero(), w3_ = Matrix10x5::Zero();
   int linearized_substeps_ = 0;
+  int samples_since_linearization_ = 0;
   std::uint64_t linearizations_ = 0;
   static constexpr int kSamplesPerBallSplit = 16;
   int samples_since_split_ = 0;  // current_.acceleration matches load_ and model_
