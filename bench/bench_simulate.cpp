@@ -20,9 +20,10 @@ bearing_sim::BearingConfig bearing(const std::string& file) {
 }
 
 void simulate(benchmark::State& state, const bearing_sim::BearingConfig& config, const Vector5& load,
-              double speed_rad_s) {
+              double speed_rad_s,
+              bearing_sim::IntegrationMethod method = bearing_sim::IntegrationMethod::ExponentialRk4) {
   const bearing_sim::BearingModel model(config);
-  bearing_sim::BearingDynamics dynamics(model, load, speed_rad_s, {10000.0, 0});
+  bearing_sim::BearingDynamics dynamics(model, load, speed_rad_s, {10000.0, 0, true, method});
   constexpr int kSamplesPerIteration = 1000;  // 0.1 s simulated
   for (auto _ : state) {
     for (int i = 0; i < kSamplesPerIteration; ++i) benchmark::DoNotOptimize(dynamics.step());
@@ -63,6 +64,17 @@ Vector5 ct_load() {
 
 void BM_SimulateCtGantryWithDefects(benchmark::State& state) {
   simulate(state, ct_gantry_with_defects(), ct_load(), 180.0 * 2.0 * 3.14159265358979 / 60.0);
+}
+
+// The same two with classical RK4 at its converged step (2 steps per sample), for comparison.
+void BM_SimulateCtGantryRk4(benchmark::State& state) {
+  simulate(state, bearing("ct_gantry_lyc.yaml"), ct_load(), 180.0 * 2.0 * 3.14159265358979 / 60.0,
+           bearing_sim::IntegrationMethod::Rk4);
+}
+
+void BM_SimulateCtGantryWithDefectsRk4(benchmark::State& state) {
+  simulate(state, ct_gantry_with_defects(), ct_load(), 180.0 * 2.0 * 3.14159265358979 / 60.0,
+           bearing_sim::IntegrationMethod::Rk4);
 }
 
 // Issue 5's figure: the same, with the node's triaxial housing accelerometer on every sample.
@@ -106,6 +118,8 @@ void BM_SimulateDeepGroove6205WithSpall(benchmark::State& state) {
 
 BENCHMARK(BM_SimulateCtGantry)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_SimulateCtGantryWithDefects)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_SimulateCtGantryRk4)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_SimulateCtGantryWithDefectsRk4)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_SimulateCtGantryWithDefectsAndSensor)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_SimulateIns61822)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK(BM_SimulateDeepGroove6205WithSpall)->Unit(benchmark::kMillisecond)->MinTime(1.0);

@@ -10,3 +10,8 @@ if(benchmark_FOUND)
   target_link_libraries(bench_sensor PRIVATE bearing_sim_core benchmark::benchmark)
   bearing_sim_optimize(bench_sensor)
 endif()
+# Integrator study (force evaluations per sample against accuracy); a plain program.
+add_executable(bearing_sim_integrator_study bench/integrator_study.cpp)
+target_link_libraries(bearing_sim_integrator_study PRIVATE bearing_sim_core)
+target_compile_definitions(bearing_sim_integrator_study PRIVATE BEARING_SIM_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
+bearing_sim_optimize(bearing_sim_integrator_study)

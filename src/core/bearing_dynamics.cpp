@@ -4,6 +4,8 @@
 #include <limits>
 #include <sstream>
 
+#include <unsupported/Eigen/MatrixFunctions>
+
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 
@@ -20,7 +22,7 @@ BearingDynamics::BearingDynamics(BearingModel model, const Vector5& load, double
   set_load(load);
   set_ring_speed(ring_speed_rad_s);
   substeps_ = options_.substeps > 0 ? options_.substeps
-                                    : choose_substeps(model_, load_, options_.sample_rate_hz);
+                                    : choose_substeps(model_, load_, options_.sample_rate_hz, options_.method);
   substeps_load_norm_ = load_.norm();
   slowest_mode_rad_s_ = natural_frequencies_rad_s(model_, load_).minCoeff();
   reset_to_equilibrium();
@@ -48,16 +50,69 @@ double BearingDynamics::fastest_rate_rad_s(const BearingModel& model, const Vect
   return Eigen::EigenSolver<Eigen::Matrix<double, 10, 10>>(a, false).eigenvalues().cwiseAbs().maxCoeff();
 }
 
-int BearingDynamics::choose_substeps(const BearingModel& model, const Vector5& load, double sample_rate_hz) {
+int BearingDynamics::choose_substeps(const BearingModel& model, const Vector5& load, double sample_rate_hz,
+                                     IntegrationMethod method) {
   const double rate_max = fastest_rate_rad_s(model, load);
   const double h_sample = 1.0 / sample_rate_hz;
-  return std::max(1, static_cast<int>(std::ceil(rate_max * h_sample / kStepTimesOmegaMax)));
+  const double limit = method == IntegrationMethod::ExponentialRk4 ? kExponentialStepTimesOmegaMax : kStepTimesOmegaMax;
+  return std::max(1, static_cast<int>(std::ceil(rate_max * h_sample / limit)));
+}
+
+void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
+  Matrix5 stiffness, damping;
+  model_.contact_force_and_stiffness(q, phase, &stiffness, &damping);
+  q_lin_ = q;
+  load_lin_ = load_;
+  lin_accel_.leftCols<5>() = -(inverse_mass_.asDiagonal() * stiffness);
+  lin_accel_.rightCols<5>() = -(inverse_mass_.asDiagonal() * damping);
+  // The exponential of [hL I 0 0; 0 0 I 0; 0 0 0 I; 0 0 0 0] holds e^{hL} and
+  // phi_1..phi_3(hL) in its first block row (phi_k(z) = (e^z - sum_{j<k} z^j/j!) / z^k);
+  // of [hL I; 0 0], e^{hL} and phi_1(hL). In SI units L is far from normal (|M^-1 K| ~ 1e8
+  // next to 1), which costs the scaling and squaring many squarings: it works on the
+  // balanced D L D^-1, D = diag(w I, I) with w^2 = |M^-1 K|, and f(L) = D^-1 f(D L D^-1) D.
+  const double w = std::max(1.0, std::sqrt(lin_accel_.leftCols<5>().lpNorm<Eigen::Infinity>()));
+  Matrix10 balanced = Matrix10::Zero();
+  balanced.topRightCorner<5, 5>() = w * Matrix5::Identity();
+  balanced.bottomLeftCorner<5, 5>() = lin_accel_.leftCols<5>() / w;
+  balanced.bottomRightCorner<5, 5>() = lin_accel_.rightCols<5>();
+  Eigen::Matrix<double, 10, 1> d;
+  d << Vector5::Constant(w), Vector5::Ones();
+  const auto unbalance = [&d](const Matrix10& f) -> Matrix10 {
+    return d.cwiseInverse().asDiagonal() * f * d.asDiagonal();
+  };
+  const double h = 1.0 / (options_.sample_rate_hz * substeps_);
+  {
+    Eigen::Matrix<double, 20, 20> x = Eigen::Matrix<double, 20, 20>::Zero();
+    x.block<10, 10>(0, 0) = 0.5 * h * balanced;
+    x.block<10, 10>(0, 10).setIdentity();
+    const Eigen::Matrix<double, 20, 20> e = x.exp();
+    exp_half_ = unbalance(e.block<10, 10>(0, 0));
+    phi_half_ = 0.5 * h * unbalance(e.block<10, 10>(0, 10)).rightCols<5>();
+  }
+  Eigen::Matrix<double, 40, 40> x = Eigen::Matrix<double, 40, 40>::Zero();
+  x.block<10, 10>(0, 0) = h * balanced;
+  x.block<10, 10>(0, 10).setIdentity();
+  x.block<10, 10>(10, 20).setIdentity();
+  x.block<10, 10>(20, 30).setIdentity();
+  const Eigen::Matrix<double, 40, 40> e = x.exp();
+  exp_full_ = unbalance(e.block<10, 10>(0, 0));
+  const Matrix10 phi1 = unbalance(e.block<10, 10>(0, 10));
+  const Matrix10 phi2 = unbalance(e.block<10, 10>(0, 20));
+  const Matrix10 phi3 = unbalance(e.block<10, 10>(0, 30));
+  // Cox-Matthews weights of the four remainders (the remainder has no displacement part,
+  // so only the right half of each matrix is kept).
+  w1_ = h * (phi1 - 3.0 * phi2 + 4.0 * phi3).rightCols<5>();
+  w2_ = 2.0 * h * (phi2 - 2.0 * phi3).rightCols<5>();
+  w3_ = h * (4.0 * phi3 - phi2).rightCols<5>();
+  linearized_substeps_ = substeps_;
+  samples_since_linearization_ = 0;
+  ++linearizations_;
 }
 
 void BearingDynamics::update_substeps() {
   if (options_.substeps > 0) return;
   try {
-    substeps_ = choose_substeps(model_, load_, options_.sample_rate_hz);
+    substeps_ = choose_substeps(model_, load_, options_.sample_rate_hz, options_.method);
     substeps_load_norm_ = load_.norm();
   } catch (const LoadNotCarriedError&) {
     // Keep the step: the caller learns of the load when it resets to the equilibrium.
@@ -114,6 +169,7 @@ void BearingDynamics::set_model(BearingModel model) {
   displacement_limit_m_ = 0.25 * model_.config().ball_diameter_m + std::abs(model_.config().clearance_m);
   update_cage_speed();
   update_substeps();  // clearance and damping change the fastest mode
+  linearized_substeps_ = 0;  // and the linearized contacts: again before the next sample
   acceleration_current_ = false;
   samples_since_split_ = 0;  // the contact margin depends on the inputs
 }
@@ -140,6 +196,7 @@ void BearingDynamics::reset_to_equilibrium() {
   current_.acceleration = acceleration(current_.displacement, current_.velocity, phase_, model_.balls());
   acceleration_current_ = true;
   samples_since_split_ = 0;
+  if (exponential()) linearize(s.displacement, phase_);
 }
 
 Vector5 BearingDynamics::acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
@@ -174,6 +231,47 @@ double BearingDynamics::contact_margin_m(const Vector5& q, const Vector5& v, con
 
 void BearingDynamics::integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
                                        const BallArrays& balls) const {
+  if (exponential())
+    integrate_sample_exponential(q, v, phase, a_start, balls);
+  else
+    integrate_sample_rk4(q, v, phase, a_start, balls);
+}
+
+void BearingDynamics::integrate_sample_exponential(Vector5& q, Vector5& v, RollingPhase& phase,
+                                                   const Vector5& a_start, const BallArrays& balls) const {
+  // Cox-Matthews ETDRK4 on y = (q - q_lin, v): y' = L y + (0, r(y, t)).
+  using Vector10 = Eigen::Matrix<double, 10, 1>;
+  const double h = 1.0 / (options_.sample_rate_hz * substeps_);
+  const auto state = [this](const Vector10& y, Vector5* qq, Vector5* vv) {
+    *qq = q_lin_ + y.head<5>();
+    *vv = y.tail<5>();
+  };
+  const auto remainder = [&](const Vector10& y, const RollingPhase& p) {
+    Vector5 qq, vv;
+    state(y, &qq, &vv);
+    return Vector5(acceleration(qq, vv, p, balls) - lin_accel_ * y);
+  };
+  Vector10 y;
+  y << q - q_lin_, v;
+  for (int i = 0; i < substeps_; ++i) {
+    const RollingPhase mid = advanced(phase, 0.5 * h), end = advanced(phase, h);
+    const Vector5 r1 = (i == 0 ? a_start : acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls)) -
+                       lin_accel_ * y;
+    const Vector10 e_half_y = exp_half_ * y;
+    const Vector10 y2 = e_half_y + phi_half_ * r1;
+    const Vector5 r2 = remainder(y2, mid);
+    const Vector10 y3 = e_half_y + phi_half_ * r2;
+    const Vector5 r3 = remainder(y3, mid);
+    const Vector10 y4 = exp_half_ * y2 + phi_half_ * (2.0 * r3 - r1);
+    const Vector5 r4 = remainder(y4, end);
+    y = exp_full_ * y + w1_ * r1 + w2_ * (r2 + r3) + w3_ * r4;
+    phase = end;
+  }
+  state(y, &q, &v);
+}
+
+void BearingDynamics::integrate_sample_rk4(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
+                                           const BallArrays& balls) const {
   const double h = 1.0 / (options_.sample_rate_hz * substeps_);
   for (int i = 0; i < substeps_; ++i) {
     const RollingPhase mid = advanced(phase, 0.5 * h), end = advanced(phase, h);
@@ -203,6 +301,22 @@ DynamicSample BearingDynamics::step() {
     model_.split_by_deflection(q0, phase_, margin, &active_balls_, &clear_balls_);
   }
   samples_since_split_ = (samples_since_split_ + 1) % kSamplesPerBallSplit;
+  // A moving load is followed at most every kSamplesPerLinearization samples, so that an
+  // input changing every sample cannot make every sample pay for a linearization.
+  ++samples_since_linearization_;
+  if (exponential() &&
+      (linearized_substeps_ != substeps_ ||
+       (samples_since_linearization_ >= kSamplesPerLinearization &&
+        (load_ - load_lin_).norm() > kRelinearizeLoadChange * load_lin_.norm()))) {
+    // About the equilibrium of the current load (the ring vibrates about it), or about the
+    // current displacement when there is none.
+    Vector5 q_eq = q0;
+    try {
+      q_eq = solve_static(model_, load_, phase_, {}, &q0).displacement;
+    } catch (const LoadNotCarriedError&) {
+    }
+    linearize(q_eq, phase_);
+  }
   const BallArrays* balls = &active_balls_;
   Vector5 q = q0, v = v0;
   RollingPhase phase = phase_;

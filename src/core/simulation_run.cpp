@@ -20,7 +20,7 @@ SimulationSummary run_simulation(const BearingModel& model, const SimulationRequ
   if (n > 1'000'000'000) throw InvalidInputError("the run is too long (over 1e9 samples)");
 
   BearingDynamics dynamics(model, request.load, request.ring_speed_rad_s,
-                           DynamicsOptions{request.sample_rate_hz, request.substeps});
+                           DynamicsOptions{request.sample_rate_hz, request.substeps, true, request.method});
   const std::size_t half = n / 2;
   std::vector<double> ax(n - half), ay(n - half), az(n - half);
   SimulationSummary s;

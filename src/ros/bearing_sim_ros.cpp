@@ -64,6 +64,9 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh),
   if (!(load_ramp_s >= 0.0) || load_ramp_s > 1.0) throw std::runtime_error("~load_ramp_s must be in [0, 1] s");
   load_ramp_ = LoadRamp(static_cast<std::uint64_t>(std::llround(load_ramp_s * sample_rate_hz_)));
   const int substeps = param(pnh_, "substeps", 0);
+  const std::string integrator = param<std::string>(pnh_, "integrator", "etdrk4");
+  if (integrator != "etdrk4" && integrator != "rk4") throw std::runtime_error("~integrator must be etdrk4 or rk4");
+  const IntegrationMethod method = integrator == "rk4" ? IntegrationMethod::Rk4 : IntegrationMethod::ExponentialRk4;
   real_time_ = param(pnh_, "real_time", true);
   publish_clock_ = param(pnh_, "publish_clock", !real_time_);
   realtime_priority_ = param(pnh_, "realtime_priority", 0);
@@ -98,7 +101,7 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh),
   accepted_max_pressure_Pa_ = load_check.max_contact_pressure_Pa;
 
   validation_model_ = std::make_unique<BearingModel>(model);
-  BearingDynamics dynamics(model, load, speed, DynamicsOptions{sample_rate_hz_, substeps});
+  BearingDynamics dynamics(model, load, speed, DynamicsOptions{sample_rate_hz_, substeps, true, method});
   substeps_ = dynamics.substeps();
 
   // Virtual sensor: `vibration` carries what it records, at its output rate.
@@ -168,9 +171,10 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh),
   inject_srv_ = nh_.advertiseService("inject_defect", &BearingSimRos::on_inject_defect, this);
   clear_srv_ = nh_.advertiseService("clear_defects", &BearingSimRos::on_clear_defects, this);
   speed_sub_ = nh_.subscribe("speed", 10, &BearingSimRos::on_speed, this);
-  ROS_INFO("bearing_sim_node: '%s', %d balls, %.0f Hz dynamics, %d RK4 substeps per sample, %s; "
+  ROS_INFO("bearing_sim_node: '%s', %d balls, %.0f Hz dynamics, %d %s substeps per sample, %s; "
            "vibration: %s at %.0f Hz",
            model.config().name.c_str(), model.ball_count(), sample_rate_hz_, substeps_,
+           method == IntegrationMethod::Rk4 ? "RK4" : "ETDRK4",
            real_time_ ? "real time" : "as fast as possible", sensor_description_.c_str(), measured_rate_hz_);
 }
 

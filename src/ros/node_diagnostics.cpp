@@ -138,7 +138,7 @@ void NodeDiagnostics::model_task(diagnostic_updater::DiagnosticStatusWrapper& st
   status.add("bearing", model_.bearing_name);
   status.addf("clearance (um)", "%.4g", model_.clearance_m * 1e6);
   status.addf("contact damping (N*s/m)", "%.6g", model_.contact_damping_Ns_per_m);
-  status.add("RK4 substeps per sample", model_.substeps);
+  status.add("integrator substeps per sample", model_.substeps);
   status.addf("varying-compliance frequency (Hz)", "%.4f", model_.varying_compliance_hz);
   status.addf("static max contact pressure (MPa)", "%.1f", model_.static_max_contact_pressure_Pa * 1e-6);
   status.add("divergences", divergences_);

@@ -134,7 +134,7 @@ void run(const SimulateOptions& o) {
   KeyValueList run_info;
   run_info.add("samples", std::to_string(s.samples) + " at " + general(o.rate_hz, 6) + " Hz (" +
                               general(o.duration_s, 6) + " s)");
-  run_info.add("integration", std::to_string(s.substeps) + " RK4 steps per sample, step " +
+  run_info.add("integration", std::to_string(s.substeps) + " ETDRK4 steps per sample, step " +
                                   general(s.internal_step_s * 1e6, 4) + " us");
   run_info.add("realtime factor", general(s.realtime_factor, 4) + " (simulated s per wall s, " + cpu_model_name() +
                                        ", SIMD " + simd_target_name() + ")");
@@ -176,7 +176,7 @@ void register_simulate_command(CLI::App& app) {
   add_number_option(cmd, "--duration", &o->duration_s, "S", "Simulated time, s")->check(CLI::PositiveNumber);
   add_number_option(cmd, "--rate", &o->rate_hz, "HZ", "Output sample rate, Hz (not the integration step)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--substeps", o->substeps, "Internal RK4 steps per sample (0: automatic)")
+  cmd->add_option("--substeps", o->substeps, "Internal ETDRK4 steps per sample (0: automatic)")
       ->type_name("N")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();

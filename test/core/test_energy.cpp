@@ -1,5 +1,7 @@
 // Conservation law of the dynamic model: without damping and with the cage at rest, the
 // energy 1/2 v'Mv + sum (2/5) Kn delta^2.5 - F.q is constant; with damping it decays.
+// The convergence checks are classical RK4's (selected explicitly); the default exponential
+// integrator has its own check at its automatic step.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,9 +27,10 @@ struct ReleaseRun {
   double e0, max_drift, swing, e_end;
 };
 
-ReleaseRun release(BearingConfig c, const Vector5& from, const Vector5& to, int samples, int substeps = 0) {
+ReleaseRun release(BearingConfig c, const Vector5& from, const Vector5& to, int samples, int substeps = 0,
+                   IntegrationMethod method = IntegrationMethod::Rk4) {
   const BearingModel model(c);
-  BearingDynamics dyn(model, from, 0.0, DynamicsOptions{10000.0, substeps});  // cage at rest: time-invariant potential
+  BearingDynamics dyn(model, from, 0.0, DynamicsOptions{10000.0, substeps, true, method});  // cage at rest: time-invariant potential
   dyn.set_load(to);                        // released from the old equilibrium: free vibration
   ReleaseRun r{energy(model, dyn.current(), to), 0.0, 0.0, 0.0};
   double kinetic_max = 0.0;
@@ -62,8 +65,22 @@ TEST(Energy, ConservedWithoutDamping) {
   EXPECT_LT(ra.max_drift, 0.1 * ra.swing);
 }
 
+TEST(Energy, ConservedWithoutDampingByTheExponentialIntegrator) {
+  // The default integrator at its automatic step (one step per sample here, omega_max h
+  // ~ 0.8): the linear part of the motion is exact, only the remainder's error drifts.
+  BearingConfig c = ct_bearing();
+  c.contact_damping_Ns_per_m = 0.0;
+  const Vector5 to = load5(8000, 0, 500, 0, 2500);
+  const ReleaseRun r = release(c, ct_load(), to, 500, 0, IntegrationMethod::ExponentialRk4);
+  const ReleaseRun rk4 = release(c, ct_load(), to, 500, 0, IntegrationMethod::Rk4);
+  ASSERT_GT(r.swing, 0.0);
+  EXPECT_LT(r.max_drift, 1e-3 * r.swing) << "drift " << r.max_drift << " J, swing " << r.swing << " J";
+  EXPECT_LT(r.max_drift, rk4.max_drift) << r.max_drift << " vs RK4 " << rk4.max_drift;
+}
+
 TEST(Energy, DecaysWithDamping) {
-  const ReleaseRun r = release(ct_bearing(), ct_load(), load5(8000, 0, 500, 0, 2500), 500);
+  const ReleaseRun r =
+      release(ct_bearing(), ct_load(), load5(8000, 0, 500, 0, 2500), 500, 0, IntegrationMethod::ExponentialRk4);
   // 100 N s/m per contact damps the ~1 kHz modes by a few percent per cycle: over 50 ms most of
   // the vibration energy is gone.
   EXPECT_LT(r.e_end - (r.e0 - r.swing), 0.5 * r.swing);

@@ -1,5 +1,6 @@
-// Integration step (MODEL.md section 5): the automatic step is converged (halving it
-// changes the RMS acceleration by < 1%), and one RK4 step per sample is measurably not.
+// Integration step of classical RK4 (still selectable): its automatic step is converged
+// (halving it changes the RMS acceleration by < 1%), and one RK4 step per sample is
+// measurably not.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,6 +19,7 @@ SimulationSummary run(const BearingModel& model, int substeps) {
   req.ring_speed_rad_s = kCtSpeedRadS;
   req.duration_s = 0.3;
   req.substeps = substeps;
+  req.method = IntegrationMethod::Rk4;
   return run_simulation(model, req);
 }
 }  // namespace

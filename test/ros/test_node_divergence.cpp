@@ -1,6 +1,6 @@
 // A diverging RK4 step on the running node: reported as ERROR, model reset to the static
 // equilibrium, never NaN, and recovery. The node runs test/ros/ct_light_ring.yaml (the CT
-// bearing with a 1 kg ring) with a fixed ~substeps: 3, so that the cfg's maximum contact
+// bearing with a 1 kg ring) with ~integrator: rk4 and a fixed ~substeps: 3, so that the cfg's maximum contact
 // damping (2000 N*s/m, a physical value) is beyond the step's stability limit: the core
 // picks a stable step by itself only in automatic mode (~substeps: 0).
 #include <dynamic_reconfigure/Reconfigure.h>

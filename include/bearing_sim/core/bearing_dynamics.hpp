@@ -1,6 +1,7 @@
 #pragma once
-// 5-DOF dynamics of the moving ring on its Hertz contacts (MODEL.md section 5),
-// integrated by RK4 with an internal step finer than the output sample period.
+// 5-DOF dynamics of the moving ring on its Hertz contacts, integrated by an exponential
+// fourth-order Runge-Kutta scheme (ETDRK4) around the linearized contacts, or by classical
+// RK4, with an internal step no longer than the output sample period.
 #include <cstdint>
 #include <random>
 
@@ -17,14 +18,23 @@ struct DynamicSample {
   Vector5 acceleration = Vector5::Zero();
 };
 
+enum class IntegrationMethod {
+  // Cox-Matthews ETDRK4: the linearized ring dynamics (stiffness and damping of the loaded
+  // contacts) are integrated exactly by their matrix exponential, only the nonlinear
+  // remainder explicitly; 4 force evaluations per internal step.
+  ExponentialRk4,
+  Rk4,  // classical RK4, 4 force evaluations per internal step
+};
+
 struct DynamicsOptions {
   double sample_rate_hz = 10000.0;
-  // Internal RK4 steps per output sample; 0 chooses them from the highest natural
+  // Internal steps per output sample; 0 chooses them from the highest natural
   // frequency at the static equilibrium (see choose_substeps).
   int substeps = 0;
   // Integrate only the balls within a safe margin of contact (results unchanged, since
   // a sample in which an excluded ball touches is redone with all balls).
   bool skip_clear_balls = true;
+  IntegrationMethod method = IntegrationMethod::ExponentialRk4;
 };
 
 class BearingDynamics {
@@ -57,6 +67,7 @@ class BearingDynamics {
   double cage_speed_rad_s() const { return cage_speed_; }
   double sample_rate_hz() const { return options_.sample_rate_hz; }
   int substeps() const { return substeps_; }
+  IntegrationMethod method() const { return options_.method; }
   double internal_step_s() const { return 1.0 / (options_.sample_rate_hz * substeps_); }
   std::uint64_t sample_index() const { return sample_index_; }
   // Balls integrated in the last sample, and how often a sample had to be redone with
@@ -68,18 +79,35 @@ class BearingDynamics {
   static Vector5 natural_frequencies_rad_s(const BearingModel& model, const Vector5& load);
   // Largest |eigenvalue| of the linearized ring dynamics with contact damping, rad/s.
   static double fastest_rate_rad_s(const BearingModel& model, const Vector5& load);
-  // Internal steps per sample so that |lambda|_max * h <= kStepTimesOmegaMax. Chosen at
-  // construction and again (in automatic mode) when the model or the load changes a lot.
-  static int choose_substeps(const BearingModel& model, const Vector5& load, double sample_rate_hz);
+  // Internal steps per sample so that |lambda|_max * h <= kStepTimesOmegaMax (RK4) or
+  // kExponentialStepTimesOmegaMax (ETDRK4). Chosen at construction and again (in automatic
+  // mode) when the model or the load changes a lot.
+  static int choose_substeps(const BearingModel& model, const Vector5& load, double sample_rate_hz,
+                             IntegrationMethod method = IntegrationMethod::Rk4);
   static constexpr double kStepTimesOmegaMax = 0.5;
+  static constexpr double kExponentialStepTimesOmegaMax = 1.0;
+  // Linearizations of the exponential integrator since construction (it is redone when
+  // the load has moved by more than kRelinearizeLoadChange of its size, at most every
+  // kSamplesPerLinearization samples, or the model changed).
+  std::uint64_t linearizations() const { return linearizations_; }
+  static constexpr double kRelinearizeLoadChange = 0.2;
+  static constexpr int kSamplesPerLinearization = 16;  // at most one per this many samples
 
  private:
   Vector5 acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
                        const BallArrays& balls) const;
   RollingPhase advanced(const RollingPhase& phase, double dt) const;
-  // RK4 over one output sample, in substeps_ steps, from the acceleration a_start.
+  // One output sample, in substeps_ steps, from the acceleration a_start.
   void integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
                         const BallArrays& balls) const;
+  void integrate_sample_rk4(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
+                            const BallArrays& balls) const;
+  void integrate_sample_exponential(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
+                                    const BallArrays& balls) const;
+  // Linear part of the exponential integrator at displacement q: stiffness and damping of
+  // the contacts there, its matrix exponential and phi functions for the internal step.
+  void linearize(const Vector5& q, const RollingPhase& phase);
+  bool exponential() const { return options_.method == IntegrationMethod::ExponentialRk4; }
   double contact_margin_m(const Vector5& q, const Vector5& v, const Vector5& a) const;
   DynamicSample commit_sample(const Vector5& q, const Vector5& v, const Vector5& a, const RollingPhase& phase);
   void update_cage_speed();
@@ -106,6 +134,20 @@ class BearingDynamics {
   bool acceleration_current_ = false;
   BallArrays active_balls_, clear_balls_;  // per sample: near contact / clear by the margin
   std::uint64_t full_sample_retries_ = 0;
+  // Exponential integrator: y = (q - q_lin, v), y' = L y + (0, r), L = [0 I; A], the
+  // remainder r = a(q, v, t) - A y. Stored: e^{hL}, e^{hL/2}, the phi-function blocks that
+  // multiply the remainder, for the internal step h.
+  using Matrix10 = Eigen::Matrix<double, 10, 10>;
+  using Matrix10x5 = Eigen::Matrix<double, 10, 5>;
+  Vector5 q_lin_ = Vector5::Zero();
+  Vector5 load_lin_ = Vector5::Zero();
+  Eigen::Matrix<double, 5, 10> lin_accel_ = Eigen::Matrix<double, 5, 10>::Zero();  // A
+  Matrix10 exp_full_ = Matrix10::Identity(), exp_half_ = Matrix10::Identity();
+  Matrix10x5 phi_half_ = Matrix10x5::Zero();  // (h/2) phi1(hL/2)
+  Matrix10x5 w1_ = Matrix10x5::Zero(), w2_ = Matrix10x5::Zero(), w3_ = Matrix10x5::Zero();
+  int linearized_substeps_ = 0;
+  int samples_since_linearization_ = 0;
+  std::uint64_t linearizations_ = 0;
   static constexpr int kSamplesPerBallSplit = 16;
   int samples_since_split_ = 0;  // current_.acceleration matches load_ and model_
 };

@@ -1,0 +1,510 @@
+// Integrator study: force evaluations per output sample against accuracy, for the ring
+// dynamics M q'' = F_ext + f(q, q', t) at a fixed output rate (10 kHz).
+//
+// Every method integrates the same right-hand side (all balls, the same rolling phases)
+// from the same static equilibrium; the reference is classical RK4 with 16 steps per
+// sample. Accuracy: a_rms of the x acceleration over the second half of the run (mean
+// removed), the level L = 20 lg(a_rms / 9.81e-3 m/s^2), and the largest level error of
+// the octave bands (63 Hz .. 4 kHz) of the acceleration spectrum that hold >= 1 % of its
+// energy. Cost: evaluations of f per output sample (the end-of-sample acceleration, which
+// is output anyway, is the first stage of the next sample), and the real-time factor.
+//
+// Usage: bearing_sim_integrator_study [duration_s (default 0.3)] [case name part]
+//        bearing_sim_integrator_study production [duration_s]  (BearingDynamics, both methods)
+//        bearing_sim_integrator_study barrier
+#include <atomic>
+#include <chrono>
+#include <thread>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <unsupported/Eigen/MatrixFunctions>
+#include <yaml-cpp/yaml.h>
+
+#include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/bearing_dynamics.hpp"
+#include "bearing_sim/core/quasi_static.hpp"
+#include "bearing_sim/core/simulation_run.hpp"
+#include "bearing_sim/core/spectrum.hpp"
+
+namespace {
+
+using namespace bearing_sim;
+using Vector10 = Eigen::Matrix<double, 10, 1>;
+using Matrix10 = Eigen::Matrix<double, 10, 10>;
+constexpr double kPi = 3.14159265358979323846;
+
+struct Case {
+  std::string name;
+  BearingConfig config;
+  Vector5 load;
+  double ring_speed_rad_s;
+};
+
+BearingConfig bearing(const std::string& file) {
+  return load_bearing_config(std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/" + file);
+}
+
+Vector5 load5(double fx, double fy, double fz, double mx, double my) {
+  Vector5 l;
+  l << fx, fy, fz, mx, my;
+  return l;
+}
+
+std::vector<Case> cases() {
+  std::vector<Case> out;
+  const double ct_speed = 180.0 * 2.0 * kPi / 60.0;
+  out.push_back({"CT smooth", bearing("ct_gantry_lyc.yaml"), load5(6800, 0, 0, 0, 2100), ct_speed});
+  BearingConfig defects = bearing("ct_gantry_lyc.yaml");
+  defects.imperfections = parse_imperfections(YAML::Load(R"(
+waviness:
+  - {surface: inner_race, order: 206, amplitude_um: 0.05}
+  - {surface: inner_race, order: 208, amplitude_um: 0.05}
+  - {surface: outer_race, order: 8, amplitude_um: 0.5}
+  - {surface: ball, order: 4, amplitude_um: 0.02}
+)"),
+                                              YAML::Load("[{surface: inner_race, position_deg: 180, width_mm: 2.0, depth_um: 20}]"),
+                                              "study");
+  out.push_back({"CT waviness + spall", defects, load5(6800, 0, 0, 0, 2100), ct_speed});
+  const BearingConfig small = bearing_config_from_string(
+      "name: 6205-like\n"
+      "balls_per_row: 9\n"
+      "ball_diameter_mm: 7.94\n"
+      "pitch_diameter_mm: 39.04\n"
+      "inner_groove_curvature: 0.52\n"
+      "outer_groove_curvature: 0.52\n"
+      "rotating_ring: inner\n"
+      "rotating_mass_kg: 0.5\n"
+      "damping: {contact_damping_Ns_per_m: 100}\n"
+      "defects: [{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 30}]\n",
+      "study 6205");
+  out.push_back({"6205 outer spall 30 um", small, load5(1000, 0, 200, 0, 0), 1800.0 * 2.0 * kPi / 60.0});
+  BearingConfig shallow = small;
+  shallow.imperfections.spalls.at(0).depth_m = 3e-6;
+  out.push_back({"6205 outer spall 3 um", shallow, load5(1000, 0, 200, 0, 0), 1800.0 * 2.0 * kPi / 60.0});
+  return out;
+}
+
+// The right-hand side, counting its evaluations.
+class System {
+ public:
+  System(const BearingModel& model, const Vector5& load, double ring_speed) : model_(model), load_(load) {
+    inverse_mass_ = model.mass_diagonal().cwiseInverse();
+    model.ring_speeds(ring_speed, &inner_, &outer_);
+    cage_ = model.cage_speed_rad_s(inner_, outer_);
+    spin_ = model.ball_spin_speed_rad_s(inner_, outer_);
+  }
+  Vector5 acceleration(const Vector5& q, const Vector5& v, const RollingPhase& p) const {
+    ++evaluations;
+    return (load_ + model_.contact_force(q, v, p)).cwiseProduct(inverse_mass_);
+  }
+  RollingPhase advanced(const RollingPhase& p, double dt) const {
+    const double slip = cage_ * (1.0 - model_.config().imperfections.cage_slip);
+    return RollingPhase{p.cage + slip * dt, p.inner_ring + inner_ * dt, p.outer_ring + outer_ * dt,
+                        p.ball_spin + spin_ * dt, p.time_s + dt};
+  }
+  const BearingModel& model() const { return model_; }
+  const Vector5& load() const { return load_; }
+  const Vector5& inverse_mass() const { return inverse_mass_; }
+  mutable long long evaluations = 0;
+
+ private:
+  const BearingModel& model_;
+  Vector5 load_, inverse_mass_;
+  double inner_ = 0, outer_ = 0, cage_ = 0, spin_ = 0;
+};
+
+struct State {
+  Vector5 q, v, a;
+  RollingPhase phase;
+};
+
+// One output sample of length H; a is the acceleration at the start and is replaced by
+// the one at the end.
+using Stepper = std::function<void(const System&, State&, double H)>;
+
+// Explicit Runge-Kutta with a Butcher tableau on (q, v), n steps per sample.
+struct Tableau {
+  std::vector<std::vector<double>> a;
+  std::vector<double> b, c;
+};
+
+Tableau rk4() { return {{{}, {0.5}, {0, 0.5}, {0, 0, 1}}, {1 / 6.0, 1 / 3.0, 1 / 3.0, 1 / 6.0}, {0, 0.5, 0.5, 1}}; }
+
+Tableau dopri5() {
+  return {{{},
+           {1 / 5.0},
+           {3 / 40.0, 9 / 40.0},
+           {44 / 45.0, -56 / 15.0, 32 / 9.0},
+           {19372 / 6561.0, -25360 / 2187.0, 64448 / 6561.0, -212 / 729.0},
+           {9017 / 3168.0, -355 / 33.0, 46732 / 5247.0, 49 / 176.0, -5103 / 18656.0}},
+          {35 / 384.0, 0, 500 / 1113.0, 125 / 192.0, -2187 / 6784.0, 11 / 84.0},
+          {0, 1 / 5.0, 3 / 10.0, 4 / 5.0, 8 / 9.0, 1}};
+}
+
+Stepper runge_kutta(const Tableau& t, int n) {
+  return [t, n](const System& sys, State& s, double H) {
+    const double h = H / n;
+    const std::size_t stages = t.b.size();
+    std::vector<Vector5> kq(stages), kv(stages);
+    for (int step = 0; step < n; ++step) {
+      for (std::size_t i = 0; i < stages; ++i) {
+        Vector5 q = s.q, v = s.v;
+        for (std::size_t j = 0; j < i; ++j) {
+          if (t.a[i][j] == 0.0) continue;
+          q += h * t.a[i][j] * kq[j];
+          v += h * t.a[i][j] * kv[j];
+        }
+        kq[i] = v;
+        kv[i] = i == 0 ? s.a : sys.acceleration(q, v, sys.advanced(s.phase, t.c[i] * h));
+      }
+      for (std::size_t i = 0; i < stages; ++i) {
+        s.q += h * t.b[i] * kq[i];
+        s.v += h * t.b[i] * kv[i];
+      }
+      s.phase = sys.advanced(s.phase, h);
+      s.a = sys.acceleration(s.q, s.v, s.phase);
+    }
+  };
+}
+
+// Exponential integrators around the linearisation at the static equilibrium y* = (q*, 0):
+// y' = L (y - y*) + N(y, t), L = [0 I; -M^-1 K  -M^-1 C] exact (matrix exponential and
+// phi functions, computed once), N = F(y, t) - L (y - y*) the remainder, explicit. N has
+// no displacement part (q' = v is linear), so only its acceleration part is kept.
+struct PhiFunctions {
+  Matrix10 e, phi1, phi2, phi3;
+};
+
+PhiFunctions phi_functions(const Matrix10& L, double h) {
+  // exp of [hL I 0 0; 0 0 I 0; 0 0 0 I; 0 0 0 0] holds e^{hL}, phi1..phi3(hL) in its first block row.
+  Eigen::Matrix<double, 40, 40> w = Eigen::Matrix<double, 40, 40>::Zero();
+  w.block<10, 10>(0, 0) = h * L;
+  w.block<10, 10>(0, 10).setIdentity();
+  w.block<10, 10>(10, 20).setIdentity();
+  w.block<10, 10>(20, 30).setIdentity();
+  const Eigen::Matrix<double, 40, 40> x = w.exp();
+  return {x.block<10, 10>(0, 0), x.block<10, 10>(0, 10), x.block<10, 10>(0, 20), x.block<10, 10>(0, 30)};
+}
+
+struct Linearisation {
+  Vector5 q_eq;
+  Matrix10 L;
+};
+
+Linearisation linearise(const BearingModel& model, const Vector5& load) {
+  const StaticSolution st = solve_static(model, load);
+  Matrix5 k, c;
+  model.contact_force_and_stiffness(st.displacement, RollingPhase{}, &k, &c);
+  const Vector5 inv_m = model.mass_diagonal().cwiseInverse();
+  Linearisation lin;
+  lin.q_eq = st.displacement;
+  lin.L.setZero();
+  lin.L.topRightCorner<5, 5>().setIdentity();
+  lin.L.bottomLeftCorner<5, 5>() = -(inv_m.asDiagonal() * k);
+  lin.L.bottomRightCorner<5, 5>() = -(inv_m.asDiagonal() * c);
+  return lin;
+}
+
+struct Exponential {
+  Linearisation lin;
+  PhiFunctions full, half;
+  Vector10 y(const State& s) const {
+    Vector10 u;
+    u << s.q - lin.q_eq, s.v;
+    return u;
+  }
+  // Remainder as a 10-vector (zero displacement part).
+  Vector10 remainder(const Vector10& u, const Vector5& a) const {
+    Vector10 n = Vector10::Zero();
+    n.tail<5>() = a - lin.L.bottomRows<5>() * u;
+    return n;
+  }
+  void store(const System& sys, State& s, const Vector10& u, const RollingPhase& p) const {
+    s.q = lin.q_eq + u.head<5>();
+    s.v = u.tail<5>();
+    s.phase = p;
+    s.a = sys.acceleration(s.q, s.v, p);
+  }
+  Vector5 accel(const System& sys, const Vector10& u, const RollingPhase& p) const {
+    return sys.acceleration(lin.q_eq + u.head<5>(), u.tail<5>(), p);
+  }
+};
+
+// Exponential Euler (ETD1), 1 evaluation per step.
+Stepper etd1(const Exponential& x, int n) {
+  return [x, n](const System& sys, State& s, double H) {
+    const double h = H / n;
+    for (int i = 0; i < n; ++i) {
+      const Vector10 u = x.y(s);
+      const Vector10 un = x.full.e * u + h * x.full.phi1 * x.remainder(u, s.a);
+      x.store(sys, s, un, sys.advanced(s.phase, h));
+    }
+  };
+}
+
+// ETD2RK (Cox and Matthews), 2 evaluations per step.
+Stepper etd2rk(const Exponential& x, int n) {
+  return [x, n](const System& sys, State& s, double H) {
+    const double h = H / n;
+    for (int i = 0; i < n; ++i) {
+      const Vector10 u = x.y(s);
+      const Vector10 n0 = x.remainder(u, s.a);
+      const RollingPhase end = sys.advanced(s.phase, h);
+      const Vector10 a = x.full.e * u + h * x.full.phi1 * n0;
+      const Vector10 na = x.remainder(a, x.accel(sys, a, end));
+      const Vector10 un = a + h * x.full.phi2 * (na - n0);
+      x.store(sys, s, un, end);
+    }
+  };
+}
+
+// ETDRK4 (Cox and Matthews), 4 evaluations per step.
+Stepper etdrk4(const Exponential& x, int n) {
+  return [x, n](const System& sys, State& s, double H) {
+    const double h = H / n;
+    const Matrix10 f1 = x.full.phi1 - 3 * x.full.phi2 + 4 * x.full.phi3;
+    const Matrix10 f2 = x.full.phi2 - 2 * x.full.phi3;
+    const Matrix10 f3 = -x.full.phi2 + 4 * x.full.phi3;
+    for (int i = 0; i < n; ++i) {
+      const Vector10 u = x.y(s);
+      const RollingPhase mid = sys.advanced(s.phase, 0.5 * h), end = sys.advanced(s.phase, h);
+      const Vector10 nu = x.remainder(u, s.a);
+      const Vector10 a = x.half.e * u + 0.5 * h * x.half.phi1 * nu;
+      const Vector10 na = x.remainder(a, x.accel(sys, a, mid));
+      const Vector10 b = x.half.e * u + 0.5 * h * x.half.phi1 * na;
+      const Vector10 nb = x.remainder(b, x.accel(sys, b, mid));
+      const Vector10 c = x.half.e * a + 0.5 * h * x.half.phi1 * (2 * nb - nu);
+      const Vector10 nc = x.remainder(c, x.accel(sys, c, end));
+      const Vector10 un = x.full.e * u + h * (f1 * nu + 2 * f2 * (na + nb) + f3 * nc);
+      x.store(sys, s, un, end);
+    }
+  };
+}
+
+struct Result {
+  double a_rms = 0, level_db = 0, evals_per_sample = 0, realtime_factor = 0;
+  std::vector<double> ax;
+  bool diverged = false;
+};
+
+Result run(const Case& c, const BearingModel& model, const Stepper& stepper, double duration, double rate) {
+  System sys(model, c.load, c.ring_speed_rad_s);
+  State s;
+  s.q = solve_static(model, c.load).displacement;
+  s.v.setZero();
+  s.phase = RollingPhase{};
+  s.a = sys.acceleration(s.q, s.v, s.phase);
+  sys.evaluations = 0;
+  const auto samples = static_cast<std::size_t>(std::lround(duration * rate));
+  Result r;
+  r.ax.reserve(samples);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < samples; ++i) {
+    stepper(sys, s, 1.0 / rate);
+    if (!s.a.allFinite() || s.q.norm() > 1e-2) {
+      r.diverged = true;
+      return r;
+    }
+    r.ax.push_back(s.a(0));
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.realtime_factor = duration / wall;
+  r.evals_per_sample = static_cast<double>(sys.evaluations) / samples;
+  r.ax.erase(r.ax.begin(), r.ax.begin() + samples / 2);  // start transient
+  double mean = 0;
+  for (double x : r.ax) mean += x;
+  mean /= r.ax.size();
+  double ss = 0;
+  for (double& x : r.ax) {
+    x -= mean;
+    ss += x * x;
+  }
+  r.a_rms = std::sqrt(ss / r.ax.size());
+  r.level_db = 20.0 * std::log10(r.a_rms / 9.81e-3);
+  return r;
+}
+
+// Largest level error (dB) of the octave bands 63 Hz .. 4 kHz holding >= 1 % of the energy.
+double band_error_db(const std::vector<double>& x, const std::vector<double>& ref, double rate) {
+  const std::size_t n = fft_friendly_length(ref.size());
+  const std::vector<double> xa(x.end() - n, x.end()), ra(ref.end() - n, ref.end());
+  const Spectrum sx = amplitude_spectrum(xa, rate), sr = amplitude_spectrum(ra, rate);
+  double total = 0;
+  for (double a : sr.amplitude) total += a * a;
+  double worst = 0;
+  for (double centre = 62.5; centre <= 4000.0 * 1.01; centre *= 2) {
+    double ex = 0, er = 0;
+    for (std::size_t k = 0; k < sr.amplitude.size(); ++k) {
+      const double f = sr.frequency_hz(k);
+      if (f < centre / std::sqrt(2.0) || f >= centre * std::sqrt(2.0)) continue;
+      ex += sx.amplitude[k] * sx.amplitude[k];
+      er += sr.amplitude[k] * sr.amplitude[k];
+    }
+    if (er < 0.01 * total) continue;
+    worst = std::max(worst, std::abs(10.0 * std::log10(ex / er)));
+  }
+  return worst;
+}
+
+}  // namespace
+
+// Round trip of a two-thread spin barrier (the cost of splitting one force evaluation
+// over two cores: one release and one join per evaluation), median of 2000 batches.
+void barrier_round_trip() {
+  std::atomic<long> go{0}, done{0};
+  std::atomic<bool> stop{false};
+  std::thread worker([&] {
+    long seen = 0;
+    while (!stop.load(std::memory_order_relaxed)) {
+      const long g = go.load(std::memory_order_acquire);
+      if (g == seen) continue;
+      seen = g;
+      done.store(g, std::memory_order_release);
+    }
+  });
+  std::vector<double> ns;
+  long k = 0;
+  for (int batch = 0; batch < 2000; ++batch) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < 100; ++i) {
+      go.store(++k, std::memory_order_release);
+      while (done.load(std::memory_order_acquire) != k) {
+      }
+    }
+    ns.push_back(std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count() / 100.0);
+  }
+  stop = true;
+  worker.join();
+  std::sort(ns.begin(), ns.end());
+  std::printf("two-thread spin barrier round trip: median %.0f ns, 10th percentile %.0f ns, 90th percentile %.0f ns\n",
+              ns[ns.size() / 2], ns[ns.size() / 10], ns[9 * ns.size() / 10]);
+}
+
+// The production path (BearingDynamics: ball subsets, automatic step), both methods,
+// against its own RK4 x16; a_rms and L of run_simulation.
+void production(const Case& c, double duration) {
+  const BearingModel model(c.config);
+  const auto run_it = [&](IntegrationMethod m, int substeps) {
+    SimulationRequest req;
+    req.load = c.load;
+    req.ring_speed_rad_s = c.ring_speed_rad_s;
+    req.duration_s = duration;
+    req.substeps = substeps;
+    req.method = m;
+    return run_simulation(model, req);
+  };
+  const SimulationSummary ref = run_it(IntegrationMethod::Rk4, 16);
+  for (const auto& [name, m] : {std::pair<const char*, IntegrationMethod>{"RK4", IntegrationMethod::Rk4},
+                                {"ETDRK4", IntegrationMethod::ExponentialRk4}}) {
+    const SimulationSummary s = run_it(m, 0);
+    std::printf("| %s | BearingDynamics %s, automatic (x%d) | %d | %+.2f %% | %+.3f | - | %.2f |\n", c.name.c_str(), name,
+                s.substeps, 4 * s.substeps, 100.0 * (s.a_rms_x / ref.a_rms_x - 1.0), s.level_db - ref.level_db,
+                s.realtime_factor);
+    std::fflush(stdout);
+  }
+}
+
+int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "production") {
+    const double duration = argc > 2 ? std::stod(argv[2]) : 0.3;
+    std::printf("| case | method | evaluations per sample | a_rms error | L error (dB) | worst octave band (dB) | real-time factor |\n");
+    std::printf("|---|---|---|---|---|---|---|\n");
+    for (const Case& c : cases()) production(c, duration);
+    // Cost of one relinearization (static solution and two matrix exponentials): the
+    // sample after a load change of 30%, less an ordinary sample.
+    const Case ct = cases().front();
+    BearingDynamics d(BearingModel(ct.config), ct.load, ct.ring_speed_rad_s);
+    for (int i = 0; i < 100; ++i) d.step();
+    double with = 0, without = 0;
+    for (int i = 0; i < 200; ++i) {
+      for (int k = 0; k < BearingDynamics::kSamplesPerLinearization; ++k) d.step();
+      d.set_load(i % 2 ? ct.load : Vector5(1.3 * ct.load));
+      auto t0 = std::chrono::steady_clock::now();
+      d.step();
+      auto t1 = std::chrono::steady_clock::now();
+      d.step();
+      auto t2 = std::chrono::steady_clock::now();
+      with += std::chrono::duration<double, std::micro>(t1 - t0).count();
+      without += std::chrono::duration<double, std::micro>(t2 - t1).count();
+    }
+    {
+      const BearingModel m(ct.config);
+      const auto t0 = std::chrono::steady_clock::now();
+      for (int i = 0; i < 20; ++i) linearise(m, ct.load);
+      const auto t1 = std::chrono::steady_clock::now();
+      const Linearisation lin = linearise(m, ct.load);
+      for (int i = 0; i < 20; ++i) phi_functions(lin.L, 1e-4);
+      const auto t2 = std::chrono::steady_clock::now();
+      std::printf("static solution and stiffness %.0f us, one 40x40 matrix exponential %.0f us\n",
+                  std::chrono::duration<double, std::micro>(t1 - t0).count() / 20,
+                  std::chrono::duration<double, std::micro>(t2 - t1).count() / 20);
+    }
+    std::printf("\nCT bearing: a sample with a relinearization %.0f us, without %.0f us (%llu linearizations)\n",
+                with / 200, without / 200, static_cast<unsigned long long>(d.linearizations()));
+    return 0;
+  }
+  if (argc > 1 && std::string(argv[1]) == "barrier") {
+    barrier_round_trip();
+    return 0;
+  }
+  const double duration = argc > 1 ? std::stod(argv[1]) : 0.3;
+  const double rate = 10000.0;
+  std::printf("Integrator study: %.2f s simulated per run, output %.0f Hz, all balls integrated\n\n", duration, rate);
+  std::printf("| case | method | evaluations per sample | a_rms error | L error (dB) | worst octave band (dB) | real-time factor |\n");
+  std::printf("|---|---|---|---|---|---|---|\n");
+  const std::string only = argc > 2 ? argv[2] : "";
+  for (const Case& c : cases()) {
+    if (!only.empty() && c.name.find(only) == std::string::npos) continue;
+    const BearingModel model(c.config);
+    const double rate_max = BearingDynamics::fastest_rate_rad_s(model, c.load);
+    const Exponential x{linearise(model, c.load), {}, {}};
+    Exponential xs[3] = {x, x, x};  // for 1, 2 and 4 steps per sample
+    for (int i = 0; i < 3; ++i) {
+      const double h = 1.0 / rate / (1 << i);
+      xs[i].full = phi_functions(x.lin.L, h);
+      xs[i].half = phi_functions(x.lin.L, 0.5 * h);
+    }
+    std::fprintf(stderr, "%s: %d balls, fastest rate %.0f rad/s (x 100 us = %.2f), automatic RK4 steps %d\n",
+                 c.name.c_str(), model.ball_count(), rate_max, rate_max / rate,
+                 BearingDynamics::choose_substeps(model, c.load, rate));
+    const Result ref = run(c, model, runge_kutta(rk4(), 16), duration, rate);
+    std::fprintf(stderr, "%s: %.2f us per evaluation (all balls)\n", c.name.c_str(),
+                 1e6 / (ref.realtime_factor * rate * ref.evals_per_sample));
+    std::printf("| %s | RK4 x16 (reference) | %.0f | a_rms %.4e m/s^2 | L %.2f dB | - | %.2f |\n", c.name.c_str(),
+                ref.evals_per_sample, ref.a_rms, ref.level_db, ref.realtime_factor);
+    const std::vector<std::pair<std::string, Stepper>> methods = {
+        {"RK4 x1", runge_kutta(rk4(), 1)},
+        {"RK4 x2", runge_kutta(rk4(), 2)},
+        {"RK4 x3", runge_kutta(rk4(), 3)},
+        {"RK4 x4", runge_kutta(rk4(), 4)},
+        {"RK4 x8", runge_kutta(rk4(), 8)},
+        {"RK4 x32", runge_kutta(rk4(), 32)},
+        {"DOPRI5 x1", runge_kutta(dopri5(), 1)},
+        {"DOPRI5 x2", runge_kutta(dopri5(), 2)},
+        {"ETD1 x1", etd1(xs[0], 1)},
+        {"ETD1 x2", etd1(xs[1], 2)},
+        {"ETD1 x4", etd1(xs[2], 4)},
+        {"ETD2RK x1", etd2rk(xs[0], 1)},
+        {"ETD2RK x2", etd2rk(xs[1], 2)},
+        {"ETDRK4 x1", etdrk4(xs[0], 1)},
+        {"ETDRK4 x2", etdrk4(xs[1], 2)},
+    };
+    for (const auto& [name, stepper] : methods) {
+      const Result r = run(c, model, stepper, duration, rate);
+      if (r.diverged) {
+        std::printf("| %s | %s | - | diverged | | | |\n", c.name.c_str(), name.c_str());
+        continue;
+      }
+      std::printf("| %s | %s | %.0f | %+.2f %% | %+.3f | %.2f | %.2f |\n", c.name.c_str(), name.c_str(),
+                  r.evals_per_sample, 100.0 * (r.a_rms / ref.a_rms - 1.0), r.level_db - ref.level_db,
+                  band_error_db(r.ax, ref.ax, rate), r.realtime_factor);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
