@@ -29,10 +29,13 @@ ContactSums ContactSumsAll(const ContactKernelInput& in) {
   const double* qd = in.q_dot;
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
   const V cc = hn::Set(d, in.cos_cage), sc = hn::Set(d, in.sin_cage);
-  const V s_v = hn::Set(d, sg), ms_v = hn::Set(d, -sg);
   const V a_ca = hn::Set(d, A * in.cos_a0), a_v = hn::Set(d, A);
-  const V q0 = hn::Set(d, q[0]), q1 = hn::Set(d, q[1]), q3 = hn::Set(d, q[3]), q4 = hn::Set(d, q[4]);
-  const V d0 = hn::Set(d, qd[0]), d1 = hn::Set(d, qd[1]), d3 = hn::Set(d, qd[3]), d4 = hn::Set(d, qd[4]);
+  // The sign folded into the constants (s = +-1: multiplying by it is exact, so the
+  // results are bit for bit those of -s (q0 + q4 z) etc.): two multiplies per ball fewer.
+  const V ms_q0 = hn::Set(d, -sg * q[0]), ms_q1 = hn::Set(d, -sg * q[1]);
+  const V ms_q3 = hn::Set(d, -sg * q[3]), ms_q4 = hn::Set(d, -sg * q[4]);
+  const V s_d0 = hn::Set(d, sg * qd[0]), s_d1 = hn::Set(d, sg * qd[1]);
+  const V s_d3 = hn::Set(d, sg * qd[3]), s_d4 = hn::Set(d, sg * qd[4]);
   const V ms_q2 = hn::Set(d, -sg * q[2]), wz0 = hn::Set(d, sg * qd[2]);
   const V vz_s = hn::Set(d, -sg * rho * q[3]), vz_c = hn::Set(d, sg * rho * q[4]);
   const V wz_s = hn::Set(d, sg * rho * qd[3]), wz_c = hn::Set(d, -sg * rho * qd[4]);
@@ -42,8 +45,8 @@ ContactSums ContactSumsAll(const ContactKernelInput& in) {
   auto balls = [&](V cb, V sb, V pz, V nz, V off) HWY_ATTR {
     const V cphi = hn::MulSub(cc, cb, hn::Mul(sc, sb));
     const V sphi = hn::MulAdd(sc, cb, hn::Mul(cc, sb));
-    const V vx = hn::MulAdd(a_ca, cphi, hn::Mul(ms_v, hn::MulAdd(q4, pz, q0)));
-    const V vy = hn::MulAdd(a_ca, sphi, hn::Mul(ms_v, hn::NegMulAdd(q3, pz, q1)));
+    const V vx = hn::MulAdd(a_ca, cphi, hn::MulAdd(ms_q4, pz, ms_q0));
+    const V vy = hn::MulAdd(a_ca, sphi, hn::NegMulAdd(ms_q3, pz, ms_q1));
     const V vz = hn::MulAdd(vz_s, sphi, hn::MulAdd(vz_c, cphi, hn::MulAdd(a_v, nz, ms_q2)));
     const V norm = hn::Sqrt(hn::MulAdd(vx, vx, hn::MulAdd(vy, vy, hn::Mul(vz, vz))));
     const V deflection = hn::Add(hn::Sub(norm, a_g0), off);
@@ -51,8 +54,8 @@ ContactSums ContactSumsAll(const ContactKernelInput& in) {
     const V dp = hn::IfThenElseZero(touching, deflection);
     const V inv_norm = hn::Div(one, norm);
     // d(delta)/dt = -e . du/dt.
-    const V wx = hn::Mul(s_v, hn::MulAdd(d4, pz, d0));
-    const V wy = hn::Mul(s_v, hn::NegMulAdd(d3, pz, d1));
+    const V wx = hn::MulAdd(s_d4, pz, s_d0);
+    const V wy = hn::NegMulAdd(s_d3, pz, s_d1);
     const V wz = hn::MulAdd(wz_s, sphi, hn::MulAdd(wz_c, cphi, wz0));
     const V v_dot_w = hn::MulAdd(vx, wx, hn::MulAdd(vy, wy, hn::Mul(vz, wz)));
     // Q = kn dp^1.5 - cn (v . w) / |v|, kept only while touching and pressing (damping
