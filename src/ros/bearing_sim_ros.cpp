@@ -4,10 +4,12 @@
 #include <sched.h>
 #include <sys/mman.h>
 #include <sys/resource.h>
+#include <sys/types.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cmath>
+#include <filesystem>
 #include <cstring>
 #include <stdexcept>
 
@@ -48,6 +50,25 @@ std::string describe(const Spall& s) {
   if (s.surface == Surface::Ball) what += " on ball " + std::to_string(s.ball);
   return what + " at " + fmt(s.position_rad, 3) + " rad, " + fmt(s.width_m * 1e3, 2) + " mm wide, " +
          fmt(s.depth_m * 1e6, 1) + " um deep";
+}
+
+// Every thread of this process (ROS I/O, spinner, timers, the health worker started
+// later inherits it) at SCHED_FIFO priority 1: above every normal process, below the
+// simulation and publisher threads. The publisher shares roscpp's internal locks with
+// these threads; at normal priority a busy machine could deschedule one while it holds
+// such a lock and stall the publisher for a time slice (priority inversion). Returns a
+// description for /diagnostics.
+std::string raise_process_threads_to_fifo() {
+  int raised = 0, refused = 0, last_err = 0;
+  for (const auto& entry : std::filesystem::directory_iterator("/proc/self/task")) {
+    const pid_t tid = static_cast<pid_t>(std::stol(entry.path().filename().string()));
+    sched_param p{};
+    p.sched_priority = 1;
+    if (sched_setscheduler(tid, SCHED_FIFO, &p) == 0) ++raised;
+    else ++refused, last_err = errno;
+  }
+  if (refused == 0) return "SCHED_FIFO priority 1 (" + std::to_string(raised) + " threads)";
+  return "normal (SCHED_FIFO refused for " + std::to_string(refused) + " threads: " + std::strerror(last_err) + ")";
 }
 
 }  // namespace
@@ -184,6 +205,8 @@ void BearingSimRos::start() {
   if (sim_thread_.joinable()) return;
   stop_ = false;
   lock_memory();
+  if (real_time_ && realtime_priority_ > 1)
+    diagnostics_->set_realtime_value("other threads scheduling", raise_process_threads_to_fifo());
   health_->start();
   // Real time: stamps on the ROS clock, sample 0 at start. Otherwise simulated time itself
   // is the clock (published on /clock).
