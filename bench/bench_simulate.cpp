@@ -10,6 +10,7 @@
 #include "bearing_sim/core/simd_info.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
 #include "bearing_sim/ros/triaxial_sensor.hpp"
+#include "reference_cases.hpp"
 
 namespace {
 
@@ -45,15 +46,7 @@ void BM_SimulateCtGantry(benchmark::State& state) {
 // The CT bearing with waviness on both races and the balls, and a 2 mm x 20 um spall on
 // the fixed inner race in the load zone.
 bearing_sim::BearingConfig ct_gantry_with_defects() {
-  bearing_sim::BearingConfig config = bearing("ct_gantry_lyc.yaml");
-  config.imperfections = bearing_sim::parse_imperfections(YAML::Load(R"(
-waviness:
-  - {surface: inner_race, order: 206, amplitude_um: 0.05}
-  - {surface: inner_race, order: 208, amplitude_um: 0.05}
-  - {surface: outer_race, order: 8, amplitude_um: 0.5}
-  - {surface: ball, order: 4, amplitude_um: 0.02}
-)"), YAML::Load("[{surface: inner_race, position_deg: 180, width_mm: 2.0, depth_um: 20}]"), "bench");
-  return config;
+  return bearing_sim::test::ct_gantry_with_defects(BEARING_SIM_SOURCE_DIR);
 }
 
 Vector5 ct_load() {

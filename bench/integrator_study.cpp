@@ -30,6 +30,8 @@
 #include "bearing_sim/core/quasi_static.hpp"
 #include "bearing_sim/core/simulation_run.hpp"
 #include "bearing_sim/core/spectrum.hpp"
+#include "bearing_6205_yaml.hpp"
+#include "reference_cases.hpp"
 
 namespace {
 
@@ -59,28 +61,10 @@ std::vector<Case> cases() {
   std::vector<Case> out;
   const double ct_speed = 180.0 * 2.0 * kPi / 60.0;
   out.push_back({"CT smooth", bearing("ct_gantry_lyc.yaml"), load5(6800, 0, 0, 0, 2100), ct_speed});
-  BearingConfig defects = bearing("ct_gantry_lyc.yaml");
-  defects.imperfections = parse_imperfections(YAML::Load(R"(
-waviness:
-  - {surface: inner_race, order: 206, amplitude_um: 0.05}
-  - {surface: inner_race, order: 208, amplitude_um: 0.05}
-  - {surface: outer_race, order: 8, amplitude_um: 0.5}
-  - {surface: ball, order: 4, amplitude_um: 0.02}
-)"),
-                                              YAML::Load("[{surface: inner_race, position_deg: 180, width_mm: 2.0, depth_um: 20}]"),
-                                              "study");
+  const BearingConfig defects = test::ct_gantry_with_defects(BEARING_SIM_SOURCE_DIR);
   out.push_back({"CT waviness + spall", defects, load5(6800, 0, 0, 0, 2100), ct_speed});
   const BearingConfig small = bearing_config_from_string(
-      "name: 6205-like\n"
-      "balls_per_row: 9\n"
-      "ball_diameter_mm: 7.94\n"
-      "pitch_diameter_mm: 39.04\n"
-      "inner_groove_curvature: 0.52\n"
-      "outer_groove_curvature: 0.52\n"
-      "rotating_ring: inner\n"
-      "rotating_mass_kg: 0.5\n"
-      "damping: {contact_damping_Ns_per_m: 100}\n"
-      "defects: [{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 30}]\n",
+      test::kBearing6205Yaml + "defects: [{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 30}]\n",
       "study 6205");
   out.push_back({"6205 outer spall 30 um", small, load5(1000, 0, 200, 0, 0), 1800.0 * 2.0 * kPi / 60.0});
   BearingConfig shallow = small;

@@ -1,6 +1,7 @@
 find_package(benchmark QUIET)
 if(benchmark_FOUND)
   add_executable(bench_simulate bench/bench_simulate.cpp)
+  target_include_directories(bench_simulate PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/core)  # reference_cases.hpp
   target_link_libraries(bench_simulate PRIVATE bearing_sim_core bearing_sim_ros_helpers benchmark::benchmark)
   target_compile_definitions(bench_simulate PRIVATE BEARING_SIM_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
   bearing_sim_optimize(bench_simulate)
@@ -12,6 +13,7 @@ if(benchmark_FOUND)
 endif()
 # Integrator study (force evaluations per sample against accuracy); a plain program.
 add_executable(bearing_sim_integrator_study bench/integrator_study.cpp)
+target_include_directories(bearing_sim_integrator_study PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/core)
 target_link_libraries(bearing_sim_integrator_study PRIVATE bearing_sim_core)
 target_compile_definitions(bearing_sim_integrator_study PRIVATE BEARING_SIM_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
 bearing_sim_optimize(bearing_sim_integrator_study)

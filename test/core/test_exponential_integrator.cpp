@@ -12,6 +12,7 @@
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "bearing_sim/core/simulation_run.hpp"
+#include "reference_cases.hpp"
 #include "test_support.hpp"
 
 using namespace bearing_sim;
@@ -50,16 +51,7 @@ TEST(ExponentialIntegrator, IsTheDefaultWithOneStepPerSampleForTheCtBearing) {
 }
 
 TEST(ExponentialIntegrator, CtBearingWithWavinessAndSpallAgreesWithConvergedRk4) {
-  BearingConfig config = ct_bearing();
-  config.imperfections = parse_imperfections(YAML::Load(R"(
-waviness:
-  - {surface: inner_race, order: 206, amplitude_um: 0.05}
-  - {surface: inner_race, order: 208, amplitude_um: 0.05}
-  - {surface: outer_race, order: 8, amplitude_um: 0.5}
-  - {surface: ball, order: 4, amplitude_um: 0.02}
-)"),
-                                             YAML::Load("[{surface: inner_race, position_deg: 180, width_mm: 2.0, depth_um: 20}]"),
-                                             "test");
+  const BearingConfig config = test::ct_gantry_with_defects(BEARING_SIM_SOURCE_DIR);
   expect_agrees_with_reference(BearingModel(config), ct_load(), kCtSpeedRadS);
 }
 
