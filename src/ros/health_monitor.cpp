@@ -1,5 +1,8 @@
 #include "bearing_sim/ros/health_monitor.hpp"
 
+#include <pthread.h>
+#include <sched.h>
+
 #include <algorithm>
 #include <cmath>
 #include <exception>
@@ -175,6 +178,11 @@ HealthReport HealthMonitor::analyze_now(double end_time_s) {
 }
 
 void HealthMonitor::worker() {
+  // The analysis takes tens of ms of CPU and is not real time: never inherit a real-time
+  // policy from the thread that started it (at SCHED_FIFO it would hold off the node's other
+  // threads of the same priority for the whole analysis).
+  const sched_param normal{};
+  pthread_setschedparam(pthread_self(), SCHED_OTHER, &normal);
   for (;;) {
     double end_time_s = 0.0;
     {
