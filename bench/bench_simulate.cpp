@@ -70,7 +70,7 @@ void BM_SimulateCtGantryWithDefectsRk4(benchmark::State& state) {
            bearing_sim::IntegrationMethod::Rk4);
 }
 
-// Issue 5's figure: the same, with the node's triaxial housing accelerometer on every sample.
+// The same, with the node's triaxial housing accelerometer on every sample (the node's configuration).
 void BM_SimulateCtGantryWithDefectsAndSensor(benchmark::State& state) {
   const bearing_sim::BearingModel model(ct_gantry_with_defects());
   bearing_sim::BearingDynamics dynamics(model, ct_load(), 180.0 * 2.0 * 3.14159265358979 / 60.0, {10000.0, 0});

@@ -1,4 +1,4 @@
-# LCM (issue 6): the message types in lcm/ generated at build time with lcm-gen, the
+# LCM: the message types in lcm/ generated at build time with lcm-gen, the
 # lcm_bridge node, the consumer example and their tests. LCM 1.3 ships no CMake config:
 # pkg-config.
 find_package(PkgConfig REQUIRED)

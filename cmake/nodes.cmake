@@ -1,4 +1,4 @@
-# ROS nodes (issue 3 onwards). The ROS-free helpers (pacer, chunker, validator, ...) are a
+# ROS nodes. The ROS-free helpers (pacer, chunker, validator, ...) are a
 find_package(Threads REQUIRED)
 # separate library so that their gtests need no ROS master.
 add_library(bearing_sim_ros_helpers STATIC

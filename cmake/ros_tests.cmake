@@ -1,4 +1,4 @@
-# Tests of bearing_sim_node (issue 3): ROS-free unit tests of its helpers, and rostests
+# Tests of bearing_sim_node: ROS-free unit tests of its helpers, and rostests
 # that start the node (via launch/ct_gantry.launch) and check its outputs.
 catkin_add_gtest(test_node_helpers test/ros/test_node_helpers.cpp TIMEOUT 300)
 target_link_libraries(test_node_helpers bearing_sim_ros_helpers bearing_sim_core)
@@ -30,7 +30,7 @@ target_include_directories(test_node_generate_equivalence PRIVATE
 target_link_libraries(test_node_generate_equivalence bearing_sim_ros_helpers bearing_sim_core ${catkin_LIBRARIES})
 bearing_sim_optimize(test_node_generate_equivalence)
 
-# Issue 5 helpers (HealthMonitor, TriaxialSensor, chunk tilt), no ROS master.
+# Health helpers (HealthMonitor, TriaxialSensor, chunk tilt), no ROS master.
 catkin_add_gtest(test_health_monitor test/ros/test_health_monitor.cpp TIMEOUT 300)
 target_link_libraries(test_health_monitor bearing_sim_ros_helpers bearing_sim_core)
 target_compile_definitions(test_health_monitor PRIVATE BEARING_SIM_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")

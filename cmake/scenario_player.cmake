@@ -1,4 +1,4 @@
-# scenario_player (issue 6): the ROS-free time line, the node, and their tests.
+# scenario_player: the ROS-free time line, the node, and their tests.
 add_library(bearing_sim_scenario_timeline STATIC src/ros/scenario_timeline.cpp)
 target_include_directories(bearing_sim_scenario_timeline PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
 target_link_libraries(bearing_sim_scenario_timeline PUBLIC bearing_sim_core)

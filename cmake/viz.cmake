@@ -1,4 +1,4 @@
-# Ball-load display (issue 4): ROS-light drawing library, bearing_viz_node, their tests.
+# Ball-load display: ROS-light drawing library, bearing_viz_node, their tests.
 add_library(bearing_sim_viz STATIC
   src/viz/colour_map.cpp
   src/viz/bearing_scene.cpp

@@ -1,5 +1,5 @@
-// Spalls simulated by the core dynamics, found by the condition indicators (issue 5,
-// MODEL.md section 6). Bearing: a 6205-like deep groove ball bearing (Z = 9, d = 7.94 mm,
+// Spalls simulated by the core dynamics, found by the condition indicators
+// (docs/health.md). Bearing: a 6205-like deep groove ball bearing (Z = 9, d = 7.94 mm,
 // dm = 39.04 mm, fi = fo = 0.52) with the inner ring at 1800 rpm, 1000 N radial and 200 N
 // axial (a load zone of a few balls, so the inner-race impacts are modulated at f_r),
 // sampled at 40 kHz. Spall: 1 mm wide, 30 um deep (a ball of 7.94 mm drops

@@ -1,4 +1,4 @@
-// ROS-free units of issue 5 in the node: HealthMonitor (ring buffer, worker, life), the
+// ROS-free health units of the node: HealthMonitor (ring buffer, worker, life), the
 // triaxial sensor, and the chunk's tilt fields. References are closed forms and synthetic
 // signals with known content.
 #include <cmath>

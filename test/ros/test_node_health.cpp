@@ -1,4 +1,4 @@
-// Issue 5 on the running CT node (as fast as possible, shipped sensor file): the sensor on
+// Health on the running CT node (as fast as possible, shipped sensor file): the sensor on
 // `vibration`, the ideal acceleration on `vibration_ideal`, a spall injected and cleared by
 // the services with `health` and /diagnostics following, and defects that do not fit.
 // Reference values from the core (bearing_frequencies, solve_static) and closed forms.

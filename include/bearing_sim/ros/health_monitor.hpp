@@ -1,5 +1,5 @@
 #pragma once
-// Condition monitoring of the running simulation (issue 5; docs/node.md, health), ROS-free.
+// Condition monitoring of the running simulation (docs/node.md, health), ROS-free.
 // The simulation thread only appends samples and operating data (short critical sections,
 // no analysis, no allocation in steady state); a worker thread, woken by request_analysis()
 // (once per simulated second in the node), copies the last window out of the ring buffer
