@@ -246,25 +246,29 @@ void BearingDynamics::integrate_sample_exponential(Vector5& q, Vector5& v, Rolli
     *qq = q_lin_ + y.head<5>();
     *vv = y.tail<5>();
   };
+  // The products are small and fixed-size: coefficient-based (lazyProduct), not Eigen's
+  // general matrix-vector routine, which for these sizes costs more than the arithmetic.
   const auto remainder = [&](const Vector10& y, const RollingPhase& p) {
     Vector5 qq, vv;
     state(y, &qq, &vv);
-    return Vector5(acceleration(qq, vv, p, balls) - lin_accel_ * y);
+    return Vector5(acceleration(qq, vv, p, balls) - lin_accel_.lazyProduct(y));
   };
   Vector10 y;
   y << q - q_lin_, v;
   for (int i = 0; i < substeps_; ++i) {
     const RollingPhase mid = advanced(phase, 0.5 * h), end = advanced(phase, h);
     const Vector5 r1 = (i == 0 ? a_start : acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls)) -
-                       lin_accel_ * y;
-    const Vector10 e_half_y = exp_half_ * y;
-    const Vector10 y2 = e_half_y + phi_half_ * r1;
+                       lin_accel_.lazyProduct(y);
+    const Vector10 e_half_y = exp_half_.lazyProduct(y);
+    const Vector10 y2 = e_half_y + phi_half_.lazyProduct(r1);
     const Vector5 r2 = remainder(y2, mid);
-    const Vector10 y3 = e_half_y + phi_half_ * r2;
+    const Vector10 y3 = e_half_y + phi_half_.lazyProduct(r2);
     const Vector5 r3 = remainder(y3, mid);
-    const Vector10 y4 = exp_half_ * y2 + phi_half_ * (2.0 * r3 - r1);
+    const Vector10 y4 = exp_half_.lazyProduct(y2) + phi_half_.lazyProduct(Vector5(2.0 * r3 - r1));
     const Vector5 r4 = remainder(y4, end);
-    y = exp_full_ * y + w1_ * r1 + w2_ * (r2 + r3) + w3_ * r4;
+    const Vector10 y_next =  // a temporary: lazy products do not guard against aliasing
+        exp_full_.lazyProduct(y) + w1_.lazyProduct(r1) + w2_.lazyProduct(Vector5(r2 + r3)) + w3_.lazyProduct(r4);
+    y = y_next;
     phase = end;
   }
   state(y, &q, &v);
@@ -298,7 +302,9 @@ DynamicSample BearingDynamics::step() {
   if (samples_since_split_ == 0) {
     const double margin = options_.skip_clear_balls ? contact_margin_m(q0, v0, a_start)
                                                     : std::numeric_limits<double>::infinity();
-    model_.split_by_deflection(q0, phase_, margin, &active_balls_, &clear_balls_);
+    split_clear_max_deflection_m_ = model_.split_by_deflection(q0, phase_, margin, &active_balls_, &clear_balls_);
+    split_displacement_ = q0;
+    split_travel_ = {};
   }
   samples_since_split_ = (samples_since_split_ + 1) % kSamplesPerBallSplit;
   // A moving load is followed at most every kSamplesPerLinearization samples, so that an
@@ -321,7 +327,15 @@ DynamicSample BearingDynamics::step() {
   Vector5 q = q0, v = v0;
   RollingPhase phase = phase_;
   integrate_sample(q, v, phase, a_start, *balls);
-  if (clear_balls_.size() > 0 && q.allFinite() && model_.max_deflection(q, phase, clear_balls_) > 0.0) {
+  // The skipped balls are checked ball by ball only when the bound of clear_deflection_bound_m
+  // does not already show them all clear (it almost always does: the split's margin is twice
+  // the bound's growth over kSamplesPerBallSplit samples).
+  split_travel_[0] += std::abs(phase.cage - phase_.cage);
+  split_travel_[1] += std::abs((phase.cage - phase_.cage) - (phase.outer_ring - phase_.outer_ring));
+  split_travel_[2] += std::abs((phase.cage - phase_.cage) - (phase.inner_ring - phase_.inner_ring));
+  split_travel_[3] += std::abs(phase.ball_spin - phase_.ball_spin);
+  if (clear_balls_.size() > 0 && q.allFinite() && clear_deflection_bound_m(q, split_travel_) > 0.0 &&
+      model_.max_deflection(q, phase, clear_balls_) > 0.0) {
     // A ball outside the margin came into contact: redo the sample with every ball.
     ++full_sample_retries_;
     samples_since_split_ = 0;
@@ -332,6 +346,23 @@ DynamicSample BearingDynamics::step() {
     integrate_sample(q, v, phase, a_start, *balls);
   }
   return commit_sample(q, v, acceleration(q, v, phase, *balls), phase);
+}
+
+double BearingDynamics::clear_deflection_bound_m(const Vector5& q, const std::array<double, 4>& travel) const {
+  // A ball's deflection is |v| - A - g0 + offset with v = A e0(phi) - s u, u = t + theta x p(phi)
+  // the displacement of its groove centre p (|p| <= lever arm, theta = (theta_x, theta_y, 0)).
+  // From the split (q0, phi0) to now (q, phi0 + dphi), spalls left out (they only remove
+  // deflection): a rotation by dphi moves |v| by at most |dphi| (|t_xy| + |theta| lever)
+  // (rotate v back: only u's rotation remains, by at most the arc), the change of q at
+  // fixed phi by at most |dt| + |dtheta| lever, and the offsets by the imperfections' bound
+  // for the races' and balls' travel. Plus a rounding allowance.
+  const double lever = model_.max_lever_arm_m();
+  const Vector5 dq = q - split_displacement_;
+  const double rotation = travel[0] * (q.head<2>().norm() + q.tail<2>().norm() * lever);
+  const double displacement = dq.head<3>().norm() + dq.tail<2>().norm() * lever;
+  const double offsets = model_.imperfections().max_offset_change_m(travel[1], travel[2], travel[3]);
+  const double rounding = 1e-9 * model_.groove_centre_distance_m() + 1e-15;
+  return split_clear_max_deflection_m_ + rotation + displacement + offsets + rounding;
 }
 
 DynamicSample BearingDynamics::commit_sample(const Vector5& q, const Vector5& v, const Vector5& a,

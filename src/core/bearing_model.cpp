@@ -123,6 +123,31 @@ void BallArrays::push_back(const BallArrays& from, std::size_t i) {
   deflection_offset.push_back(from.deflection_offset[i]);
 }
 
+void BallArrays::assign(const BallArrays& from, const int* entries, std::size_t n) {
+  clear();
+  ball.resize(n);
+  row.resize(n);
+  base_azimuth.resize(n);
+  cos_base.resize(n);
+  sin_base.resize(n);
+  groove_centre_z.resize(n);
+  normal_z.resize(n);
+  deflection_offset.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = static_cast<std::size_t>(entries[k]);
+    if (row_runs.empty() || row_runs.back().row != from.row[i]) row_runs.push_back({from.row[i], k, k});
+    ++row_runs.back().end;
+    ball[k] = from.ball[i];
+    row[k] = from.row[i];
+    base_azimuth[k] = from.base_azimuth[i];
+    cos_base[k] = from.cos_base[i];
+    sin_base[k] = from.sin_base[i];
+    groove_centre_z[k] = from.groove_centre_z[i];
+    normal_z[k] = from.normal_z[i];
+    deflection_offset[k] = from.deflection_offset[i];
+  }
+}
+
 double BearingModel::row_axial_position_m(int row) const {
   if (config_.rows == 1) return 0.0;
   return row == 0 ? config_.row_spacing_m / 2.0 : -config_.row_spacing_m / 2.0;
@@ -324,15 +349,37 @@ void BearingModel::deflections(const Vector5& q, const RollingPhase& phase, cons
   }
 }
 
-void BearingModel::split_by_deflection(const Vector5& q, const RollingPhase& phase, double margin_m,
-                                       BallArrays* near_contact, BallArrays* clear) const {
+double BearingModel::split_by_deflection(const Vector5& q, const RollingPhase& phase, double margin_m,
+                                         BallArrays* near_contact, BallArrays* clear) const {
   thread_local std::vector<double> deflection;
+  thread_local std::vector<int> near_entries, clear_entries;
   // Without the spalls' dips: an upper bound of the deflection, which the margin tracks.
   deflections(q, phase, balls_, &deflection, false);
-  near_contact->clear();
-  clear->clear();
-  for (std::size_t b = 0; b < balls_.size(); ++b)
-    (deflection[b] > -margin_m ? near_contact : clear)->push_back(balls_, b);
+  const std::size_t n = balls_.size();
+  near_entries.resize(n);
+  clear_entries.resize(n);
+  std::size_t n_near = 0, n_clear = 0;
+  double clear_max = -std::numeric_limits<double>::infinity();
+  for (std::size_t b = 0; b < n; ++b) {
+    const double d = deflection[b];
+    if (d > -margin_m) {
+      near_entries[n_near++] = static_cast<int>(b);
+    } else {
+      clear_entries[n_clear++] = static_cast<int>(b);
+      clear_max = std::max(clear_max, d);
+    }
+  }
+  // The entries of the whole set are the ball indices, so the subsets' ball lists identify them.
+  const auto same = [this](const BallArrays& set, const std::vector<int>& entries, std::size_t count) {
+    return set.source_stamp == stamp_ && set.generation != 0 && set.size() == count &&
+           std::equal(entries.begin(), entries.begin() + static_cast<std::ptrdiff_t>(count), set.ball.begin());
+  };
+  if (!same(*near_contact, near_entries, n_near) || !same(*clear, clear_entries, n_clear)) {
+    near_contact->assign(balls_, near_entries.data(), n_near);
+    clear->assign(balls_, clear_entries.data(), n_clear);
+    near_contact->source_stamp = clear->source_stamp = stamp_;
+  }
+  return clear_max;
 }
 
 double BearingModel::max_deflection(const Vector5& q, const RollingPhase& phase, const BallArrays& balls) const {

@@ -2,6 +2,7 @@
 // 5-DOF dynamics of the moving ring on its Hertz contacts, integrated by an exponential
 // fourth-order Runge-Kutta scheme (ETDRK4) around the linearized contacts, or by classical
 // RK4, with an internal step no longer than the output sample period.
+#include <array>
 #include <cstdint>
 #include <random>
 
@@ -150,6 +151,13 @@ class BearingDynamics {
   std::uint64_t linearizations_ = 0;
   static constexpr int kSamplesPerBallSplit = 16;
   int samples_since_split_ = 0;  // current_.acceleration matches load_ and model_
+  // Since the last split: its displacement, the largest deflection (spalls left out) of a
+  // clear ball then, and the rolling travel (|cage|, |cage - outer|, |cage - inner|, |spin|, rad).
+  Vector5 split_displacement_ = Vector5::Zero();
+  double split_clear_max_deflection_m_ = 0.0;
+  std::array<double, 4> split_travel_{};
+  // Upper bound of every clear ball's deflection at q after `travel` (see step()).
+  double clear_deflection_bound_m(const Vector5& q, const std::array<double, 4>& travel) const;
 };
 
 }  // namespace bearing_sim

@@ -46,9 +46,12 @@ struct BallArrays {
   std::vector<double> normal_z;            // c_r sin a0
   std::vector<double> deflection_offset;   // constant extra deflection (ball size), m
   std::uint64_t generation = 0;           // changes whenever the subset changes
+  std::uint64_t source_stamp = 0;         // of the model's arrays a subset was taken from
   std::size_t size() const { return ball.size(); }
   void clear();
   void push_back(const BallArrays& from, std::size_t i);
+  // The entries from[entries[0..n)] (ascending), replacing the content (a new generation).
+  void assign(const BallArrays& from, const int* entries, std::size_t n);
 };
 
 class BearingModel {
@@ -114,9 +117,12 @@ class BearingModel {
   void deflections(const Vector5& q, const RollingPhase& phase, const BallArrays& balls, std::vector<double>* out,
                    bool include_spalls = true) const;
   // Splits the balls into those whose deflection, spalls left out, exceeds -margin_m and
-  // the rest (spalls only remove deflection, so the rest stays clear of contact).
-  void split_by_deflection(const Vector5& q, const RollingPhase& phase, double margin_m, BallArrays* near_contact,
-                           BallArrays* clear) const;
+  // the rest (spalls only remove deflection, so the rest stays clear of contact). Returns
+  // the largest of those deflections over the rest (-infinity if none). When the split is
+  // the one both sets already hold, they are left as they are (same generation: the
+  // imperfection terms cached for them stay valid).
+  double split_by_deflection(const Vector5& q, const RollingPhase& phase, double margin_m, BallArrays* near_contact,
+                             BallArrays* clear) const;
   // Largest contact deflection over a subset (negative: all clear).
   double max_deflection(const Vector5& q, const RollingPhase& phase, const BallArrays& balls) const;
   // Largest distance of an outer-groove centre from the bearing centre, m.
