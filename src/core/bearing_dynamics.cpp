@@ -379,8 +379,16 @@ DynamicSample BearingDynamics::commit_sample(const Vector5& q, const Vector5& v,
   ++sample_index_;
   // Angles wrapped once per sample keep their precision over long runs.
   constexpr double kTwoPi = 6.28318530717958647692;
-  phase_ = RollingPhase{std::remainder(phase.cage, kTwoPi), std::remainder(phase.inner_ring, kTwoPi),
-                        std::remainder(phase.outer_ring, kTwoPi), std::remainder(phase.ball_spin, kTwoPi),
+  // std::remainder(x, 2 pi) without its cost for the usual |x| <= 3 pi (an angle wrapped last
+  // sample plus one sample's advance): n = round-half-even(x / 2 pi) is -1, 0 or 1, the
+  // comparison with pi (= 2 pi / 2 exactly) picks it exactly and x -+ 2 pi is the one
+  // rounding std::remainder makes, so the result is bit for bit the same.
+  const auto wrap = [](double x) {
+    constexpr double kPi = kTwoPi / 2.0;
+    if (!(std::abs(x) <= 3.0 * kPi)) return std::remainder(x, kTwoPi);
+    return x > kPi ? x - kTwoPi : x < -kPi ? x + kTwoPi : x;
+  };
+  phase_ = RollingPhase{wrap(phase.cage), wrap(phase.inner_ring), wrap(phase.outer_ring), wrap(phase.ball_spin),
                         static_cast<double>(sample_index_) / options_.sample_rate_hz};
   current_.time_s = phase_.time_s;
   update_slip_fluctuation();

@@ -133,19 +133,25 @@ void BallArrays::assign(const BallArrays& from, const int* entries, std::size_t 
   groove_centre_z.resize(n);
   normal_z.resize(n);
   deflection_offset.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t i = static_cast<std::size_t>(entries[k]);
-    if (row_runs.empty() || row_runs.back().row != from.row[i]) row_runs.push_back({from.row[i], k, k});
-    ++row_runs.back().end;
-    ball[k] = from.ball[i];
-    row[k] = from.row[i];
-    base_azimuth[k] = from.base_azimuth[i];
-    cos_base[k] = from.cos_base[i];
-    sin_base[k] = from.sin_base[i];
-    groove_centre_z[k] = from.groove_centre_z[i];
-    normal_z[k] = from.normal_z[i];
-    deflection_offset[k] = from.deflection_offset[i];
-  }
+  // One gather per array, through plain pointers (every split of a large bearing that
+  // moves a ball rebuilds both sets).
+  const auto gather = [entries, n](const auto& src, auto& dst) {
+    const auto* s = src.data();
+    auto* d = dst.data();
+    for (std::size_t k = 0; k < n; ++k) d[k] = s[entries[k]];
+  };
+  gather(from.ball, ball);
+  gather(from.row, row);
+  gather(from.base_azimuth, base_azimuth);
+  gather(from.cos_base, cos_base);
+  gather(from.sin_base, sin_base);
+  gather(from.groove_centre_z, groove_centre_z);
+  gather(from.normal_z, normal_z);
+  gather(from.deflection_offset, deflection_offset);
+  const int* r = row.data();
+  for (std::size_t k = 0; k < n; ++k)
+    if (k == 0 || r[k] != r[k - 1]) row_runs.push_back({r[k], k, k});
+  for (std::size_t i = 0; i < row_runs.size(); ++i) row_runs[i].end = i + 1 < row_runs.size() ? row_runs[i + 1].begin : n;
 }
 
 double BearingModel::row_axial_position_m(int row) const {
