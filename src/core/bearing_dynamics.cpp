@@ -204,8 +204,17 @@ Vector5 BearingDynamics::acceleration(const Vector5& q, const Vector5& q_dot, co
   return (load_ + model_.contact_force(q, q_dot, phase, balls)).cwiseProduct(inverse_mass_);
 }
 
+Vector5 BearingDynamics::acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
+                                      const BallArrays& balls, const CageTrig& trig) const {
+  return (load_ + model_.contact_force(q, q_dot, phase, balls, trig.c, trig.s)).cwiseProduct(inverse_mass_);
+}
+
+double BearingDynamics::slipping_cage_speed() const {
+  return cage_speed_ * (1.0 - model_.config().imperfections.cage_slip - slip_fluctuation_);
+}
+
 RollingPhase BearingDynamics::advanced(const RollingPhase& p, double dt) const {
-  const double slipping_cage_speed = cage_speed_ * (1.0 - model_.config().imperfections.cage_slip - slip_fluctuation_);
+  const double slipping_cage_speed = this->slipping_cage_speed();
   return RollingPhase{p.cage + slipping_cage_speed * dt, p.inner_ring + inner_speed_ * dt, p.outer_ring + outer_speed_ * dt,
                       p.ball_spin + spin_speed_ * dt, p.time_s + dt};
 }
@@ -248,29 +257,45 @@ void BearingDynamics::integrate_sample_exponential(Vector5& q, Vector5& v, Rolli
   };
   // The products are small and fixed-size: coefficient-based (lazyProduct), not Eigen's
   // general matrix-vector routine, which for these sizes costs more than the arithmetic.
-  const auto remainder = [&](const Vector10& y, const RollingPhase& p) {
+  const auto remainder = [&](const Vector10& y, const RollingPhase& p, const CageTrig& t) {
     Vector5 qq, vv;
     state(y, &qq, &vv);
-    return Vector5(acceleration(qq, vv, p, balls) - lin_accel_.lazyProduct(y));
+    return Vector5(acceleration(qq, vv, p, balls, t) - lin_accel_.lazyProduct(y));
   };
+  // The cage turns by the same angle every half step: its cos and sin are carried along by
+  // rotation from one sincos per sample (they differ from sincos of the stage's angle by a
+  // few ulp), instead of a sincos at every stage.
+  const double half_turn = slipping_cage_speed() * (0.5 * h);
+  if (half_turn != half_step_turn_) {
+    half_step_turn_ = half_turn;
+    half_step_rotation_ = CageTrig{std::cos(half_turn), std::sin(half_turn)};
+  }
+  const CageTrig rot = half_step_rotation_;
+  const auto rotate = [&rot](const CageTrig& t) {
+    return CageTrig{t.c * rot.c - t.s * rot.s, t.s * rot.c + t.c * rot.s};
+  };
+  CageTrig trig{std::cos(phase.cage), std::sin(phase.cage)};
   Vector10 y;
   y << q - q_lin_, v;
   for (int i = 0; i < substeps_; ++i) {
     const RollingPhase mid = advanced(phase, 0.5 * h), end = advanced(phase, h);
-    const Vector5 r1 = (i == 0 ? a_start : acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls)) -
+    const CageTrig trig_mid = rotate(trig), trig_end = rotate(trig_mid);
+    const Vector5 r1 = (i == 0 ? a_start : acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls, trig)) -
                        lin_accel_.lazyProduct(y);
     const Vector10 e_half_y = exp_half_.lazyProduct(y);
     const Vector10 y2 = e_half_y + phi_half_.lazyProduct(r1);
-    const Vector5 r2 = remainder(y2, mid);
+    const Vector5 r2 = remainder(y2, mid, trig_mid);
     const Vector10 y3 = e_half_y + phi_half_.lazyProduct(r2);
-    const Vector5 r3 = remainder(y3, mid);
+    const Vector5 r3 = remainder(y3, mid, trig_mid);
     const Vector10 y4 = exp_half_.lazyProduct(y2) + phi_half_.lazyProduct(Vector5(2.0 * r3 - r1));
-    const Vector5 r4 = remainder(y4, end);
+    const Vector5 r4 = remainder(y4, end, trig_end);
     const Vector10 y_next =  // a temporary: lazy products do not guard against aliasing
         exp_full_.lazyProduct(y) + w1_.lazyProduct(r1) + w2_.lazyProduct(Vector5(r2 + r3)) + w3_.lazyProduct(r4);
     y = y_next;
     phase = end;
+    trig = trig_end;
   }
+  sample_end_trig_ = trig;
   state(y, &q, &v);
 }
 
@@ -345,7 +370,11 @@ DynamicSample BearingDynamics::step() {
     phase = phase_;
     integrate_sample(q, v, phase, a_start, *balls);
   }
-  return commit_sample(q, v, acceleration(q, v, phase, *balls), phase);
+  // The exponential integrator left cos and sin of the end's cage angle.
+  return commit_sample(q, v,
+                       exponential() ? acceleration(q, v, phase, *balls, sample_end_trig_)
+                                     : acceleration(q, v, phase, *balls),
+                       phase);
 }
 
 double BearingDynamics::clear_deflection_bound_m(const Vector5& q, const std::array<double, 4>& travel) const {

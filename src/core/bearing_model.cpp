@@ -265,6 +265,12 @@ Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, cons
     cos_cage = std::cos(phase.cage);
     sin_cage = std::sin(phase.cage);
   }
+  return contact_force(q, q_dot, phase, balls, cos_cage, sin_cage, kernel);
+}
+
+Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
+                                    const BallArrays& balls, double cos_cage, double sin_cage,
+                                    ContactKernel kernel) const {
   // All balls in one kernel call, whatever their row (each carries its groove centre's z
   // and normal slope): one call per force evaluation keeps small bearings cheap.
   const detail::ContactKernelInput in{cos_cage,

@@ -4,6 +4,7 @@
 // RK4, with an internal step no longer than the output sample period.
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <random>
 
 #include "bearing_sim/core/bearing_model.hpp"
@@ -97,7 +98,14 @@ class BearingDynamics {
  private:
   Vector5 acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
                        const BallArrays& balls) const;
+  // cos and sin of a cage angle, carried along with it by the exponential integrator.
+  struct CageTrig {
+    double c = 1.0, s = 0.0;
+  };
+  Vector5 acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase, const BallArrays& balls,
+                       const CageTrig& trig) const;
   RollingPhase advanced(const RollingPhase& phase, double dt) const;
+  double slipping_cage_speed() const;
   // One output sample, in substeps_ steps, from the acceleration a_start.
   void integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
                         const BallArrays& balls) const;
@@ -146,6 +154,11 @@ class BearingDynamics {
   Matrix10 exp_full_ = Matrix10::Identity(), exp_half_ = Matrix10::Identity();
   Matrix10x5 phi_half_ = Matrix10x5::Zero();  // (h/2) phi1(hL/2)
   Matrix10x5 w1_ = Matrix10x5::Zero(), w2_ = Matrix10x5::Zero(), w3_ = Matrix10x5::Zero();
+  // The cage turn of half an internal step and its cos and sin (recomputed when it changes),
+  // and cos and sin of the cage angle at the end of the last integrated sample.
+  mutable double half_step_turn_ = std::numeric_limits<double>::quiet_NaN();
+  mutable CageTrig half_step_rotation_;
+  mutable CageTrig sample_end_trig_;
   int linearized_substeps_ = 0;
   int samples_since_linearization_ = 0;
   std::uint64_t linearizations_ = 0;

@@ -95,6 +95,10 @@ class BearingModel {
   enum class ContactKernel { Fastest, Scalar };
   Vector5 contact_force(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase, const BallArrays& balls,
                         ContactKernel kernel = ContactKernel::Fastest) const;
+  // Same, with cos and sin of phase.cage given (an integrator that advances the cage by
+  // a fixed angle can rotate them instead of calling sincos at every stage).
+  Vector5 contact_force(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase, const BallArrays& balls,
+                        double cos_cage, double sin_cage, ContactKernel kernel = ContactKernel::Fastest) const;
   Vector5 contact_force(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase) const {
     return contact_force(q, q_dot, phase, balls_);
   }
