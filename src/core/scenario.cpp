@@ -107,11 +107,7 @@ std::string resolve_file(const detail::Reader& r, const std::string& key, const 
 }  // namespace
 
 Scenario Scenario::load(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open scenario file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return from_string(buffer.str(), path);
+  return from_string(detail::read_config_file(path, "scenario file"), path);
 }
 
 Scenario Scenario::from_string(const std::string& yaml, const std::string& source) {
