@@ -135,11 +135,7 @@ BearingConfig bearing_config_from_string(const std::string& yaml_text, const std
 }
 
 BearingConfig load_bearing_config(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open bearing file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return bearing_config_from_string(buffer.str(), path);
+  return bearing_config_from_string(detail::read_config_file(path, "bearing file"), path);
 }
 
 }  // namespace bearing_sim

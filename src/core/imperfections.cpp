@@ -111,8 +111,10 @@ ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML
       s.depth_growth_m_per_s = d.number("depth_growth_um_per_hour", 0.0) * 1e-6 / 3600.0;
       d.require(s.width_m > 0.0, "width_mm", "must be > 0");
       d.require(s.depth_m > 0.0, "depth_um", "must be > 0");
-      d.require(s.width_growth_m_per_s >= 0.0, "width_growth_mm_per_hour", "must be >= 0");
-      d.require(s.depth_growth_m_per_s >= 0.0, "depth_growth_um_per_hour", "must be >= 0");
+      d.require(s.width_growth_m_per_s >= 0.0 && std::isfinite(s.width_growth_m_per_s), "width_growth_mm_per_hour",
+                "must be finite and >= 0");
+      d.require(s.depth_growth_m_per_s >= 0.0 && std::isfinite(s.depth_growth_m_per_s), "depth_growth_um_per_hour",
+                "must be finite and >= 0");
       spec.spalls.push_back(s);
     }
   }
@@ -195,28 +197,46 @@ Imperfections::Imperfections(const ImperfectionSpec& spec, const Geometry& g) : 
   for (const Spall& s : spec.spalls) add_spall(s);
 }
 
+SpallLimit spall_limit(Surface surface, double ball_diameter_m, double outer_race_radius_m,
+                       double inner_race_radius_m) {
+  SpallLimit l;
+  l.max_depth_m = 0.25 * ball_diameter_m;
+  l.max_width_m = surface == Surface::Ball        ? 0.25 * kPi * ball_diameter_m
+                  : surface == Surface::OuterRace ? 0.5 * kPi * outer_race_radius_m
+                                                  : 0.5 * kPi * inner_race_radius_m;
+  return l;
+}
+
 void Imperfections::validate(const Spall& s) const {
   const auto& g = geometry_;
   if (!std::isfinite(s.position_rad) || !std::isfinite(s.width_m) || !std::isfinite(s.depth_m))
     throw InvalidInputError("defect: position, width and depth must be finite");
-  if (!(s.depth_m > 0.0) || s.depth_m > 0.25 * g.ball_diameter_m)
+  const SpallLimit limit = spall_limit(s.surface, g.ball_diameter_m, g.outer_race_radius_m, g.inner_race_radius_m);
+  if (!(s.depth_m > 0.0) || s.depth_m > limit.max_depth_m)
     throw InvalidInputError("defect: depth must be > 0 and at most a quarter of the ball diameter (" +
-                            std::to_string(0.25 * g.ball_diameter_m * 1e6) + " um)");
+                            std::to_string(limit.max_depth_m * 1e6) + " um)");
   if (s.surface == Surface::Ball) {
     if (s.ball < 0 || s.ball >= g.rows * g.balls_per_row)
       throw InvalidInputError("defect: ball index " + std::to_string(s.ball) + " is not in [0, " +
                               std::to_string(g.rows * g.balls_per_row) + ")");
-    if (!(s.width_m > 0.0) || s.width_m > 0.25 * kPi * g.ball_diameter_m)
+    if (!(s.width_m > 0.0) || s.width_m > limit.max_width_m)
       throw InvalidInputError("defect: a ball spall must be wider than 0 and at most a quarter of the ball "
-                              "circumference (" + std::to_string(0.25 * kPi * g.ball_diameter_m * 1e3) + " mm)");
+                              "circumference (" + std::to_string(limit.max_width_m * 1e3) + " mm)");
   } else {
-    const double r = s.surface == Surface::OuterRace ? g.outer_race_radius_m : g.inner_race_radius_m;
-    if (!(s.width_m > 0.0) || s.width_m > 0.5 * kPi * r)
+    if (!(s.width_m > 0.0) || s.width_m > limit.max_width_m)
       throw InvalidInputError("defect: a race spall must be wider than 0 and at most a quarter of the raceway (" +
-                              std::to_string(0.5 * kPi * r * 1e3) + " mm)");
+                              std::to_string(limit.max_width_m * 1e3) + " mm)");
   }
-  if (s.width_growth_m_per_s < 0.0 || s.depth_growth_m_per_s < 0.0)
-    throw InvalidInputError("defect: growth rates must be >= 0");
+  // A spall that would grow from nothing to the largest the bearing holds in under 1 s is no
+  // fatigue spall (real ones grow over hours; the compressed-time scenarios use <= 0.1 mm/s);
+  // faster rates only made the state diverge. NaN and inf fail the same test.
+  const double max_width_rate = limit.max_width_m / 1.0, max_depth_rate = limit.max_depth_m / 1.0;
+  if (!(s.width_growth_m_per_s >= 0.0 && s.width_growth_m_per_s <= max_width_rate))
+    throw InvalidInputError("defect: width growth must be finite and in [0, " + std::to_string(max_width_rate * 1e3) +
+                            "] mm/s (the largest spall in no less than 1 s)");
+  if (!(s.depth_growth_m_per_s >= 0.0 && s.depth_growth_m_per_s <= max_depth_rate))
+    throw InvalidInputError("defect: depth growth must be finite and in [0, " + std::to_string(max_depth_rate * 1e6) +
+                            "] um/s (the largest spall in no less than 1 s)");
 }
 
 void Imperfections::add_spall(const Spall& spall) {
@@ -226,8 +246,12 @@ void Imperfections::add_spall(const Spall& spall) {
 
 void Imperfections::spall_size(const Spall& s, double time_s, double* angular_width, double* depth) const {
   const double age = std::max(0.0, time_s - s.created_at_s);
-  const double width = s.width_m + s.width_growth_m_per_s * age;
-  *depth = effective_depth(width, s.depth_m + s.depth_growth_m_per_s * age, geometry_.ball_diameter_m);
+  const SpallLimit limit =
+      spall_limit(s.surface, geometry_.ball_diameter_m, geometry_.outer_race_radius_m, geometry_.inner_race_radius_m);
+  // Growth stops at the largest spall the bearing holds.
+  const double width = grown_size(s.width_m, s.width_growth_m_per_s, age, limit.max_width_m);
+  *depth = effective_depth(width, grown_size(s.depth_m, s.depth_growth_m_per_s, age, limit.max_depth_m),
+                           geometry_.ball_diameter_m);
   const double radius = s.surface == Surface::Ball        ? 0.5 * geometry_.ball_diameter_m
                         : s.surface == Surface::OuterRace ? geometry_.outer_race_radius_m
                                                           : geometry_.inner_race_radius_m;

@@ -119,11 +119,7 @@ AccelerometerConfig accelerometer_config_from_string(const std::string& yaml, co
 }
 
 AccelerometerConfig load_accelerometer_config(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open the sensor file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return accelerometer_config_from_string(text.str(), path);
+  return accelerometer_config_from_string(detail::read_config_file(path, "the sensor file"), path);
 }
 
 VirtualAccelerometer::VirtualAccelerometer(AccelerometerConfig config, double input_rate_hz)

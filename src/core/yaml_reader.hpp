@@ -2,7 +2,10 @@
 // Strict reading of one YAML mapping of a bearing file: every error names the file
 // (source) and the key. Internal to the core library.
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include <yaml-cpp/yaml.h>
@@ -11,6 +14,23 @@
 
 namespace bearing_sim {
 namespace detail {
+
+// The text of a configuration file. Only a regular file of at most 1 MiB (the shipped files
+// are a few kB): /dev/zero or a FIFO would otherwise be read until memory runs out.
+inline std::string read_config_file(const std::string& path, const std::string& what) {
+  constexpr std::uintmax_t kMaxBytes = 1u << 20;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw ConfigError(path + ": cannot open " + what + " (not a regular file)");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec || size > kMaxBytes)
+    throw ConfigError(path + ": " + what + " larger than 1 MiB (or unreadable), refused");
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path + ": cannot open " + what);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
 
 class Reader {
  public:

@@ -282,7 +282,7 @@ bool BearingSimRos::on_inject_defect(InjectDefect::Request& req, InjectDefect::R
     // Validated here against the bearing (the core's checks), so that the caller gets the
     // reason; the sim thread then adds it from its next sample.
     validation_model_->add_spall(spall);
-  } catch (const InvalidInputError& e) {
+  } catch (const std::exception& e) {  // InvalidInputError, or anything else: never leaves the callback
     res.success = false;
     res.message = "defect does not fit the bearing '" + validation_model_->config().name + "': " + e.what();
     res.defects_present = static_cast<std::uint32_t>(validation_model_->imperfections().spalls().size());
@@ -317,33 +317,56 @@ bool BearingSimRos::on_clear_defects(std_srvs::Trigger::Request& /*req*/, std_sr
 
 void BearingSimRos::on_reconfigure(BearingSimConfig& config, std::uint32_t /*level*/) {
   const BearingConfig& old = validation_model_->config();
+  // Every value checked here (the server's clamp lets NaN through) so that the sim thread never
+  // sees a bad one; a refused value reverts to the last good one, which the server publishes back.
+  const auto refuse = [this](const InputCheck& c) {
+    if (!c.accepted) reject_input(c.reason);
+    return !c.accepted;
+  };
+  if (refuse(check_setting(config.clearance_um, kClearanceUm))) config.clearance_um = old.clearance_m * 1e6;
+  if (refuse(check_setting(config.contact_damping_Ns_per_m, kContactDampingNsPerM)))
+    config.contact_damping_Ns_per_m = old.contact_damping_Ns_per_m;
+  const OutputSettings good = accepted_settings_.value_or(OutputSettings{});
+  if (refuse(check_setting(config.chunk_samples, kChunkSamples)))
+    config.chunk_samples = static_cast<int>(good.chunk_samples);
+  if (refuse(check_setting(config.level_window_s, kLevelWindowS))) config.level_window_s = good.level_window_s;
+  if (refuse(check_setting(config.level_rate_hz, kLevelRateHz))) config.level_rate_hz = good.level_rate_hz;
+  if (refuse(check_setting(config.ball_loads_rate_hz, kBallLoadsRateHz)))
+    config.ball_loads_rate_hz = good.ball_loads_rate_hz;
+
   const double clearance_m = config.clearance_um * 1e-6;
   std::optional<BearingModel> new_model;
   if (clearance_m != old.clearance_m || config.contact_damping_Ns_per_m != old.contact_damping_Ns_per_m) {
-    BearingConfig changed = old;
-    changed.clearance_m = clearance_m;
-    changed.contact_damping_Ns_per_m = config.contact_damping_Ns_per_m;
-    BearingModel model(changed);
-    model.set_deflection_offsets(validation_model_->deflection_offsets());
-    // The spalls present now, not only those of the file (the sim thread re-times them).
-    model.clear_spalls();
-    for (const Spall& sp : validation_model_->imperfections().spalls()) model.add_spall(sp);
-    const InputCheck check = check_load(accepted_load_, limits_, &model);
-    if (check.accepted) {
-      accepted_max_pressure_Pa_ = check.max_contact_pressure_Pa;
-      new_model = std::move(model);
-    } else {
-      // Refuse the change; the server publishes the reverted values.
-      reject_input("clearance " + std::to_string(config.clearance_um) + " um: " + check.reason);
+    try {
+      BearingConfig changed = old;
+      changed.clearance_m = clearance_m;
+      changed.contact_damping_Ns_per_m = config.contact_damping_Ns_per_m;
+      BearingModel model(changed);
+      model.set_deflection_offsets(validation_model_->deflection_offsets());
+      // The spalls present now, not only those of the file (the sim thread re-times them).
+      model.clear_spalls();
+      for (const Spall& sp : validation_model_->imperfections().spalls()) model.add_spall(sp);
+      const InputCheck check = check_load(accepted_load_, limits_, &model);
+      if (check.accepted) {
+        accepted_max_pressure_Pa_ = check.max_contact_pressure_Pa;
+        new_model = std::move(model);
+      } else {
+        reject_input("clearance " + std::to_string(config.clearance_um) + " um: " + check.reason);
+      }
+    } catch (const std::exception& e) {  // a model the core refuses: no exception leaves the callback
+      reject_input("clearance_um/contact_damping_Ns_per_m refused: " + std::string(e.what()));
+    }
+    if (!new_model) {
       config.clearance_um = old.clearance_m * 1e6;
       config.contact_damping_Ns_per_m = old.contact_damping_Ns_per_m;
     }
   }
   OutputSettings settings;
-  settings.chunk_samples = static_cast<std::size_t>(std::max(1, config.chunk_samples));
+  settings.chunk_samples = static_cast<std::size_t>(config.chunk_samples);
   settings.level_window_s = config.level_window_s;
   settings.level_rate_hz = config.level_rate_hz;
   settings.ball_loads_rate_hz = config.ball_loads_rate_hz;
+  accepted_settings_ = settings;
   if (new_model) *validation_model_ = *new_model;
   {
     std::lock_guard<PriorityInheritanceMutex> lock(pending_mutex_);

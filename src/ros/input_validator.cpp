@@ -46,5 +46,17 @@ InputCheck check_speed(double ring_speed_rad_s, const InputLimits& limits) {
   return c;
 }
 
+InputCheck check_setting(double value, const SettingRange& range) {
+  InputCheck c;
+  if (!std::isfinite(value) || value < range.min || value > range.max) {
+    std::ostringstream why;
+    why << range.name << " = " << value << " refused: must be finite and in [" << range.min << ", " << range.max
+        << "]";
+    c.reason = why.str();
+  }
+  c.accepted = c.reason.empty();
+  return c;
+}
+
 }  // namespace ros_node
 }  // namespace bearing_sim

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <string>
 #include <vector>
@@ -191,4 +192,31 @@ TEST(ConfigErrors, ShippedFilesLoad) {
   // the outer ring's side of the pitch circle (Ro = 17 mm, Ri = 14 mm, w = 14 mm).
   EXPECT_FALSE(ins.tilt_inertia_given);
   EXPECT_NEAR(ins.tilt_inertia_kg_m2, 0.1 * (3.0 * (0.017 * 0.017 + 0.014 * 0.014) + 0.014 * 0.014) / 12.0, 1e-12);
+}
+
+// /dev/zero used to be read until memory ran out; a directory or a > 1 MiB file is refused too.
+TEST(ConfigErrors, NonRegularOrHugeFilesAreRefusedNamingTheFile) {
+  for (const std::string path : {"/dev/zero", "/tmp"}) {
+    try {
+      bearing_sim::load_bearing_config(path);
+      ADD_FAILURE() << path << " accepted";
+    } catch (const bearing_sim::ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    }
+  }
+  const std::string big = ::testing::TempDir() + "bearing_sim_big.yaml";
+  {
+    std::FILE* f = std::fopen(big.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    const std::string line(1023, '#');
+    for (int i = 0; i < 1100; ++i) std::fprintf(f, "%s\n", line.c_str());
+    std::fclose(f);
+  }
+  try {
+    bearing_sim::load_bearing_config(big);
+    ADD_FAILURE() << "1.1 MiB file accepted";
+  } catch (const bearing_sim::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("1 MiB"), std::string::npos) << e.what();
+  }
+  std::remove(big.c_str());
 }

@@ -5,6 +5,7 @@
 
 #include <dynamic_reconfigure/Reconfigure.h>
 
+#include "bearing_sim/InjectDefect.h"
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "node_test_support.hpp"
@@ -48,7 +49,8 @@ void expect_mean_at_static(const Vector5& load, std::uint64_t from, std::uint64_
         << what << ", axis " << c;
 }
 
-bool reconfigure(const std::string& name, double value, bool is_int = false) {
+bool reconfigure(const std::string& name, double value, bool is_int = false,
+                 dynamic_reconfigure::Config* applied = nullptr) {
   dynamic_reconfigure::Reconfigure srv;
   if (is_int) {
     dynamic_reconfigure::IntParameter p;
@@ -61,7 +63,17 @@ bool reconfigure(const std::string& name, double value, bool is_int = false) {
     p.value = value;
     srv.request.config.doubles.push_back(p);
   }
-  return ros::service::call("bearing_sim_node/set_parameters", srv);
+  const bool ok = ros::service::call("bearing_sim_node/set_parameters", srv);
+  if (applied) *applied = srv.response.config;
+  return ok;
+}
+
+double applied_value(const dynamic_reconfigure::Config& c, const std::string& name) {
+  for (const auto& p : c.doubles)
+    if (p.name == name) return p.value;
+  for (const auto& p : c.ints)
+    if (p.name == name) return p.value;
+  return std::numeric_limits<double>::quiet_NaN();
 }
 }  // namespace
 
@@ -195,6 +207,61 @@ TEST_F(NodeInputs, ReconfigureClearanceAndChunkSizeLive) {
   ASSERT_TRUE(reconfigure("chunk_samples", 100, true));
   settle(recorder().next_index(), 0.5);
   EXPECT_EQ(recorder().chunks().back().size, 100u);
+}
+
+TEST_F(NodeInputs, BadReconfigureValuesAndDefectGrowthsAreRefused) {
+  const bearing_sim::BearingModel model = ct_model();
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  diagnostic_msgs::DiagnosticStatus in;
+  ASSERT_TRUE(recorder().wait_for_new_diagnostics(1, 5.0));
+  ASSERT_TRUE(recorder().diagnostic("Inputs", &in));
+  const int rejected_before = std::stoi(Recorder::value(in, "rejected inputs"));
+  const std::uint64_t sent = recorder().next_index();
+  // The good values of ct_gantry.launch / the cfg defaults that must come back.
+  dynamic_reconfigure::Config before;
+  ASSERT_TRUE(reconfigure("level_rate_hz", 10.0, false, &before));
+  int refused = 0;
+  for (const char* name : {"clearance_um", "contact_damping_Ns_per_m", "level_window_s", "level_rate_hz",
+                           "ball_loads_rate_hz"}) {
+    // NaN passes the server's clamp and must be refused by the node (reverted).
+    dynamic_reconfigure::Config applied;
+    ASSERT_TRUE(reconfigure(name, nan, false, &applied)) << name;
+    EXPECT_EQ(applied_value(applied, name), applied_value(before, name)) << name << " = nan not reverted";
+    ++refused;
+    // +-inf the server clamps to the cfg range before the node sees it: finite, in range.
+    for (double v : {inf, -inf}) {
+      ASSERT_TRUE(reconfigure(name, v, false, &applied)) << name;
+      EXPECT_TRUE(std::isfinite(applied_value(applied, name))) << name << " = " << v;
+    }
+    ASSERT_TRUE(reconfigure(name, applied_value(before, name)));  // back to the good value
+  }
+  // After the NaN clearance, a good one is still applied (the node recovered).
+  ASSERT_TRUE(reconfigure("clearance_um", 0.0));
+  // Defects: non-finite and absurd growth rates (1 m/s passes any spall the bearing holds in ms).
+  for (double w : {nan, inf, 1.0}) {
+    for (int which = 0; which < 2; ++which) {
+      bearing_sim::InjectDefect srv;
+      srv.request.surface = "outer_race";
+      srv.request.width_m = 1e-3;
+      srv.request.depth_m = 10e-6;
+      (which == 0 ? srv.request.width_growth_m_per_s : srv.request.depth_growth_m_per_s) = w;
+      ASSERT_TRUE(ros::service::call("inject_defect", srv));
+      EXPECT_FALSE(srv.response.success) << "growth " << w;
+      EXPECT_NE(srv.response.message.find("growth"), std::string::npos) << srv.response.message;
+      EXPECT_EQ(srv.response.defects_present, 0u);
+    }
+  }
+  settle(sent, 1.5);
+  const std::uint64_t after = recorder().next_index();
+  settle(after, 1.0);
+  expect_mean_at_static(ct_load(), after, after + 10000, "after bad reconfigure values", model);
+  ASSERT_TRUE(recorder().wait_for_new_diagnostics(2, 5.0));
+  ASSERT_TRUE(recorder().diagnostic("Inputs", &in));
+  EXPECT_GE(std::stoi(Recorder::value(in, "rejected inputs")) - rejected_before, refused);
+  // The last one refused names the parameter and the accepted range.
+  const std::string last = Recorder::value(in, "last rejection");
+  EXPECT_NE(last.find("ball_loads_rate_hz"), std::string::npos) << last;
+  EXPECT_NE(last.find("[0.1, 200]"), std::string::npos) << last;
 }
 
 // DivergenceIsReportedAsErrorAndResetNeverNaN: test_node_divergence.cpp (a light ring with a

@@ -32,6 +32,21 @@ struct Spall {
   double created_at_s = 0.0;  // growth counts from here
 };
 
+// Largest spall the bearing can hold (the single definition of the limit, used by the
+// validation, the runtime growth and the scenario's growth law): ball spall at most a quarter
+// of the ball circumference wide, race spall a quarter of the raceway; depth at most D/4.
+struct SpallLimit {
+  double max_width_m = 0.0;
+  double max_depth_m = 0.0;
+};
+SpallLimit spall_limit(Surface surface, double ball_diameter_m, double outer_race_radius_m,
+                       double inner_race_radius_m);
+// Size grown at `rate` for `age` seconds, stopped at `max` (growth never passes the limit).
+inline double grown_size(double size, double rate, double age_s, double max) {
+  const double grown = size + rate * age_s;
+  return grown < max ? grown : max;
+}
+
 struct ImperfectionSpec {
   std::uint64_t seed = 1;
   std::vector<Waviness> waviness;

@@ -111,6 +111,7 @@ class BearingSimRos : private PipelineSink {
   std::string sensor_description_;  // "sensor: <name>" or "ideal ring acceleration"
   double measured_rate_hz_ = 10000.0;  // of `vibration`, L and health: the sensor's output rate, or sample_rate_hz_
   InputLimits limits_;
+  std::optional<OutputSettings> accepted_settings_;  // last good reconfigure output settings
 
   // ROS side (spinner thread only): the latest accepted inputs and model, for validation.
   std::unique_ptr<BearingModel> validation_model_;

@@ -24,5 +24,20 @@ struct InputCheck {
 InputCheck check_load(const Vector5& load, const InputLimits& limits, const BearingModel* model);
 InputCheck check_speed(double ring_speed_rad_s, const InputLimits& limits);
 
+// Accepted range of one dynamic_reconfigure parameter (the ranges of cfg/BearingSim.cfg:
+// the server clamps finite values to them but lets NaN through).
+struct SettingRange {
+  const char* name;
+  double min, max;
+};
+constexpr SettingRange kClearanceUm{"clearance_um", -200.0, 200.0};
+constexpr SettingRange kContactDampingNsPerM{"contact_damping_Ns_per_m", 0.0, 2000.0};
+constexpr SettingRange kChunkSamples{"chunk_samples", 1.0, 10000.0};
+constexpr SettingRange kLevelWindowS{"level_window_s", 0.01, 60.0};
+constexpr SettingRange kLevelRateHz{"level_rate_hz", 0.1, 100.0};
+constexpr SettingRange kBallLoadsRateHz{"ball_loads_rate_hz", 0.1, 200.0};
+// Rejects a non-finite value or one outside [min, max]; the reason names the parameter and the range.
+InputCheck check_setting(double value, const SettingRange& range);
+
 }  // namespace ros_node
 }  // namespace bearing_sim
