@@ -53,7 +53,10 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
   if (c.rows == 2) r.require(s_mm > 0.0, "row_spacing_mm", "must be > 0 for two rows");
   else r.require(s_mm >= 0.0, "row_spacing_mm", "must be >= 0");
   c.row_spacing_m = s_mm * 1e-3;
-  c.row_phase_rad = r.number("row_phase_deg", 0.0) * kPi / 180.0;
+  const double row_phase_deg = r.number("row_phase_deg", 0.0);
+  // Beyond a turn the phase means nothing more, and huge values lose every digit of it.
+  r.require(std::abs(row_phase_deg) <= 360.0, "row_phase_deg", "must be in [-360, 360] deg");
+  c.row_phase_rad = row_phase_deg * kPi / 180.0;
 
   const double a0_deg = r.number("contact_angle_deg", 0.0);
   r.require(a0_deg >= 0.0 && a0_deg < 60.0, "contact_angle_deg", "must be in [0, 60) deg");

@@ -36,6 +36,9 @@ StaticSolution solve_static(const BearingModel& model, const Vector5& load, cons
   // Beyond this the balls would have left the grooves: the load is not carried.
   const double displacement_limit = 0.25 * d + std::abs(model.config().clearance_m);
   const double load_scale = (load.array() / s.array()).matrix().norm();
+  // Finite components whose magnitude overflows (1e300 N) would turn every step into NaN.
+  if (!std::isfinite(load_scale))
+    throw InvalidInputError("static load is beyond any bearing (its magnitude overflows): " + describe(load));
   const double tolerance = options.force_tolerance_N + 1e-12 * load_scale;
 
   // Start where a single ball stiffness scaled by the ball count would put the ring;

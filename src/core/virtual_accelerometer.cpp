@@ -28,16 +28,19 @@ Problem config_problem(const AccelerometerConfig& c) {
   if (!c.axis.allFinite() || c.axis.norm() < 1e-9) return {"axis", "must be a finite, non-zero vector"};
   if (!(c.path_resonance_hz >= 0.0) || !std::isfinite(c.path_resonance_hz))
     return {"path_resonance_Hz", "must be >= 0 (0: no transmission path)"};
-  if (!(c.path_damping_ratio > 0.0 && c.path_damping_ratio < 1.0))
-    return {"path_damping_ratio", "must be in (0, 1)"};
+  // Mounts and housings have 0.5-20 % of critical damping; below 1e-4 the resonance never
+  // settles and its filter loses its digits (a denormal gave an all-NaN signal).
+  if (!(c.path_damping_ratio >= 1e-4 && c.path_damping_ratio < 1.0))
+    return {"path_damping_ratio", "must be in [1e-4, 1)"};
   if (!(c.sensitivity_V_per_m_s2 > 0.0) || !std::isfinite(c.sensitivity_V_per_m_s2))
     return {"sensitivity_mV_per_g", "must be > 0"};
   if (!(c.noise_density_m_s2_per_sqrt_hz >= 0.0) || !std::isfinite(c.noise_density_m_s2_per_sqrt_hz))
     return {"noise_density_ug_per_sqrt_Hz", "must be >= 0"};
   if (!(c.range_m_s2 > 0.0) || !std::isfinite(c.range_m_s2)) return {"range_g", "must be > 0"};
   if (c.adc_bits < 8 || c.adc_bits > 32) return {"adc_bits", "must be between 8 and 32"};
-  if (!(c.output_rate_hz > 0.0 && c.output_rate_hz <= kMaxSensorOutputRate_Hz))
-    return {"output_rate_Hz", "must be in (0, 51200] Hz"};
+  // At least 1 Hz: a vanishing rate made the decimation ratio overflow.
+  if (!(c.output_rate_hz >= 1.0 && c.output_rate_hz <= kMaxSensorOutputRate_Hz))
+    return {"output_rate_Hz", "must be in [1, 51200] Hz"};
   if (!(c.anti_alias_cutoff_fraction > 0.0 && c.anti_alias_cutoff_fraction < 0.5))
     return {"anti_alias_cutoff_fraction", "must be in (0, 0.5) (a fraction of the output rate)"};
   if (c.anti_alias_order < 2 || c.anti_alias_order > kMaxAntiAliasOrder || c.anti_alias_order % 2 != 0)

@@ -121,6 +121,11 @@ TEST(ConfigErrors, OutOfRange) {
   expect_error(yaml({{"rotating_mass_kg", "0"}}), {"rotating_mass_kg"});
   expect_error(yaml({{"rotating_mass_kg", "-1"}}), {"rotating_mass_kg"});
   expect_error(yaml({{"tilt_inertia_kg_m2", "-1"}}), {"tilt_inertia_kg_m2"});
+  // A row phase beyond a turn (1e308 lost every digit of the azimuth; 1e20 put all balls at one).
+  expect_error(yaml({{"rows", "2"}, {"row_spacing_mm", "10"}, {"row_phase_deg", "1e308"}}), {"row_phase_deg"});
+  expect_error(yaml({{"rows", "2"}, {"row_spacing_mm", "10"}, {"row_phase_deg", "-361"}}), {"row_phase_deg"});
+  EXPECT_NO_THROW(bearing_config_from_string(yaml({{"rows", "2"}, {"row_spacing_mm", "10"}, {"row_phase_deg", "-360"}}),
+                                             kSource));
   // Balls that do not fit on the pitch circle: 40 x 7.94 mm > pi x 39.04 mm.
   expect_error(yaml({{"balls_per_row", "40"}}), {"balls_per_row"});
   // Limits are open/closed as documented: 0 deg and just under 60 deg are accepted.

@@ -444,7 +444,14 @@ TEST(VirtualAccelerometer, InconsistentRatesAreRejected) {
   c.path_resonance_hz = 3000.0;
   c.output_rate_hz = 102400.0;
   EXPECT_NE(message(c, 102400.0).find("output_rate_Hz"), std::string::npos);
+  // Numbers at the edges of floating point: a denormal damping ratio gave an all-NaN signal,
+  // a denormal output rate an overflowing decimation ratio (SIGFPE).
+  c.output_rate_hz = 1e-320;
+  EXPECT_NE(message(c, 10000.0).find("output_rate_Hz"), std::string::npos);
   c.output_rate_hz = 10000.0;
+  c.path_damping_ratio = 5e-324;
+  EXPECT_NE(message(c, 10000.0).find("path_damping_ratio"), std::string::npos);
+  c.path_damping_ratio = 0.05;
   EXPECT_EQ(message(c, 10000.0), "no error");
   VirtualAccelerometer sensor(c, 10000.0);
   double y = 0.0;

@@ -131,6 +131,15 @@ TEST_F(ToolTest, UnknownKeyInBearingFileNamesFileAndKey) {
   EXPECT_TRUE(r.out.empty()) << r.out;
 }
 
+TEST_F(ToolTest, LoadWhoseMagnitudeOverflowsIsRefusedNotPrintedAsNaN) {
+  // Finite components, but |F| overflows: before, static exited 0 printing NaN.
+  const std::string path = write("b6205.yaml", std::string(k6205));
+  const RunResult r = run("static --bearing '" + path + "' --force 1e300,1e300,0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "load")) << r.err;
+  EXPECT_FALSE(contains(r.out, "nan")) << r.out;
+}
+
 TEST_F(ToolTest, MissingRequiredKeyNamesFileAndKey) {
   const std::string path = write("missing.yaml",
                                  "balls_per_row: 9\npitch_diameter_mm: 39.04\n"
