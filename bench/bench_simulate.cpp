@@ -21,8 +21,7 @@ bearing_sim::BearingConfig bearing(const std::string& file) {
 }
 
 void simulate(benchmark::State& state, const bearing_sim::BearingConfig& config, const Vector5& load,
-              double speed_rad_s,
-              bearing_sim::IntegrationMethod method = bearing_sim::IntegrationMethod::ExponentialRk4) {
+              double speed_rad_s, bearing_sim::IntegrationMethod method) {
   const bearing_sim::BearingModel model(config);
   bearing_sim::BearingDynamics dynamics(model, load, speed_rad_s, {10000.0, 0, true, method});
   constexpr int kSamplesPerIteration = 1000;  // 0.1 s simulated
@@ -37,10 +36,16 @@ void simulate(benchmark::State& state, const bearing_sim::BearingConfig& config,
   state.counters["active_balls"] = static_cast<double>(dynamics.active_ball_count());
 }
 
-void BM_SimulateCtGantry(benchmark::State& state) {
+using bearing_sim::IntegrationMethod;
+
+Vector5 ct_load() {
   Vector5 load;
   load << 6800.0, 0.0, 0.0, 0.0, 2100.0;
-  simulate(state, bearing("ct_gantry_lyc.yaml"), load, 180.0 * 2.0 * 3.14159265358979 / 60.0);
+  return load;
+}
+
+void BM_SimulateCtGantry(benchmark::State& state, IntegrationMethod method) {
+  simulate(state, bearing("ct_gantry_lyc.yaml"), ct_load(), 180.0 * 2.0 * 3.14159265358979 / 60.0, method);
 }
 
 // The CT bearing with waviness on both races and the balls, and a 2 mm x 20 um spall on
@@ -49,31 +54,15 @@ bearing_sim::BearingConfig ct_gantry_with_defects() {
   return bearing_sim::test::ct_gantry_with_defects(BEARING_SIM_SOURCE_DIR);
 }
 
-Vector5 ct_load() {
-  Vector5 load;
-  load << 6800.0, 0.0, 0.0, 0.0, 2100.0;
-  return load;
-}
-
-void BM_SimulateCtGantryWithDefects(benchmark::State& state) {
-  simulate(state, ct_gantry_with_defects(), ct_load(), 180.0 * 2.0 * 3.14159265358979 / 60.0);
-}
-
-// The same two with classical RK4 at its converged step (2 steps per sample), for comparison.
-void BM_SimulateCtGantryRk4(benchmark::State& state) {
-  simulate(state, bearing("ct_gantry_lyc.yaml"), ct_load(), 180.0 * 2.0 * 3.14159265358979 / 60.0,
-           bearing_sim::IntegrationMethod::Rk4);
-}
-
-void BM_SimulateCtGantryWithDefectsRk4(benchmark::State& state) {
-  simulate(state, ct_gantry_with_defects(), ct_load(), 180.0 * 2.0 * 3.14159265358979 / 60.0,
-           bearing_sim::IntegrationMethod::Rk4);
+void BM_SimulateCtGantryWithDefects(benchmark::State& state, IntegrationMethod method) {
+  simulate(state, ct_gantry_with_defects(), ct_load(), 180.0 * 2.0 * 3.14159265358979 / 60.0, method);
 }
 
 // The same, with the node's triaxial housing accelerometer on every sample (the node's configuration).
-void BM_SimulateCtGantryWithDefectsAndSensor(benchmark::State& state) {
+void BM_SimulateCtGantryWithDefectsAndSensor(benchmark::State& state, IntegrationMethod method) {
   const bearing_sim::BearingModel model(ct_gantry_with_defects());
-  bearing_sim::BearingDynamics dynamics(model, ct_load(), 180.0 * 2.0 * 3.14159265358979 / 60.0, {10000.0, 0});
+  bearing_sim::BearingDynamics dynamics(model, ct_load(), 180.0 * 2.0 * 3.14159265358979 / 60.0,
+                                        {10000.0, 0, true, method});
   bearing_sim::ros_node::TriaxialSensor sensor(
       bearing_sim::load_accelerometer_config(std::string(BEARING_SIM_SOURCE_DIR) +
                                              "/config/sensors/ct_gantry_housing_accelerometer.yaml"),
@@ -90,32 +79,63 @@ void BM_SimulateCtGantryWithDefectsAndSensor(benchmark::State& state) {
   state.counters["substeps"] = dynamics.substeps();
 }
 
-void BM_SimulateIns61822(benchmark::State& state) {
+void BM_SimulateIns61822(benchmark::State& state, IntegrationMethod method) {
   Vector5 load;
   load << 3400.0, 0.0, 1750.0, 0.0, 0.0;
-  simulate(state, bearing("ins_618_22_db.yaml"), load, 60.0 * 2.0 * 3.14159265358979 / 60.0);
+  simulate(state, bearing("ins_618_22_db.yaml"), load, 60.0 * 2.0 * 3.14159265358979 / 60.0, method);
 }
 
 // The 6205 deep-groove bearing of the health tests (9 balls, inner ring rotating at
 // 1797 rpm) with a 1 mm x 20 um spall on the fixed outer race in the load zone.
-void BM_SimulateDeepGroove6205WithSpall(benchmark::State& state) {
+void BM_SimulateDeepGroove6205WithSpall(benchmark::State& state, IntegrationMethod method) {
   bearing_sim::BearingConfig config = bearing("deep_groove_6205.yaml");
   config.imperfections = bearing_sim::parse_imperfections(
       YAML::Load("{}"), YAML::Load("[{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 20}]"), "bench");
   Vector5 load;
   load << 1000.0, 0.0, 0.0, 0.0, 0.0;
-  simulate(state, config, load, 1797.0 * 2.0 * 3.14159265358979 / 60.0);
+  simulate(state, config, load, 1797.0 * 2.0 * 3.14159265358979 / 60.0, method);
 }
 
 }  // namespace
 
-BENCHMARK(BM_SimulateCtGantry)->Unit(benchmark::kMillisecond)->MinTime(2.0);
-BENCHMARK(BM_SimulateCtGantryWithDefects)->Unit(benchmark::kMillisecond)->MinTime(2.0);
-BENCHMARK(BM_SimulateCtGantryRk4)->Unit(benchmark::kMillisecond)->MinTime(2.0);
-BENCHMARK(BM_SimulateCtGantryWithDefectsRk4)->Unit(benchmark::kMillisecond)->MinTime(2.0);
-BENCHMARK(BM_SimulateCtGantryWithDefectsAndSensor)->Unit(benchmark::kMillisecond)->MinTime(2.0);
-BENCHMARK(BM_SimulateIns61822)->Unit(benchmark::kMillisecond)->MinTime(1.0);
-BENCHMARK(BM_SimulateDeepGroove6205WithSpall)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+// Each case with the default integrator, and for comparison the others: ETDRK4, the
+// exponential Adams predictor-corrector, classical RK4 at its converged step.
+constexpr IntegrationMethod kDefault = bearing_sim::DynamicsOptions{}.method;
+BENCHMARK_CAPTURE(BM_SimulateCtGantry, default, kDefault)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK_CAPTURE(BM_SimulateCtGantryWithDefects, default, kDefault)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK_CAPTURE(BM_SimulateCtGantryWithDefectsAndSensor, default, kDefault)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
+BENCHMARK_CAPTURE(BM_SimulateIns61822, default, kDefault)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK_CAPTURE(BM_SimulateDeepGroove6205WithSpall, default, kDefault)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK_CAPTURE(BM_SimulateCtGantry, etdrk4, IntegrationMethod::ExponentialRk4)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
+BENCHMARK_CAPTURE(BM_SimulateCtGantryWithDefects, etdrk4, IntegrationMethod::ExponentialRk4)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
+BENCHMARK_CAPTURE(BM_SimulateIns61822, etdrk4, IntegrationMethod::ExponentialRk4)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
+BENCHMARK_CAPTURE(BM_SimulateDeepGroove6205WithSpall, etdrk4, IntegrationMethod::ExponentialRk4)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
+BENCHMARK_CAPTURE(BM_SimulateCtGantry, adams, IntegrationMethod::ExponentialAdams)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
+BENCHMARK_CAPTURE(BM_SimulateCtGantryWithDefects, adams, IntegrationMethod::ExponentialAdams)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
+BENCHMARK_CAPTURE(BM_SimulateIns61822, adams, IntegrationMethod::ExponentialAdams)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
+BENCHMARK_CAPTURE(BM_SimulateDeepGroove6205WithSpall, adams, IntegrationMethod::ExponentialAdams)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
+BENCHMARK_CAPTURE(BM_SimulateCtGantry, rk4, IntegrationMethod::Rk4)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK_CAPTURE(BM_SimulateCtGantryWithDefects, rk4, IntegrationMethod::Rk4)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
 
 // Figures mean little without the CPU and the SIMD code path that produced them.
 int main(int argc, char** argv) {

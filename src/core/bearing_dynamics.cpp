@@ -54,7 +54,7 @@ int BearingDynamics::choose_substeps(const BearingModel& model, const Vector5& l
                                      IntegrationMethod method) {
   const double rate_max = fastest_rate_rad_s(model, load);
   const double h_sample = 1.0 / sample_rate_hz;
-  const double limit = method == IntegrationMethod::ExponentialRk4 ? kExponentialStepTimesOmegaMax : kStepTimesOmegaMax;
+  const double limit = method == IntegrationMethod::Rk4 ? kStepTimesOmegaMax : kExponentialStepTimesOmegaMax;
   return std::max(1, static_cast<int>(std::ceil(rate_max * h_sample / limit)));
 }
 
@@ -89,16 +89,51 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
     exp_half_ = unbalance(e.block<10, 10>(0, 0));
     phi_half_ = 0.5 * h * unbalance(e.block<10, 10>(0, 10)).rightCols<5>();
   }
-  Eigen::Matrix<double, 40, 40> x = Eigen::Matrix<double, 40, 40>::Zero();
-  x.block<10, 10>(0, 0) = h * balanced;
-  x.block<10, 10>(0, 10).setIdentity();
-  x.block<10, 10>(10, 20).setIdentity();
-  x.block<10, 10>(20, 30).setIdentity();
-  const Eigen::Matrix<double, 40, 40> e = x.exp();
-  exp_full_ = unbalance(e.block<10, 10>(0, 0));
-  const Matrix10 phi1 = unbalance(e.block<10, 10>(0, 10));
-  const Matrix10 phi2 = unbalance(e.block<10, 10>(0, 20));
-  const Matrix10 phi3 = unbalance(e.block<10, 10>(0, 30));
+  Matrix10 phi1, phi2, phi3;
+  if (adams()) {
+    // phi_4 as well, from the exponential of the same construction one block larger.
+    Eigen::MatrixXd x = Eigen::MatrixXd::Zero(50, 50);
+    x.topLeftCorner(10, 10) = h * balanced;
+    for (int k = 0; k < 4; ++k) x.block(10 * k, 10 * (k + 1), 10, 10).setIdentity();
+    const Eigen::MatrixXd e = x.exp();
+    const auto block = [&](int k) { return unbalance(Matrix10(e.block(0, 10 * k, 10, 10))); };
+    exp_full_ = block(0);
+    phi1 = block(1);
+    phi2 = block(2);
+    phi3 = block(3);
+    const Matrix10 phi4 = block(4);
+    // Weights of the backward differences nabla^j of the remainder: ETD-AB4 (polynomial
+    // through the step's start and the 3 steps before) phi1, phi2, phi3 + phi2/2,
+    // phi4 + phi3 + phi2/3; ETD-AM4 (through the step's end and the 3 before) phi1,
+    // phi2 - phi1, phi3 - phi2/2, phi4 - phi2/6. Stored as weights of the remainders
+    // themselves (nabla^j f_0 = sum_i (-1)^i C(j, i) f_i), right half, times h.
+    const std::array<Matrix10, 4> ab = {Matrix10(phi1), Matrix10(phi2), Matrix10(phi3 + 0.5 * phi2),
+                                        Matrix10(phi4 + phi3 + phi2 / 3.0)};
+    const std::array<Matrix10, 4> am = {Matrix10(phi1), Matrix10(phi2 - phi1), Matrix10(phi3 - 0.5 * phi2),
+                                        Matrix10(phi4 - phi2 / 6.0)};
+    static constexpr double kBinomial[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
+    for (int i = 0; i < 4; ++i) {
+      Matrix10 predictor = Matrix10::Zero(), corrector = Matrix10::Zero();
+      for (int j = i; j < 4; ++j) {
+        predictor += kBinomial[j][i] * ab[j];
+        corrector += kBinomial[j][i] * am[j];
+      }
+      const double sign = i % 2 ? -1.0 : 1.0;
+      adams_predictor_[i] = sign * h * predictor.rightCols<5>();
+      adams_corrector_[i] = sign * h * corrector.rightCols<5>();
+    }
+  } else {
+    Eigen::Matrix<double, 40, 40> x = Eigen::Matrix<double, 40, 40>::Zero();
+    x.block<10, 10>(0, 0) = h * balanced;
+    x.block<10, 10>(0, 10).setIdentity();
+    x.block<10, 10>(10, 20).setIdentity();
+    x.block<10, 10>(20, 30).setIdentity();
+    const Eigen::Matrix<double, 40, 40> e = x.exp();
+    exp_full_ = unbalance(e.block<10, 10>(0, 0));
+    phi1 = unbalance(e.block<10, 10>(0, 10));
+    phi2 = unbalance(e.block<10, 10>(0, 20));
+    phi3 = unbalance(e.block<10, 10>(0, 30));
+  }
   // Cox-Matthews weights of the four remainders (the remainder has no displacement part,
   // so only the right half of each matrix is kept).
   w1_ = h * (phi1 - 3.0 * phi2 + 4.0 * phi3).rightCols<5>();
@@ -107,6 +142,7 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
   linearized_substeps_ = substeps_;
   samples_since_linearization_ = 0;
   ++linearizations_;
+  adams_history_.size = 0;  // the remainder is relative to the linearization
 }
 
 void BearingDynamics::update_substeps() {
@@ -126,6 +162,9 @@ void BearingDynamics::set_load(const Vector5& load) {
   // split stays too (inputs may change every sample, e.g. a rotating unbalance): a ball that
   // the new load brings into contact is caught by the check after the sample.
   current_.acceleration += (load - load_).cwiseProduct(inverse_mass_);
+  // So do the Adams method's past remainders: as if the new load had always been there
+  // (it holds over the whole next step).
+  for (int i = 0; i < adams_history_.size; ++i) adams_history_.r[i] += (load - load_).cwiseProduct(inverse_mass_);
   load_ = load;
   // The contact stiffness grows with the load (as F^(1/3)): check the step again when
   // the load has changed a lot since it was chosen.
@@ -178,12 +217,14 @@ void BearingDynamics::add_spall(Spall spall) {
   spall.created_at_s = phase_.time_s;
   model_.add_spall(spall);
   acceleration_current_ = false;
+  adams_history_.size = 0;  // the remainder jumps: start again
   samples_since_split_ = 0;
 }
 
 void BearingDynamics::clear_spalls() {
   model_.clear_spalls();
   acceleration_current_ = false;
+  adams_history_.size = 0;
   samples_since_split_ = 0;
 }
 
@@ -239,15 +280,27 @@ double BearingDynamics::contact_margin_m(const Vector5& q, const Vector5& v, con
 }
 
 void BearingDynamics::integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
-                                       const BallArrays& balls) const {
-  if (exponential())
-    integrate_sample_exponential(q, v, phase, a_start, balls);
+                                       const BallArrays& balls, AdamsHistory& history) const {
+  if (adams() && history.size == 3)
+    integrate_sample_adams(q, v, phase, a_start, balls, history);
+  else if (exponential())
+    integrate_sample_exponential(q, v, phase, a_start, balls, adams() ? &history : nullptr);
   else
     integrate_sample_rk4(q, v, phase, a_start, balls);
 }
 
+BearingDynamics::CageTrig BearingDynamics::half_step_rotation() const {
+  const double half_turn = slipping_cage_speed() * (0.5 / (options_.sample_rate_hz * substeps_));
+  if (half_turn != half_step_turn_) {
+    half_step_turn_ = half_turn;
+    half_step_rotation_ = CageTrig{std::cos(half_turn), std::sin(half_turn)};
+  }
+  return half_step_rotation_;
+}
+
 void BearingDynamics::integrate_sample_exponential(Vector5& q, Vector5& v, RollingPhase& phase,
-                                                   const Vector5& a_start, const BallArrays& balls) const {
+                                                   const Vector5& a_start, const BallArrays& balls,
+                                                   AdamsHistory* history) const {
   // Cox-Matthews ETDRK4 on y = (q - q_lin, v): y' = L y + (0, r(y, t)).
   using Vector10 = Eigen::Matrix<double, 10, 1>;
   const double h = 1.0 / (options_.sample_rate_hz * substeps_);
@@ -265,12 +318,7 @@ void BearingDynamics::integrate_sample_exponential(Vector5& q, Vector5& v, Rolli
   // The cage turns by the same angle every half step: its cos and sin are carried along by
   // rotation from one sincos per sample (they differ from sincos of the stage's angle by a
   // few ulp), instead of a sincos at every stage.
-  const double half_turn = slipping_cage_speed() * (0.5 * h);
-  if (half_turn != half_step_turn_) {
-    half_step_turn_ = half_turn;
-    half_step_rotation_ = CageTrig{std::cos(half_turn), std::sin(half_turn)};
-  }
-  const CageTrig rot = half_step_rotation_;
+  const CageTrig rot = half_step_rotation();
   const auto rotate = [&rot](const CageTrig& t) {
     return CageTrig{t.c * rot.c - t.s * rot.s, t.s * rot.c + t.c * rot.s};
   };
@@ -283,6 +331,7 @@ void BearingDynamics::integrate_sample_exponential(Vector5& q, Vector5& v, Rolli
     const Vector5 r1 = (i == 0 ? a_start : acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls, trig)) -
                        lin_accel_.lazyProduct(y);
     const Vector10 e_half_y = exp_half_.lazyProduct(y);
+    if (history) history->push(r1);
     const Vector10 y2 = e_half_y + phi_half_.lazyProduct(r1);
     const Vector5 r2 = remainder(y2, mid, trig_mid);
     const Vector10 y3 = e_half_y + phi_half_.lazyProduct(r2);
@@ -297,6 +346,46 @@ void BearingDynamics::integrate_sample_exponential(Vector5& q, Vector5& v, Rolli
   }
   sample_end_trig_ = trig;
   state(y, &q, &v);
+}
+
+void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
+                                             const BallArrays& balls, AdamsHistory& history) const {
+  // y = (q - q_lin, v) as in ETDRK4. Per step: the remainder r at the start (the previous
+  // step's end evaluation), the predictor y_p = e^{hL} y + P0 r + P1 r_-1 + P2 r_-2 + P3 r_-3,
+  // the remainder r_p at y_p and the step's end, the corrector
+  // y_next = e^{hL} y + C0 r_p + C1 r + C2 r_-1 + C3 r_-2.
+  using Vector10 = Eigen::Matrix<double, 10, 1>;
+  const double h = 1.0 / (options_.sample_rate_hz * substeps_);
+  const CageTrig rot = half_step_rotation();
+  const auto rotate = [&rot](const CageTrig& t) {
+    return CageTrig{t.c * rot.c - t.s * rot.s, t.s * rot.c + t.c * rot.s};
+  };
+  const std::array<Matrix10x5, 4>& p = adams_predictor_;
+  const std::array<Matrix10x5, 4>& c = adams_corrector_;
+  CageTrig trig{std::cos(phase.cage), std::sin(phase.cage)};
+  Vector10 y;
+  y << q - q_lin_, v;
+  for (int i = 0; i < substeps_; ++i) {
+    const RollingPhase end = advanced(phase, h);
+    const CageTrig trig_end = rotate(rotate(trig));  // the same rotations as ETDRK4's stages
+    const Vector5 r = (i == 0 ? a_start : acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls, trig)) -
+                      lin_accel_.lazyProduct(y);
+    const Vector5* past = history.r.data();
+    const Vector10 e_y = exp_full_.lazyProduct(y);
+    const Vector10 y_p = e_y + p[0].lazyProduct(r) + p[1].lazyProduct(past[0]) + p[2].lazyProduct(past[1]) +
+                         p[3].lazyProduct(past[2]);
+    const Vector5 r_p = acceleration(q_lin_ + y_p.head<5>(), y_p.tail<5>(), end, balls, trig_end) -
+                        lin_accel_.lazyProduct(y_p);
+    const Vector10 y_next = e_y + c[0].lazyProduct(r_p) + c[1].lazyProduct(r) + c[2].lazyProduct(past[0]) +
+                            c[3].lazyProduct(past[1]);
+    history.push(r);
+    y = y_next;
+    phase = end;
+    trig = trig_end;
+  }
+  sample_end_trig_ = trig;
+  q = q_lin_ + y.head<5>();
+  v = y.tail<5>();
 }
 
 void BearingDynamics::integrate_sample_rk4(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
@@ -351,7 +440,8 @@ DynamicSample BearingDynamics::step() {
   const BallArrays* balls = &active_balls_;
   Vector5 q = q0, v = v0;
   RollingPhase phase = phase_;
-  integrate_sample(q, v, phase, a_start, *balls);
+  AdamsHistory history = adams_history_;  // kept only when the sample is
+  integrate_sample(q, v, phase, a_start, *balls, history);
   // The skipped balls are checked ball by ball only when the bound of clear_deflection_bound_m
   // does not already show them all clear (it almost always does: the split's margin is twice
   // the bound's growth over kSamplesPerBallSplit samples).
@@ -368,13 +458,16 @@ DynamicSample BearingDynamics::step() {
     q = q0;
     v = v0;
     phase = phase_;
-    integrate_sample(q, v, phase, a_start, *balls);
+    history = adams_history_;
+    integrate_sample(q, v, phase, a_start, *balls, history);
   }
-  // The exponential integrator left cos and sin of the end's cage angle.
-  return commit_sample(q, v,
-                       exponential() ? acceleration(q, v, phase, *balls, sample_end_trig_)
-                                     : acceleration(q, v, phase, *balls),
-                       phase);
+  // The exponential integrators left cos and sin of the end's cage angle.
+  const DynamicSample sample = commit_sample(q, v,
+                                             exponential() ? acceleration(q, v, phase, *balls, sample_end_trig_)
+                                                           : acceleration(q, v, phase, *balls),
+                                             phase);
+  adams_history_ = history;
+  return sample;
 }
 
 double BearingDynamics::clear_deflection_bound_m(const Vector5& q, const std::array<double, 4>& travel) const {

@@ -42,7 +42,9 @@ ContactSums ContactSumsAll(const ContactKernelInput& in) {
   const V a_g0 = hn::Set(d, A + in.clearance);
   const V kn = hn::Set(d, in.stiffness), cn = hn::Set(d, in.damping);
   V sx = zero, sy = zero, sz = zero, szc = zero, szs = zero, sxz = zero, syz = zero;
-  auto balls = [&](V cb, V sb, V pz, V nz, V off) HWY_ATTR {
+  // `valid`: the lanes that hold a ball not yet summed (the overlapping tail vector).
+  using M = decltype(hn::FirstN(d, 0));
+  auto balls = [&](V cb, V sb, V pz, V nz, V off, M valid) HWY_ATTR {
     const V cphi = hn::MulSub(cc, cb, hn::Mul(sc, sb));
     const V sphi = hn::MulAdd(sc, cb, hn::Mul(cc, sb));
     const V vx = hn::MulAdd(a_ca, cphi, hn::MulAdd(ms_q4, pz, ms_q0));
@@ -50,7 +52,7 @@ ContactSums ContactSumsAll(const ContactKernelInput& in) {
     const V vz = hn::MulAdd(vz_s, sphi, hn::MulAdd(vz_c, cphi, hn::MulAdd(a_v, nz, ms_q2)));
     const V norm = hn::Sqrt(hn::MulAdd(vx, vx, hn::MulAdd(vy, vy, hn::Mul(vz, vz))));
     const V deflection = hn::Add(hn::Sub(norm, a_g0), off);
-    const auto touching = hn::Gt(deflection, zero);
+    const auto touching = hn::And(valid, hn::Gt(deflection, zero));
     const V dp = hn::IfThenElseZero(touching, deflection);
     const V inv_norm = hn::Div(one, norm);
     // d(delta)/dt = -e . du/dt.
@@ -73,13 +75,21 @@ ContactSums ContactSumsAll(const ContactKernelInput& in) {
     syz = hn::MulAdd(s_vy, pz, syz);
   };
   const std::size_t n = static_cast<std::size_t>(in.n);
+  const M all = hn::FirstN(d, N);
   std::size_t b = 0;
   for (; b + N <= n; b += N)
     balls(hn::LoadU(d, in.cos_base + b), hn::LoadU(d, in.sin_base + b), hn::LoadU(d, in.groove_centre_z + b),
-          hn::LoadU(d, in.normal_z + b), hn::LoadU(d, in.offset + b));
-  if (b < n) {
-    // The tail through a padded copy (no read past the arrays): padding lanes are a ball
-    // at the cage angle with a 1 m gap, out of contact, so they add exact zeros.
+          hn::LoadU(d, in.normal_z + b), hn::LoadU(d, in.offset + b), all);
+  if (b < n && n >= N) {
+    // The tail as the last N balls, the lanes already summed masked off (no copy, no read
+    // past the arrays; a masked lane adds exact zeros).
+    const std::size_t last = n - N;
+    balls(hn::LoadU(d, in.cos_base + last), hn::LoadU(d, in.sin_base + last),
+          hn::LoadU(d, in.groove_centre_z + last), hn::LoadU(d, in.normal_z + last), hn::LoadU(d, in.offset + last),
+          hn::Not(hn::FirstN(d, b - last)));
+  } else if (b < n) {
+    // Fewer balls than lanes: through a padded copy. Padding lanes are a ball at the cage
+    // angle with a 1 m gap, out of contact, so they add exact zeros.
     constexpr std::size_t kMaxLanes = HWY_MAX_BYTES / sizeof(double);
     HWY_ALIGN double cb[kMaxLanes], sb[kMaxLanes], pz[kMaxLanes], nz[kMaxLanes], off[kMaxLanes];
     for (std::size_t i = 0; i < N; ++i) {
@@ -90,7 +100,7 @@ ContactSums ContactSumsAll(const ContactKernelInput& in) {
       nz[i] = real ? in.normal_z[b + i] : 0.0;
       off[i] = real ? in.offset[b + i] : -1.0;
     }
-    balls(hn::Load(d, cb), hn::Load(d, sb), hn::Load(d, pz), hn::Load(d, nz), hn::Load(d, off));
+    balls(hn::Load(d, cb), hn::Load(d, sb), hn::Load(d, pz), hn::Load(d, nz), hn::Load(d, off), all);
   }
   return ContactSums{hn::GetLane(hn::SumOfLanes(d, sx)),  hn::GetLane(hn::SumOfLanes(d, sy)),
                      hn::GetLane(hn::SumOfLanes(d, sz)),  hn::GetLane(hn::SumOfLanes(d, szc)),

@@ -241,7 +241,20 @@ void Imperfections::validate(const Spall& s) const {
 
 void Imperfections::add_spall(const Spall& spall) {
   validate(spall);
+  SpallShape shape;
+  // Without growth the size does not depend on time (grown_size is then min(size, limit)).
+  shape.fixed = spall.width_growth_m_per_s == 0.0 && spall.depth_growth_m_per_s == 0.0;
+  if (shape.fixed) {
+    spall_size(spall, spall.created_at_s, &shape.angular_width, &shape.depth);
+    shape.reach = spall_reach(shape.angular_width);
+  }
   spalls_.push_back(spall);
+  spall_shapes_.push_back(shape);
+}
+
+int Imperfections::spall_reach(double angular_width) const {
+  const double pitch = kTwoPi / geometry_.balls_per_row;
+  return static_cast<int>(std::ceil((0.5 * angular_width + max_spacing_error_) / pitch)) + 1;
 }
 
 void Imperfections::spall_size(const Spall& s, double time_s, double* angular_width, double* depth) const {
@@ -356,9 +369,12 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, d
     }
   }
   if (!include_spalls) return;
-  for (const Spall& s : spalls_) {
-    double angular_width = 0.0, depth = 0.0;
-    spall_size(s, phase.time_s, &angular_width, &depth);
+  constexpr double kInverseTwoPi = 1.0 / kTwoPi;
+  for (std::size_t i = 0; i < spalls_.size(); ++i) {
+    const Spall& s = spalls_[i];
+    const SpallShape& shape = spall_shapes_[i];
+    double angular_width = shape.angular_width, depth = shape.depth;
+    if (!shape.fixed) spall_size(s, phase.time_s, &angular_width, &depth);
     if (s.surface == Surface::Ball) {
       // The spot faces the outer and the inner race once each per spin turn.
       const int entry = set.entry_of_ball[s.ball];
@@ -373,18 +389,22 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, d
       const int z = geometry_.balls_per_row;
       const double* all_base = geometry_.base_azimuth.data();
       const double pitch = kTwoPi / z;
-      const int reach = static_cast<int>(std::ceil((0.5 * angular_width + max_spacing_error_) / pitch)) + 1;
+      const int reach = shape.fixed ? shape.reach : spall_reach(angular_width);
       for (int row = 0; row < geometry_.rows; ++row) {
         const double row_phase = all_base[row * z];
         const long centre = std::lround(-(start + row_phase) / pitch);
         const long first = 2 * reach + 1 < z ? centre - reach : 0;
         const long last = 2 * reach + 1 < z ? centre + reach : z - 1;  // a spall wider than the row: every ball once
-        int j = static_cast<int>(((first % z) + z) % z);
+        long first_in_row = first % z;  // one division, not two
+        if (first_in_row < 0) first_in_row += z;
+        int j = static_cast<int>(first_in_row);
         for (long k = first; k <= last; ++k, j = j + 1 == z ? 0 : j + 1) {
           const int entry = set.entry_of_ball[row * z + j];
           if (entry < 0) continue;
           const double angle = all_base[row * z + j] + start;
-          const double x = angle - kTwoPi * std::nearbyint(angle / kTwoPi);  // to [-pi, pi]
+          // To [-pi, pi]; the product by 1/(2 pi) can round differently from the quotient
+          // only next to +-pi, where no spall reaches (at most a quarter turn wide).
+          const double x = angle - kTwoPi * std::nearbyint(angle * kInverseTwoPi);
           out[entry] -= spall_dip(x, angular_width, depth);
         }
       }

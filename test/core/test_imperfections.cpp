@@ -113,6 +113,29 @@ TEST(Spall, AShallowWideSpallIsLimitedByHowFarTheBallCanDrop) {
   EXPECT_NEAR(drop, 0.5e-3 * 0.5e-3 / (4.0 * 7.94e-3), 1e-12);
 }
 
+TEST(Spall, AGrowingSpallDeepensAtItsRateAndAFixedOneKeepsItsDepth) {
+  // 2 mm wide outer-race spalls centred under ball 0 (at rest: every angle 0), 5 um deep,
+  // one growing at 3600 um/h = 1 um/s: after 2 s the ball drops 7 um into it (still below
+  // w^2/(4d) = 126 um), into the fixed one 5 um at any time. The neighbours, 40 deg away,
+  // are not over either.
+  const auto offsets_at = [](const std::string& growth, double t) {
+    const BearingModel model(deep_groove("defects:\n  - {surface: outer_race, position_deg: 0, width_mm: 2.0, "
+                                         "depth_um: 5" + growth + "}\n"));
+    std::vector<double> out(kBalls, 0.0);
+    model.imperfections().add_offsets(RollingPhase{0.0, 0.0, 0.0, 0.0, t}, out.data());
+    return out;
+  };
+  const std::vector<double> growing = offsets_at(", depth_growth_um_per_hour: 3600", 2.0);
+  const std::vector<double> fixed = offsets_at("", 2.0);
+  EXPECT_NEAR(growing[0], -7e-6, 1e-15);
+  EXPECT_NEAR(fixed[0], -5e-6, 1e-15);
+  EXPECT_NEAR(offsets_at(", depth_growth_um_per_hour: 3600", 0.0)[0], -5e-6, 1e-15);
+  for (int j = 1; j < kBalls; ++j) {
+    EXPECT_EQ(growing[j], 0.0);
+    EXPECT_EQ(fixed[j], 0.0);
+  }
+}
+
 TEST(Spall, DefectsThatDoNotFitTheBearingAreRejected) {
   const BearingModel model(deep_groove(""));
   BearingDynamics dynamics(model, test::load5(1000.0, 0, 0, 0, 0), 0.0, DynamicsOptions{kSampleRateHz, 0});

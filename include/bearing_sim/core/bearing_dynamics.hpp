@@ -26,6 +26,12 @@ enum class IntegrationMethod {
   // remainder explicitly; 4 force evaluations per internal step.
   ExponentialRk4,
   Rk4,  // classical RK4, 4 force evaluations per internal step
+  // Exponential Adams predictor-corrector around the same linearization: the remainder
+  // over a step is the cubic through its values at the starts of the last steps (ETD-AB4
+  // predictor, ETD-AM4 corrector at the predicted end, PECE): 2 force evaluations per
+  // internal step. ETDRK4 steps until it has that history (at the start, after a new
+  // linearization, model or defect).
+  ExponentialAdams,
 };
 
 struct DynamicsOptions {
@@ -82,8 +88,8 @@ class BearingDynamics {
   // Largest |eigenvalue| of the linearized ring dynamics with contact damping, rad/s.
   static double fastest_rate_rad_s(const BearingModel& model, const Vector5& load);
   // Internal steps per sample so that |lambda|_max * h <= kStepTimesOmegaMax (RK4) or
-  // kExponentialStepTimesOmegaMax (ETDRK4). Chosen at construction and again (in automatic
-  // mode) when the model or the load changes a lot.
+  // kExponentialStepTimesOmegaMax (the exponential integrators). Chosen at construction and
+  // again (in automatic mode) when the model or the load changes a lot.
   static int choose_substeps(const BearingModel& model, const Vector5& load, double sample_rate_hz,
                              IntegrationMethod method = IntegrationMethod::Rk4);
   static constexpr double kStepTimesOmegaMax = 0.5;
@@ -102,21 +108,39 @@ class BearingDynamics {
   struct CageTrig {
     double c = 1.0, s = 0.0;
   };
+  // Remainders at the starts of the last internal steps (newest first) for the Adams
+  // method, relative to the current linearization; `size` of them valid.
+  struct AdamsHistory {
+    std::array<Vector5, 3> r{Vector5::Zero(), Vector5::Zero(), Vector5::Zero()};
+    int size = 0;
+    void push(const Vector5& newest) {
+      r[2] = r[1];
+      r[1] = r[0];
+      r[0] = newest;
+      size = size < 3 ? size + 1 : 3;
+    }
+  };
   Vector5 acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase, const BallArrays& balls,
                        const CageTrig& trig) const;
   RollingPhase advanced(const RollingPhase& phase, double dt) const;
   double slipping_cage_speed() const;
   // One output sample, in substeps_ steps, from the acceleration a_start.
+  // The Adams method reads and extends `history` (ETDRK4 steps record their remainders in it).
   void integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
-                        const BallArrays& balls) const;
+                        const BallArrays& balls, AdamsHistory& history) const;
   void integrate_sample_rk4(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
                             const BallArrays& balls) const;
   void integrate_sample_exponential(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
-                                    const BallArrays& balls) const;
+                                    const BallArrays& balls, AdamsHistory* history = nullptr) const;
   // Linear part of the exponential integrator at displacement q: stiffness and damping of
   // the contacts there, its matrix exponential and phi functions for the internal step.
   void linearize(const Vector5& q, const RollingPhase& phase);
-  bool exponential() const { return options_.method == IntegrationMethod::ExponentialRk4; }
+  bool exponential() const { return options_.method != IntegrationMethod::Rk4; }
+  bool adams() const { return options_.method == IntegrationMethod::ExponentialAdams; }
+  void integrate_sample_adams(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
+                              const BallArrays& balls, AdamsHistory& history) const;
+  // cos and sin of the cage's turn in half an internal step (cached while it stays the same).
+  CageTrig half_step_rotation() const;
   double contact_margin_m(const Vector5& q, const Vector5& v, const Vector5& a) const;
   DynamicSample commit_sample(const Vector5& q, const Vector5& v, const Vector5& a, const RollingPhase& phase);
   void update_cage_speed();
@@ -154,6 +178,10 @@ class BearingDynamics {
   Matrix10 exp_full_ = Matrix10::Identity(), exp_half_ = Matrix10::Identity();
   Matrix10x5 phi_half_ = Matrix10x5::Zero();  // (h/2) phi1(hL/2)
   Matrix10x5 w1_ = Matrix10x5::Zero(), w2_ = Matrix10x5::Zero(), w3_ = Matrix10x5::Zero();
+  // Adams method: weights of the remainders at the step's start and of the history entries
+  // (predictor), and of the predicted end's remainder, the start's and the history (corrector).
+  std::array<Matrix10x5, 4> adams_predictor_{}, adams_corrector_{};
+  AdamsHistory adams_history_;
   // The cage turn of half an internal step and its cos and sin (recomputed when it changes),
   // and cos and sin of the cage angle at the end of the last integrated sample.
   mutable double half_step_turn_ = std::numeric_limits<double>::quiet_NaN();

@@ -119,7 +119,10 @@ class Imperfections {
   }
 
   void add_spall(const Spall& spall);  // validates; throws InvalidInputError
-  void clear_spalls() { spalls_.clear(); }
+  void clear_spalls() {
+    spalls_.clear();
+    spall_shapes_.clear();
+  }
   const std::vector<Spall>& spalls() const { return spalls_; }
   const ImperfectionSpec& spec() const { return spec_; }
   // Bound on the change of a ball's deflection offset (spalls left out) when it travels
@@ -131,6 +134,8 @@ class Imperfections {
   void validate(const Spall& s) const;
   // Width and effective depth of a spall at time t.
   void spall_size(const Spall& s, double time_s, double* angular_width, double* depth) const;
+  // Balls of a row either side of the one nearest a race spall's centre that it can reach.
+  int spall_reach(double angular_width) const;
 
   ImperfectionSpec spec_;
   Geometry geometry_;
@@ -149,6 +154,14 @@ class Imperfections {
   std::vector<double> ball_diameter_deviation_;
   std::vector<double> ball_phase_;  // random initial spin angle of each ball
   std::vector<Spall> spalls_;
+  // Per spall: its size when it does not grow (the common case), computed once instead of
+  // at every rolling phase.
+  struct SpallShape {
+    bool fixed = false;
+    double angular_width = 0.0, depth = 0.0;
+    int reach = 0;
+  };
+  std::vector<SpallShape> spall_shapes_;
   BallSet all_balls_;
   double max_spacing_error_ = 0.0;  // largest deviation of a ball from even spacing, rad
   // Per surface (outer race, inner race, ball): largest slope (m/rad) and largest
