@@ -99,7 +99,7 @@ void BM_SimulateDeepGroove6205WithSpall(benchmark::State& state, IntegrationMeth
 }  // namespace
 
 // Each case with the default integrator, and for comparison the others: ETDRK4, the
-// exponential Adams predictor-corrector, classical RK4 at its converged step.
+// exponential Adams predictor-corrector (PECE and PEC), classical RK4 at its converged step.
 constexpr IntegrationMethod kDefault = bearing_sim::DynamicsOptions{}.method;
 BENCHMARK_CAPTURE(BM_SimulateCtGantry, default, kDefault)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK_CAPTURE(BM_SimulateCtGantryWithDefects, default, kDefault)->Unit(benchmark::kMillisecond)->MinTime(2.0);
@@ -130,6 +130,18 @@ BENCHMARK_CAPTURE(BM_SimulateIns61822, adams, IntegrationMethod::ExponentialAdam
     ->Unit(benchmark::kMillisecond)
     ->MinTime(1.0);
 BENCHMARK_CAPTURE(BM_SimulateDeepGroove6205WithSpall, adams, IntegrationMethod::ExponentialAdams)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
+BENCHMARK_CAPTURE(BM_SimulateCtGantry, adams_pec, IntegrationMethod::ExponentialAdamsPec)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
+BENCHMARK_CAPTURE(BM_SimulateCtGantryWithDefects, adams_pec, IntegrationMethod::ExponentialAdamsPec)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
+BENCHMARK_CAPTURE(BM_SimulateIns61822, adams_pec, IntegrationMethod::ExponentialAdamsPec)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
+BENCHMARK_CAPTURE(BM_SimulateDeepGroove6205WithSpall, adams_pec, IntegrationMethod::ExponentialAdamsPec)
     ->Unit(benchmark::kMillisecond)
     ->MinTime(1.0);
 BENCHMARK_CAPTURE(BM_SimulateCtGantry, rk4, IntegrationMethod::Rk4)->Unit(benchmark::kMillisecond)->MinTime(2.0);

@@ -279,14 +279,14 @@ double BearingDynamics::contact_margin_m(const Vector5& q, const Vector5& v, con
   return 2.0 * (std::min(kinematic, oscillation) + travel + imperfections) + 1e-10;
 }
 
-void BearingDynamics::integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
-                                       const BallArrays& balls, AdamsHistory& history) const {
-  if (adams() && history.size == 3)
-    integrate_sample_adams(q, v, phase, a_start, balls, history);
-  else if (exponential())
+bool BearingDynamics::integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
+                                       const BallArrays& balls, AdamsHistory& history, Vector5* a_end) const {
+  if (adams() && history.size == 3) return integrate_sample_adams(q, v, phase, a_start, balls, history, a_end);
+  if (exponential())
     integrate_sample_exponential(q, v, phase, a_start, balls, adams() ? &history : nullptr);
   else
     integrate_sample_rk4(q, v, phase, a_start, balls);
+  return false;
 }
 
 BearingDynamics::CageTrig BearingDynamics::half_step_rotation() const {
@@ -348,8 +348,8 @@ void BearingDynamics::integrate_sample_exponential(Vector5& q, Vector5& v, Rolli
   state(y, &q, &v);
 }
 
-void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
-                                             const BallArrays& balls, AdamsHistory& history) const {
+bool BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
+                                             const BallArrays& balls, AdamsHistory& history, Vector5* a_end) const {
   // y = (q - q_lin, v) as in ETDRK4. Per step: the remainder r at the start (the previous
   // step's end evaluation), the predictor y_p = e^{hL} y + P0 r + P1 r_-1 + P2 r_-2 + P3 r_-3,
   // the remainder r_p at y_p and the step's end, the corrector
@@ -362,14 +362,19 @@ void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
   };
   const std::array<Matrix10x5, 4>& p = adams_predictor_;
   const std::array<Matrix10x5, 4>& c = adams_corrector_;
+  const bool evaluate_end = options_.method == IntegrationMethod::ExponentialAdams;  // PECE, else PEC
   CageTrig trig{std::cos(phase.cage), std::sin(phase.cage)};
   Vector10 y;
   y << q - q_lin_, v;
+  Vector5 r_predicted = Vector5::Zero();  // of the last step's predicted end
   for (int i = 0; i < substeps_; ++i) {
     const RollingPhase end = advanced(phase, h);
     const CageTrig trig_end = rotate(rotate(trig));  // the same rotations as ETDRK4's stages
-    const Vector5 r = (i == 0 ? a_start : acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls, trig)) -
-                      lin_accel_.lazyProduct(y);
+    const Vector5 r =
+        i == 0         ? Vector5(a_start - lin_accel_.lazyProduct(y))
+        : evaluate_end ? Vector5(acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls, trig) -
+                                 lin_accel_.lazyProduct(y))
+                       : r_predicted;
     const Vector5* past = history.r.data();
     const Vector10 e_y = exp_full_.lazyProduct(y);
     const Vector10 y_p = e_y + p[0].lazyProduct(r) + p[1].lazyProduct(past[0]) + p[2].lazyProduct(past[1]) +
@@ -379,6 +384,7 @@ void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
     const Vector10 y_next = e_y + c[0].lazyProduct(r_p) + c[1].lazyProduct(r) + c[2].lazyProduct(past[0]) +
                             c[3].lazyProduct(past[1]);
     history.push(r);
+    r_predicted = r_p;
     y = y_next;
     phase = end;
     trig = trig_end;
@@ -386,6 +392,9 @@ void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
   sample_end_trig_ = trig;
   q = q_lin_ + y.head<5>();
   v = y.tail<5>();
+  // PEC: a_p + A (y_c - y_p) = r_p + A y_c (its remainder is then the predicted one again).
+  if (!evaluate_end) *a_end = r_predicted + lin_accel_.lazyProduct(y);
+  return !evaluate_end;
 }
 
 void BearingDynamics::integrate_sample_rk4(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
@@ -441,7 +450,8 @@ DynamicSample BearingDynamics::step() {
   Vector5 q = q0, v = v0;
   RollingPhase phase = phase_;
   AdamsHistory history = adams_history_;  // kept only when the sample is
-  integrate_sample(q, v, phase, a_start, *balls, history);
+  Vector5 a_end = Vector5::Zero();
+  bool end_known = integrate_sample(q, v, phase, a_start, *balls, history, &a_end);
   // The skipped balls are checked ball by ball only when the bound of clear_deflection_bound_m
   // does not already show them all clear (it almost always does: the split's margin is twice
   // the bound's growth over kSamplesPerBallSplit samples).
@@ -459,12 +469,13 @@ DynamicSample BearingDynamics::step() {
     v = v0;
     phase = phase_;
     history = adams_history_;
-    integrate_sample(q, v, phase, a_start, *balls, history);
+    end_known = integrate_sample(q, v, phase, a_start, *balls, history, &a_end);
   }
   // The exponential integrators left cos and sin of the end's cage angle.
   const DynamicSample sample = commit_sample(q, v,
-                                             exponential() ? acceleration(q, v, phase, *balls, sample_end_trig_)
-                                                           : acceleration(q, v, phase, *balls),
+                                             end_known       ? a_end
+                                             : exponential() ? acceleration(q, v, phase, *balls, sample_end_trig_)
+                                                             : acceleration(q, v, phase, *balls),
                                              phase);
   adams_history_ = history;
   return sample;

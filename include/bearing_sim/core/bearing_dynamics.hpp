@@ -32,6 +32,10 @@ enum class IntegrationMethod {
   // internal step. ETDRK4 steps until it has that history (at the start, after a new
   // linearization, model or defect).
   ExponentialAdams,
+  // The same without the evaluation at the corrected end (PEC): 1 force evaluation per
+  // internal step. The end's acceleration is the predicted end's moved by the linear part,
+  // a_p + A (y_c - y_p), and the next step starts from the predicted end's remainder.
+  ExponentialAdamsPec,
 };
 
 struct DynamicsOptions {
@@ -126,8 +130,10 @@ class BearingDynamics {
   double slipping_cage_speed() const;
   // One output sample, in substeps_ steps, from the acceleration a_start.
   // The Adams method reads and extends `history` (ETDRK4 steps record their remainders in it).
-  void integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
-                        const BallArrays& balls, AdamsHistory& history) const;
+  // Returns true when it gives the end's acceleration in *a_end (PEC) instead of leaving its
+  // evaluation to the caller.
+  bool integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
+                        const BallArrays& balls, AdamsHistory& history, Vector5* a_end) const;
   void integrate_sample_rk4(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
                             const BallArrays& balls) const;
   void integrate_sample_exponential(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
@@ -136,9 +142,12 @@ class BearingDynamics {
   // the contacts there, its matrix exponential and phi functions for the internal step.
   void linearize(const Vector5& q, const RollingPhase& phase);
   bool exponential() const { return options_.method != IntegrationMethod::Rk4; }
-  bool adams() const { return options_.method == IntegrationMethod::ExponentialAdams; }
-  void integrate_sample_adams(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
-                              const BallArrays& balls, AdamsHistory& history) const;
+  bool adams() const {
+    return options_.method == IntegrationMethod::ExponentialAdams ||
+           options_.method == IntegrationMethod::ExponentialAdamsPec;
+  }
+  bool integrate_sample_adams(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
+                              const BallArrays& balls, AdamsHistory& history, Vector5* a_end) const;
   // cos and sin of the cage's turn in half an internal step (cached while it stays the same).
   CageTrig half_step_rotation() const;
   double contact_margin_m(const Vector5& q, const Vector5& v, const Vector5& a) const;
