@@ -29,7 +29,7 @@ SWEEPS = os.path.join(ROOT, "config", "sweeps")
 INS_FILE = os.path.join(ROOT, "config", "bearings", "ins_618_22_db.yaml")
 KGF = 9.80665
 
-# The INS paper (seeds/003): allowable loads, empirical formulas (8)-(9) and FE values.
+# The INS paper ([2] in docs/model.md section 17): allowable loads, empirical formulas (8)-(9) and FE values.
 INS_FR, INS_FA, INS_M_NM = 3400.0, 1750.0, 3.0  # moment: "3000 N*m" read as 3000 N*mm
 INS_D_MM, INS_Z, INS_ALPHA_DEG = 3.0, 10, 10.0
 PAPER_KR_EMP, PAPER_KA_EMP = 1.2e5, 1.4e5  # N/mm, as printed
@@ -468,9 +468,9 @@ BEARING_SIM_BUILD=build scripts/build.sh bearing_tool
 ```
 
 It runs `bearing_tool sweep` on `config/sweeps/*.yaml` (about 10 s on two cores), `bearing_tool
-static` and `bearing_tool modes`, and rewrites this file. The papers: `seeds/000` (CT gantry
-bearing, Yuan et al. 2024) and `seeds/003` (INS 618/22 pair, Yang et al. 2019); the papers'
-errors we do not copy are in MODEL.md section 7.
+static` and `bearing_tool modes`, and rewrites this file. The papers: [1] (CT gantry
+bearing, Yuan et al. 2024) and [2] (INS 618/22 pair, Yang et al. 2019) of docs/model.md section 17;
+the papers' errors we do not copy are in docs/model.md section 16.
 
 ## Summary
 
@@ -500,7 +500,7 @@ over the second half (0.5 s, about 160 ball passes at Z f_c = 313 Hz). The sweep
 the static stiffness and the undamped modes of the ring on its contacts (f1..f5) per case.
 
 A perfectly smooth bearing with 207 evenly spaced balls vibrates at L of about -41 dB
-(MODEL.md section 5): the paper's trends need a source of vibration. We use two stated
+(docs/model.md section 11.2): the paper's trends need a source of vibration. We use two stated
 waviness settings and keep the smooth bearing as a reference:
 
 | set | waviness (radius amplitude) | what it excites |
@@ -570,7 +570,7 @@ to 0.03 s (200 samples, six ball passes). Its L is then dominated by the start-u
 of the load dropping onto the ring, whose size depends on the contact stiffness and the
 damping. That is a plausible reason for smooth minima against stiffness-like parameters.
 It also uses the mass in the tilt equation (its (20)), which moves the tilt mode, and sums
-the damping to zero over a full row (its (5), MODEL.md section 7). We start from the
+the damping to zero over a full row (its (5), docs/model.md section 16). We start from the
 equilibrium and drop the first half of every run.
 
 ## 2 INS paper: three-way stiffness of the 618/22 pair

@@ -1,4 +1,4 @@
-// bearing_tool frequencies: cage, ball-pass and ball-spin frequencies (MODEL.md section 5).
+// bearing_tool frequencies: cage, ball-pass and ball-spin frequencies (docs/model.md section 8.1).
 #include <cmath>
 #include <iostream>
 #include <memory>

@@ -1,7 +1,7 @@
 // bearing_tool modes: natural frequencies and mode shapes of a rigid body on one or more
 // identical bearings, each a 6x6 Bushing spring from the quasi-static stiffness at the
 // given load (core/modal_analysis.hpp); --no-angular-stiffness drops the bearings'
-// rotational stiffness (the INS paper's comparison, seeds/003 table 2).
+// rotational stiffness (the INS paper's comparison, its table 2; docs/model.md section 6.5).
 #include <cmath>
 #include <iostream>
 #include <memory>

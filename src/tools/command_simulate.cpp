@@ -1,5 +1,5 @@
 // bearing_tool simulate: a fixed-load, fixed-speed run of the dynamic model from the
-// static equilibrium (MODEL.md section 5), with an optional streamed CSV of the samples.
+// static equilibrium (docs/model.md section 7), with an optional streamed CSV of the samples.
 #include <cerrno>
 #include <cmath>
 #include <cstdio>

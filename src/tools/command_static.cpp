@@ -1,4 +1,4 @@
-// bearing_tool static: quasi-static equilibrium, stiffness and ball loads (MODEL.md section 4).
+// bearing_tool static: quasi-static equilibrium, stiffness and ball loads (docs/model.md section 6).
 #include <cmath>
 #include <iostream>
 #include <memory>

@@ -48,7 +48,7 @@ void add_json_flag(CLI::App* command, bool* json) {
 }
 
 void add_bearing_option(CLI::App* command, std::string* path) {
-  command->add_option("--bearing", *path, "Bearing file (YAML, see MODEL.md section 8)")
+  command->add_option("--bearing", *path, "Bearing file (YAML, see docs/bearing_file.md)")
       ->required()
       ->type_name("FILE");
 }

@@ -1,4 +1,4 @@
-// Distributed imperfections and spalls (MODEL.md section 6) against the classic waviness
+// Distributed imperfections and spalls (docs/model.md section 9) against the classic waviness
 // rules, closed-form deflection changes and the determinism the datasets rely on.
 #include <gtest/gtest.h>
 
@@ -64,7 +64,7 @@ TEST(Waviness, InnerRaceOrdersZPlusMinusOneExciteThePredictedRadialFrequencies) 
   const BearingModel model(deep_groove(""));
   const double fi = kInnerRpm / 60.0;
   const double fc = bearing_frequencies(model, fi * 2.0 * kPi, 0.0).cage_hz;
-  // MODEL.md section 6: q = kZ - 1 at |kZ (f_c - f_r) + f_r|, q = kZ + 1 at |kZ (f_c - f_r) - f_r|.
+  // docs/model.md section 8.2: q = kZ - 1 at |kZ (f_c - f_r) + f_r|, q = kZ + 1 at |kZ (f_c - f_r) - f_r|.
   const double expected_minus = std::abs(kBalls * (fc - fi) + fi);  // q = Z - 1: 132.4 Hz
   const double expected_plus = std::abs(kBalls * (fc - fi) - fi);   // q = Z + 1: 192.4 Hz
   // The 0.25 s window resolves 4 Hz; the peak search grid is 1 Hz, so 4 Hz is one bin.
