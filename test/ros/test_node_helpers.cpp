@@ -298,6 +298,35 @@ TEST(SampleDivider, FiresOncePerPeriodOnTheSampleGrid) {
   EXPECT_EQ(fired, 30);  // 10000 / 333 = 30.03
 }
 
+TEST(SampleDivider, ARefusedRateNeverThrowsAndKeepsTheLastGoodPeriod) {
+  SampleDivider d(10.0, 10000.0);  // every 1000 samples
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  // Each of these once threw std::invalid_argument in the simulation thread (and so aborted
+  // the node), or overflowed the period: refused with false, nothing changed.
+  for (double bad : {nan, inf, -inf, 0.0, -1.0, 5e-324, 1e-300}) {
+    EXPECT_FALSE(SampleDivider::valid_rates(bad, 10000.0)) << bad;
+    bool accepted = true;
+    EXPECT_NO_THROW(accepted = d.set_rate(bad, 10000.0)) << bad;
+    EXPECT_FALSE(accepted) << bad;
+    EXPECT_EQ(d.period_samples(), 1000u) << bad;
+  }
+  EXPECT_FALSE(d.set_rate(10.0, nan));
+  // Still on its grid: outputs at 999, 1999, ... as before any refused call.
+  int fired = 0;
+  std::uint64_t last = 0;
+  for (std::uint64_t i = 0; i < 5000; ++i)
+    if (d.due(i)) {
+      ++fired;
+      last = i;
+    }
+  EXPECT_EQ(fired, 5);
+  EXPECT_EQ(last, 4999u);
+  // A good rate after the refused ones applies: 10000 / 250 = 40 samples.
+  EXPECT_TRUE(d.set_rate(250.0, 10000.0));
+  EXPECT_EQ(d.period_samples(), 40u);
+  EXPECT_THROW(SampleDivider(nan, 10000.0), std::invalid_argument);  // at construction (node start-up)
+}
+
 TEST(TimingStats, PercentilesOfTheRecentValues) {
   TimingStats t(100);
   for (int i = 1; i <= 300; ++i) t.add(i);  // only 201..300 kept
