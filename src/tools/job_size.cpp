@@ -5,11 +5,9 @@
 #include <cmath>
 #include <sstream>
 
-#include <Eigen/Eigenvalues>
-
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/errors.hpp"
-#include "bearing_sim/core/quasi_static.hpp"
+#include "bearing_sim/ros/input_validator.hpp"
 #include "tool_common.hpp"
 
 namespace bearing_sim::tool {
@@ -41,39 +39,15 @@ std::string duration_text(double s) {
 
 int check_integrator_work(const BearingModel& model, const Vector5& load, double sample_rate_hz,
                           const std::string& bearing_file) {
+  double rate = 0.0;
+  const ros_node::InputCheck check = ros_node::check_integrator_work(model, load, &rate);
   // As BearingDynamics::choose_substeps, in double: an absurd mode overflows an int.
-  const double rate = BearingDynamics::fastest_rate_rad_s(model, load);
   const double needed =
       std::max(1.0, std::ceil(rate / sample_rate_hz / BearingDynamics::kExponentialStepTimesOmegaMax));
-  if (rate <= kMaxStiffRateRadS) return static_cast<int>(std::min(needed, 1e9));  // NaN fails too
-  // Which mode: the fastest of the undamped ring (M^-1/2 K M^-1/2), or the contact damping
-  // when the linearized system's fastest rate is far above it (overdamped contacts, c/m).
-  const StaticSolution s = solve_static(model, load);
-  const Vector5 inv_sqrt_m = model.mass_diagonal().cwiseSqrt().cwiseInverse();
-  const Matrix5 a = inv_sqrt_m.asDiagonal() * s.stiffness * inv_sqrt_m.asDiagonal();
-  const Eigen::SelfAdjointEigenSolver<Matrix5> eigen(0.5 * (a + a.transpose()));
-  const double omega_max = std::sqrt(std::max(0.0, eigen.eigenvalues()[4]));
-  const BearingConfig& c = model.config();
-  std::ostringstream why;
-  if (rate > 2.0 * omega_max) {
-    why << "overdamped contacts with a decay rate of " << frequency_text(rate / (2.0 * kPi))
-        << ": damping.contact_damping_Ns_per_m (" << c.contact_damping_Ns_per_m
-        << ") is implausibly large for this bearing";
-  } else {
-    Eigen::Index dof = 0;
-    eigen.eigenvectors().col(4).cwiseAbs().maxCoeff(&dof);
-    const double hz = omega_max / (2.0 * kPi);
-    if (dof >= 3)
-      why << "tilt mode at " << frequency_text(hz) << ": tilt_inertia_kg_m2 ("
-          << c.tilt_inertia_kg_m2 << (c.tilt_inertia_given ? "" : ", derived from rotating_mass_kg and the envelope")
-          << ") is implausibly small for this bearing";
-    else
-      why << (dof == 2 ? "axial" : "radial") << " mode at " << frequency_text(hz) << ": rotating_mass_kg ("
-          << c.rotating_mass_kg << ") is implausibly small for this bearing";
-  }
-  throw ConfigError(bearing_file + ": " + why.str() + "; the integrator would need " + general(needed, 3) +
+  if (check.accepted) return static_cast<int>(std::min(needed, 1e9));
+  throw ConfigError(bearing_file + ": " + check.reason + "; the integrator would need " + general(needed, 3) +
                     " steps per sample at " + general(sample_rate_hz, 6) + " Hz; no bearing has a mode above " +
-                    frequency_text(kMaxStiffRateRadS / (2.0 * kPi)));
+                    frequency_text(ros_node::kMaxStiffRateRadS / (2.0 * kPi)));
 }
 
 double measure_seconds_per_sample(const BearingModel& model, const Vector5& load, double ring_speed_rad_s,
@@ -98,7 +72,7 @@ double measure_seconds_per_sample(const BearingModel& model, const Vector5& load
 
 void check_job_size(double samples, double estimate_s, bool confirmed, const std::string& what,
                     const std::string& flag) {
-  if (!(estimate_s > 60.0)) return;
+  if (!(estimate_s > kAnnounceRunS)) return;
   std::ostringstream text;
   text << what << ": " << general(samples, 4) << " samples at the " << general(estimate_s / samples * 1e6, 3)
        << " us per sample measured on this machine: about " << duration_text(estimate_s);

@@ -8,15 +8,15 @@
 
 namespace bearing_sim::tool {
 
-// Fastest rate of the linearized ring dynamics (a mode's angular frequency, or c/m of
-// overdamped contacts) the automatic step follows: 1e7 rad/s (1.6 MHz) is far above any
-// bearing's modes and means 1000 integration steps per sample at 10 kHz.
-constexpr double kMaxStiffRateRadS = 1.0e7;
-// Runs estimated longer than this need the confirmation flag.
+// Runs estimated longer than this are announced on stderr before they start; longer than the
+// limit, they need the confirmation flag.
+constexpr double kAnnounceRunS = 600.0;
 constexpr double kLongRunLimitS = 3600.0;
 
-// The automatic substeps at `load`; throws ConfigError naming the bearing file, the stiff mode
-// (or overdamped contacts), its frequency and the key behind it above kMaxStiffRateRadS, e.g. "tilt mode at 2.1 MHz: tilt_inertia_kg_m2 is implausibly small".
+// The automatic substeps at `load`. Above the ceiling of ros_node::check_integrator_work (the
+// node's check) throws ConfigError naming the bearing file, the stiff mode (or overdamped
+// contacts), its frequency and the key behind it, e.g. "tilt mode at 35 MHz:
+// tilt_inertia_kg_m2 (7.9e-06) is implausibly small for this bearing".
 int check_integrator_work(const BearingModel& model, const Vector5& load, double sample_rate_hz,
                           const std::string& bearing_file);
 
@@ -26,7 +26,7 @@ double measure_seconds_per_sample(const BearingModel& model, const Vector5& load
                                   double sample_rate_hz, int substeps);
 
 // Refuses (InputError) a run of `samples` estimated to take `estimate_s` of wall time beyond
-// kLongRunLimitS unless `confirmed`; says the estimate on stderr above a minute. `what` names
+// kLongRunLimitS unless `confirmed`; says the estimate on stderr above kAnnounceRunS. `what` names
 // the run, `flag` the confirmation.
 void check_job_size(double samples, double estimate_s, bool confirmed, const std::string& what,
                     const std::string& flag);

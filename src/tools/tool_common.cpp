@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/errors.hpp"
 
 namespace bearing_sim::tool {
 namespace {
@@ -98,13 +99,13 @@ CLI::Option* add_vector_option(CLI::App* command, const std::string& name, std::
   const std::size_t n = components.size();
   std::string defaults;
   for (double v : *values) defaults += (defaults.empty() ? "" : ",") + general(v, 6);
-  const std::string format = join(components, ",");
+  const std::string shape = join(components, ",");
   // One argument, split here: CLI11's own splitting drops empty fields and then takes the next
   // argument (`--force ,, --json` complained that '--json' is not a number).
   return command
       ->add_option_function<std::string>(
           name,
-          [values, n, name, format](const std::string& text) {
+          [values, n, name, shape](const std::string& text) {
             std::vector<std::string> fields;
             std::size_t start = 0;
             for (;;) {
@@ -114,7 +115,7 @@ CLI::Option* add_vector_option(CLI::App* command, const std::string& name, std::
               start = comma + 1;
             }
             if (fields.size() != n)
-              throw CLI::ValidationError(name, "expected " + std::to_string(n) + " comma-separated numbers " + format +
+              throw CLI::ValidationError(name, "expected " + std::to_string(n) + " comma-separated numbers " + shape +
                                                    ", got " + std::to_string(fields.size()) + " in '" + text + "'");
             std::vector<double> parsed;
             for (std::string field : fields) {
@@ -125,7 +126,7 @@ CLI::Option* add_vector_option(CLI::App* command, const std::string& name, std::
             *values = parsed;
           },
           description + "; " + std::to_string(n) + " comma-separated numbers [default: " + defaults + "]")
-      ->type_name(format);
+      ->type_name(shape);
 }
 
 CLI::Option* add_number_option(CLI::App* command, const std::string& name, double* value,
@@ -136,7 +137,14 @@ CLI::Option* add_number_option(CLI::App* command, const std::string& name, doubl
       ->capture_default_str();
 }
 
-BearingModel load_model(const std::string& path) { return BearingModel(load_bearing_config(path)); }
+BearingModel load_model(const std::string& path) {
+  const BearingConfig config = load_bearing_config(path);
+  try {
+    return BearingModel(config);
+  } catch (const ConfigError& e) {  // a defect that does not fit: the model names the bearing, not the file
+    throw ConfigError(path + ": " + e.what());
+  }
+}
 
 Vector5 make_load(const std::vector<double>& force, const std::vector<double>& moment) {
   if (force.size() != 3) throw InputError("--force: expected 3 values FX,FY,FZ");
