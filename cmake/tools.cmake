@@ -18,6 +18,7 @@ add_executable(bearing_tool
   src/tools/dataset_bag_writer.cpp
   src/tools/dataset_plain_writer.cpp
   src/tools/npy_file.cpp
+  src/tools/job_size.cpp
   src/ros/message_conversion.cpp
 )
 target_link_libraries(bearing_tool PRIVATE bearing_sim_core CLI11::CLI11 nlohmann_json::nlohmann_json)
@@ -67,4 +68,13 @@ if(CATKIN_ENABLE_TESTING)
   target_compile_definitions(test_bearing_tool_generate PRIVATE BEARING_TOOL_PATH="$<TARGET_FILE:bearing_tool>"
     BEARING_SIM_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
   add_dependencies(test_bearing_tool_generate bearing_tool ${${PROJECT_NAME}_EXPORTED_TARGETS})
+endif()
+
+if(CATKIN_ENABLE_TESTING)
+  # bearing_tool fed bad files, bad options and absurd runs: exit 2 naming the cause.
+  catkin_add_gtest(test_bearing_tool_inputs test/tools/test_bearing_tool_inputs.cpp
+    WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR} TIMEOUT 600)
+  target_compile_definitions(test_bearing_tool_inputs PRIVATE BEARING_TOOL_PATH="$<TARGET_FILE:bearing_tool>"
+    BEARING_SIM_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
+  add_dependencies(test_bearing_tool_inputs bearing_tool)
 endif()

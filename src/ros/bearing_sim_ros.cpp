@@ -117,6 +117,11 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh),
   if (!load_check.accepted) throw std::runtime_error("initial load: " + load_check.reason);
   const InputCheck speed_check = check_speed(speed, limits_);
   if (!speed_check.accepted) throw std::runtime_error("initial speed: " + speed_check.reason);
+  // A bearing value that makes a mode no bearing has would stall the automatic step.
+  if (substeps == 0) {
+    const InputCheck work_check = check_integrator_work(model, load);
+    if (!work_check.accepted) throw std::runtime_error("bearing file " + bearing_file + ": " + work_check.reason);
+  }
   accepted_load_ = load;
   accepted_speed_rad_s_ = speed;
   accepted_max_pressure_Pa_ = load_check.max_contact_pressure_Pa;
@@ -346,7 +351,11 @@ void BearingSimRos::on_reconfigure(BearingSimConfig& config, std::uint32_t /*lev
       // The spalls present now, not only those of the file (the sim thread re-times them).
       model.clear_spalls();
       for (const Spall& sp : validation_model_->imperfections().spalls()) model.add_spall(sp);
-      const InputCheck check = check_load(accepted_load_, limits_, &model);
+      InputCheck check = check_load(accepted_load_, limits_, &model);
+      if (check.accepted) {
+        const InputCheck work = check_integrator_work(model, accepted_load_);  // would stall the step
+        if (!work.accepted) check = work;
+      }
       if (check.accepted) {
         accepted_max_pressure_Pa_ = check.max_contact_pressure_Pa;
         new_model = std::move(model);
