@@ -12,7 +12,7 @@ source "$BEARING_SIM_BUILD/devel/setup.bash"
 set -u
 rm -rf "$BEARING_SIM_BUILD/test_results"
 cmake --build "$BEARING_SIM_BUILD" -- -j1 run_tests 2>&1 | tee "$BEARING_SIM_BUILD/run_tests.log" \
-  | grep -E '^\[ *(RUN|OK|FAILED|PASSED) |^\[ROSTEST\]|^(SUMMARY|  \* RESULT|FAILURE)|Failure|Error|\.\.\. (ok|FAIL|ERROR|skipped)' || true
+  | grep -E '^\[ *(RUN|OK|FAILED|PASSED) |^\[ROSTEST\]|^(SUMMARY|  \* RESULT|FAILURE)|Failure|Error|\.\.\. (ok|FAIL|ERROR|skipped)|SKIPPED' || true
 # Built without LCM (-DBEARING_SIM_WITH_LCM=OFF): its suites are not expected, and said so.
 without=()
 grep -q '^BEARING_SIM_WITH_LCM:BOOL=OFF' "$BEARING_SIM_BUILD/CMakeCache.txt" && without+=(--without lcm)
