@@ -17,7 +17,7 @@ for f in "$BEARING_SIM_ROOT"/test/core/test_*.cpp "$BEARING_SIM_ROOT"/test/tools
   name="$(basename "$f" .cpp)"
   [ "$name" = test_support ] || tests+=("$name")
 done
-cmake --build "$build" -j "$(nproc)" -- bearing_tool "${tests[@]}" > "$build/build.log" 2>&1 \
+cmake --build "$build" -j "$(nproc)" -- bearing_sim_tool "${tests[@]/#/bearing_sim_}" > "$build/build.log" 2>&1 \
   || { tail -50 "$build/build.log"; exit 1; }
 built=$(date +%s)
 echo "sanitize_test: built in $((built - start)) s"

@@ -1,7 +1,7 @@
 // Compiled once per Highway target (hwy/foreach_target.h re-includes this file with the
 // target's attributes); the dispatcher picks the best one the CPU runs.
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "core/contact_kernel.cpp"
+#define HWY_TARGET_INCLUDE "contact_kernel.cpp"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
 
