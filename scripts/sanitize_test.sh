@@ -32,7 +32,7 @@ passed=0
 failed=0
 mkdir -p "$build/sanitize_logs"
 for t in "${tests[@]}"; do
-  exe="$build/devel/lib/bearing_sim/$t"
+  exe="$build/devel/lib/bearing_sim/bearing_sim_$t"
   log="$build/sanitize_logs/$t.log"
   if (cd "$BEARING_SIM_ROOT" && "$exe") > "$log" 2>&1 \
       && ! grep -qE "runtime error:|ERROR: (Address|Leak)Sanitizer" "$log"; then
