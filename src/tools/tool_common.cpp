@@ -1,7 +1,9 @@
 #include "tool_common.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -63,15 +65,16 @@ void require_finite_result(const nlohmann::json& result, const std::string& comm
 const CLI::Validator& finite_number() {
   static const CLI::Validator validator(
       [](std::string& text) -> std::string {
-        double value = 0.0;
-        std::size_t used = 0;
-        try {
-          value = std::stod(text, &used);
-        } catch (const std::exception&) {
-          return "'" + text + "' is not a number";
-        }
-        if (used != text.size()) return "'" + text + "' is not a number";
-        if (!std::isfinite(value)) return "'" + text + "' is not a finite number";
+        // strtod, not stod: a number too small for a double (5e-324, 1e-400) is still a
+        // number (denormal or 0, refused or carried on by the checks of its option);
+        // stod throws on it as if it were text.
+        const char* begin = text.c_str();
+        char* end = nullptr;
+        errno = 0;
+        const double value = std::strtod(begin, &end);
+        if (end == begin || *end != '\0') return "'" + text + "' is not a number";
+        if (!std::isfinite(value) || (errno == ERANGE && std::abs(value) == HUGE_VAL))
+          return "'" + text + "' is not a finite number";
         return std::string();
       },
       "");

@@ -141,7 +141,7 @@ TEST_F(ToolInputTest, RunsOfYearsNeedTheConfirmationFlagAndNothingStarts) {
 TEST_F(ToolInputTest, AResultThatIsNotFiniteIsNeverPrinted) {
   // A body of 5e-324 kg: every K/m overflows. Refused (exit 2) instead of a table of NaN.
   expect_refused("modes --bearing '" + kCt + "' --force 6800,0,0 --mass-kg 5e-324 --inertia-kg-m2 1,1,1",
-                 {"modes", "not a finite number"});
+                 {"modal analysis", "not a finite number"});
 }
 
 }  // namespace
