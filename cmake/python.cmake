@@ -1,0 +1,47 @@
+# The Python package bearing_sim (docs/python.md): python/bearing_sim (campaigns, the
+# re-export) through catkin_python_setup, and the compiled core bearing_sim._core (pybind11,
+# Debian's pybind11-dev) beside the generated messages in the devel and install space.
+# Included before generate_messages(): catkin requires catkin_python_setup() to come first.
+catkin_python_setup()
+
+find_package(pybind11 CONFIG REQUIRED)
+find_package(rostime REQUIRED)
+# Scenario generation reuses bearing_tool generate's ScenarioSimulation and the node's
+# ROS-free per-sample pipeline; they are compiled in here (position-independent), not linked
+# from the static helper library.
+# NO_EXTRAS: no link-time optimisation, so the module builds in the time of its objects.
+pybind11_add_module(bearing_sim_python MODULE NO_EXTRAS
+  src/python/module.cpp
+  src/python/bearing_binding.cpp
+  src/python/scenario_binding.cpp
+  src/python/analysis_binding.cpp
+  src/tools/scenario_simulation.cpp
+  src/ros/sample_pipeline.cpp
+  src/ros/sample_source.cpp
+  src/ros/sample_divider.cpp
+  src/ros/chunk_assembler.cpp
+  src/ros/triaxial_sensor.cpp
+  src/ros/health_monitor.cpp
+  src/ros/message_conversion.cpp
+)
+target_include_directories(bearing_sim_python PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/tools
+  ${catkin_INCLUDE_DIRS} ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_INCLUDE_DESTINATION})
+target_link_libraries(bearing_sim_python PRIVATE bearing_sim_core ${rostime_LIBRARIES})
+# message_conversion.cpp includes the generated message headers.
+add_dependencies(bearing_sim_python bearing_sim_generate_messages_cpp)
+bearing_sim_optimize(bearing_sim_python)
+set_target_properties(bearing_sim_python PROPERTIES OUTPUT_NAME _core
+  LIBRARY_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_PYTHON_DESTINATION}/${PROJECT_NAME})
+install(TARGETS bearing_sim_python LIBRARY DESTINATION ${CATKIN_GLOBAL_PYTHON_DESTINATION}/${PROJECT_NAME})
+catkin_install_python(PROGRAMS scripts/bearing_campaign DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+
+if(CATKIN_ENABLE_TESTING)
+  # pytest of the module and the campaigns (test/python), a JUnit file in test_results like
+  # the gtests. Runs against the devel space (run_tests sources its environment).
+  set(bearing_sim_pytest_xml ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME}/pytest-test_python.xml)
+  catkin_run_tests_target(pytest test_python pytest-test_python.xml
+    COMMAND /usr/bin/python3 -m pytest -q -p no:cacheprovider ${CMAKE_CURRENT_SOURCE_DIR}/test/python
+      --junitxml=${bearing_sim_pytest_xml}
+    WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
+  add_dependencies(tests bearing_sim_python)
+endif()
