@@ -4,6 +4,9 @@
 # Included before generate_messages(): catkin requires catkin_python_setup() to come first.
 catkin_python_setup()
 
+# Python3 is already found (Interpreter only) by a ROS package, which sends pybind11 to
+# CMake's FindPython: it then needs the Development.Module component too.
+find_package(Python3 REQUIRED COMPONENTS Interpreter Development.Module)
 find_package(pybind11 CONFIG REQUIRED)
 find_package(rostime REQUIRED)
 # Scenario generation reuses bearing_tool generate's ScenarioSimulation and the node's
@@ -33,7 +36,8 @@ bearing_sim_optimize(bearing_sim_python)
 set_target_properties(bearing_sim_python PROPERTIES OUTPUT_NAME _core
   LIBRARY_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_PYTHON_DESTINATION}/${PROJECT_NAME})
 install(TARGETS bearing_sim_python LIBRARY DESTINATION ${CATKIN_GLOBAL_PYTHON_DESTINATION}/${PROJECT_NAME})
-catkin_install_python(PROGRAMS scripts/bearing_campaign DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+# (catkin_package() has not yet set CATKIN_PACKAGE_BIN_DESTINATION, lib/bearing_sim)
+catkin_install_python(PROGRAMS scripts/bearing_campaign DESTINATION ${CATKIN_GLOBAL_LIBEXEC_DESTINATION}/${PROJECT_NAME})
 
 if(CATKIN_ENABLE_TESTING)
   # pytest of the module and the campaigns (test/python), a JUnit file in test_results like

@@ -5,8 +5,13 @@ In the catkin devel space this package shares its directory with the generated m
 (bearing_sim.msg, bearing_sim.srv): catkin's __init__ extends the path to this source
 directory and runs this file."""
 import os as _os
+from pkgutil import extend_path as _extend_path
 
 import yaml as _yaml
+
+# A process that has this directory first on sys.path (a Dask worker started by spawn
+# inherits the devel shim's path) still finds the compiled core and the messages.
+__path__ = _extend_path(__path__, __name__)
 
 from bearing_sim._core import (Bearing, ConfigError, DivergenceError, InvalidInputError,  # noqa: F401
                                LoadNotCarriedError, cpu_model_name, modes, simd_target_name)

@@ -13,7 +13,11 @@ from bearing_sim.campaign import Campaign, CampaignError
 from conftest import SOURCE, small_campaign
 
 
-def campaign(doc, path='/tmp/c.yaml'):
+# Not a file: its directory is where the shipped campaigns find ../bearings.
+IN_CONFIG = str(SOURCE / 'config' / 'campaigns' / 'c.yaml')
+
+
+def campaign(doc, path=IN_CONFIG):
     return Campaign(yaml.safe_dump(doc), path)
 
 
@@ -124,7 +128,7 @@ def test_bad_campaign_files_name_the_key(change, message):
     with pytest.raises(CampaignError) as e:
         campaign(doc)
     assert message in str(e.value)
-    assert '/tmp/c.yaml' in str(e.value)
+    assert IN_CONFIG in str(e.value)
 
 
 def test_bad_scenario_template_is_refused_before_running(campaign_file, tmp_path):

@@ -12,6 +12,7 @@ from .distributions import Distribution, unit_draw
 from .errors import CampaignError
 
 FORMATS = ('npy', 'hdf5')
+MAX_SCENARIO_SEED = 1000000  # the core reads integers of a scenario file up to this
 _TOP_KEYS = {'name', 'description', 'count', 'seed', 'format', 'label_rate_hz', 'parameters', 'scenario'}
 _REF = re.compile(r'\$\{([A-Za-z_][A-Za-z0-9_]*)\}')
 _NAME = re.compile(r'[A-Za-z0-9_.-]+')
@@ -75,8 +76,10 @@ class Campaign:
                                 f'may be ${{parameter}}')
         self._check_references(self.template, 'scenario')
         for name, d in self.parameters.items():
-            if d.kind in ('choice', 'grid', 'constant'):
-                self._check_references(d.values if d.kind != 'constant' else d.value, f'parameters.{name}.{d.kind}')
+            if d.kind == 'constant':
+                self._check_references(d.value, f'parameters.{name}')
+            elif d.kind in ('choice', 'grid'):
+                self._check_references(d.values, f'parameters.{name}.{d.kind}')
 
     @classmethod
     def load(cls, path):
@@ -126,8 +129,9 @@ class Campaign:
         return {n: d.draw(self.seed, index, grid.get(n, 0)) for n, d in self.parameters.items()}
 
     def run_seed(self, index):
-        """The scenario seed of run i when the template gives none: 31 bits of the draw."""
-        return int(unit_draw(self.seed, index, '#seed') * 2**31)
+        """The scenario seed of run i when the template gives none, in the range a scenario
+        file accepts (0 to 1,000,000)."""
+        return int(unit_draw(self.seed, index, '#seed') * (MAX_SCENARIO_SEED + 1))
 
     def definition(self, index):
         parameters = self.parameters_of(index)
