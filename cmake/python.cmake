@@ -44,8 +44,7 @@ if(CATKIN_ENABLE_TESTING)
   # the gtests. Runs against the devel space (run_tests sources its environment).
   set(bearing_sim_pytest_xml ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME}/pytest-test_python.xml)
   catkin_run_tests_target(pytest test_python pytest-test_python.xml
-    COMMAND /usr/bin/python3 -m pytest -q -p no:cacheprovider ${CMAKE_CURRENT_SOURCE_DIR}/test/python
-      --junitxml=${bearing_sim_pytest_xml}
+    COMMAND "/usr/bin/python3 -m pytest -q -p no:cacheprovider ${CMAKE_CURRENT_SOURCE_DIR}/test/python --junitxml=${bearing_sim_pytest_xml}"
     WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
   add_dependencies(tests bearing_sim_python)
 endif()
