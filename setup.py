@@ -2,4 +2,4 @@
 from setuptools import setup
 from catkin_pkg.python_setup import generate_distutils_setup
 
-setup(**generate_distutils_setup(packages=['bearing_sim'], package_dir={'': 'python'}))
+setup(**generate_distutils_setup(packages=['bearing_sim', 'bearing_sim.campaign'], package_dir={'': 'python'}))
