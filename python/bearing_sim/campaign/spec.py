@@ -145,7 +145,10 @@ class Campaign:
                 derived[key] = (key.replace('_file', '.yaml'), self._derived_file(spec, key, folder))
             elif isinstance(spec, str):
                 scenario[key] = self.resolve(spec, folder, key)
-        return RunDefinition(index, parameters, scenario, derived)
+        # The manifest records each parameter with the ${...} inside its value filled in.
+        resolved = {n: _substitute(copy.deepcopy(v), parameters, f'parameters.{n}', self.path, 0)
+                    for n, v in parameters.items()}
+        return RunDefinition(index, resolved, scenario, derived)
 
     def resolve(self, name, folder, key):
         """A bearing or sensor file as the core finds it: absolute, relative to the campaign's
