@@ -9,6 +9,21 @@ catkin_python_setup()
 find_package(Python3 REQUIRED COMPONENTS Interpreter Development.Module)
 find_package(pybind11 CONFIG REQUIRED)
 find_package(rostime REQUIRED)
+# The module links its own static, position-independent copy of the core, built from the
+# core target's sources and settings: bearing_sim_core turns into a shared library once
+# catkin has cached BUILD_SHARED_LIBS, and is not installed, so an installed module could
+# not load it.
+get_target_property(bearing_sim_core_sources bearing_sim_core SOURCES)
+add_library(bearing_sim_core_python STATIC ${bearing_sim_core_sources})
+foreach(property INCLUDE_DIRECTORIES COMPILE_OPTIONS COMPILE_DEFINITIONS LINK_LIBRARIES
+                 INTERFACE_INCLUDE_DIRECTORIES INTERFACE_LINK_LIBRARIES)
+  get_target_property(value bearing_sim_core ${property})
+  if(value)
+    set_target_properties(bearing_sim_core_python PROPERTIES ${property} "${value}")
+  endif()
+endforeach()
+set_target_properties(bearing_sim_core_python PROPERTIES POSITION_INDEPENDENT_CODE ON)
+
 # Scenario generation reuses bearing_tool generate's ScenarioSimulation and the node's
 # ROS-free per-sample pipeline; they are compiled in here (position-independent), not linked
 # from the static helper library.
@@ -29,7 +44,7 @@ pybind11_add_module(bearing_sim_python MODULE NO_EXTRAS
 )
 target_include_directories(bearing_sim_python PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/tools
   ${catkin_INCLUDE_DIRS} ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_INCLUDE_DESTINATION})
-target_link_libraries(bearing_sim_python PRIVATE bearing_sim_core ${rostime_LIBRARIES})
+target_link_libraries(bearing_sim_python PRIVATE bearing_sim_core_python ${rostime_LIBRARIES})
 # message_conversion.cpp includes the generated message headers.
 add_dependencies(bearing_sim_python bearing_sim_generate_messages_cpp)
 bearing_sim_optimize(bearing_sim_python)
