@@ -15,13 +15,15 @@ find_package(rostime REQUIRED)
 # not load it.
 get_target_property(bearing_sim_core_sources bearing_sim_core SOURCES)
 add_library(bearing_sim_core_python STATIC ${bearing_sim_core_sources})
-foreach(property INCLUDE_DIRECTORIES COMPILE_OPTIONS COMPILE_DEFINITIONS LINK_LIBRARIES
-                 INTERFACE_INCLUDE_DIRECTORIES INTERFACE_LINK_LIBRARIES)
+foreach(property INCLUDE_DIRECTORIES COMPILE_OPTIONS COMPILE_DEFINITIONS INTERFACE_INCLUDE_DIRECTORIES)
   get_target_property(value bearing_sim_core ${property})
   if(value)
     set_target_properties(bearing_sim_core_python PROPERTIES ${property} "${value}")
   endif()
 endforeach()
+# Its libraries (Highway included, private to the core) go to the module's link line.
+get_target_property(bearing_sim_core_libraries bearing_sim_core LINK_LIBRARIES)
+target_link_libraries(bearing_sim_core_python PUBLIC ${bearing_sim_core_libraries})
 set_target_properties(bearing_sim_core_python PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 # Scenario generation reuses bearing_tool generate's ScenarioSimulation and the node's
