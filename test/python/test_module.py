@@ -95,7 +95,8 @@ def test_simulation_releases_the_gil():
     t.start()
     time.sleep(0.05)
     start = time.monotonic()
-    bearing_sim.simulate(b, [1500.0, 0.0, 0.0], ring_speed_rad_s=150.0, duration_s=1.0)
+    # ~0.1 s of CPU: room for a few 1 ms ticks even on a busy machine.
+    bearing_sim.simulate(b, [1500.0, 0.0, 0.0], ring_speed_rad_s=150.0, duration_s=5.0)
     end = time.monotonic()
     stop.set()
     t.join()
