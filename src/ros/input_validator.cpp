@@ -50,7 +50,6 @@ InputCheck check_speed(double ring_speed_rad_s, const InputLimits& limits) {
   return c;
 }
 
-namespace {
 std::string frequency_text(double hz) {
   std::ostringstream s;
   s.precision(3);
@@ -59,7 +58,6 @@ std::string frequency_text(double hz) {
   else s << hz << " Hz";
   return s.str();
 }
-}  // namespace
 
 InputCheck check_integrator_work(const BearingModel& model, const Vector5& load, double* fastest_rate_rad_s) {
   InputCheck c;

@@ -15,15 +15,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string frequency_text(double hz) {
-  std::ostringstream s;
-  s.precision(3);
-  if (hz >= 1e6) s << hz / 1e6 << " MHz";
-  else if (hz >= 1e3) s << hz / 1e3 << " kHz";
-  else s << hz << " Hz";
-  return s.str();
-}
-
 std::string duration_text(double s) {
   std::ostringstream o;
   o.precision(3);
@@ -47,7 +38,7 @@ int check_integrator_work(const BearingModel& model, const Vector5& load, double
   if (check.accepted) return static_cast<int>(std::min(needed, 1e9));
   throw ConfigError(bearing_file + ": " + check.reason + "; the integrator would need " + general(needed, 3) +
                     " steps per sample at " + general(sample_rate_hz, 6) + " Hz; no bearing has a mode above " +
-                    frequency_text(ros_node::kMaxStiffRateRadS / (2.0 * kPi)));
+                    ros_node::frequency_text(ros_node::kMaxStiffRateRadS / (2.0 * kPi)));
 }
 
 double measure_seconds_per_sample(const BearingModel& model, const Vector5& load, double ring_speed_rad_s,

@@ -25,6 +25,7 @@
 #include <typeinfo>
 #include <vector>
 
+#include "test_support.hpp"
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/bearing_model.hpp"
 #include "bearing_sim/core/errors.hpp"
@@ -40,16 +41,8 @@ constexpr int kCasesPerFile = 100;  // 6 files: 600 cases, a few seconds
 // Far above the few milliseconds a load takes, even under a sanitizer on a loaded machine.
 constexpr int kCaseTimeLimitMs = 20000;
 
-std::string config_path(const std::string& relative) {
-  return std::string(BEARING_SIM_SOURCE_DIR) + "/config/" + relative;
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::config_path;
+using test::read_text;
 
 // What happened to one case.
 struct Outcome {

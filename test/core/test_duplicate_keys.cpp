@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "test_support.hpp"
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/scenario.hpp"
@@ -19,16 +20,8 @@
 namespace bearing_sim {
 namespace {
 
-std::string config_path(const std::string& relative) {
-  return std::string(BEARING_SIM_SOURCE_DIR) + "/config/" + relative;
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::config_path;
+using test::read_text;
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;

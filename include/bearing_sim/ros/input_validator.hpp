@@ -37,6 +37,9 @@ constexpr double kMaxStiffRateRadS = 1.0e7;
 // equilibrium. `fastest_rate_rad_s` receives the rate when given.
 InputCheck check_integrator_work(const BearingModel& model, const Vector5& load, double* fastest_rate_rad_s = nullptr);
 
+// A frequency with 3 significant digits in Hz, kHz or MHz, for messages.
+std::string frequency_text(double hz);
+
 // Accepted range of one dynamic_reconfigure parameter (the ranges of cfg/BearingSim.cfg:
 // the server clamps finite values to them but lets NaN through).
 struct SettingRange {
