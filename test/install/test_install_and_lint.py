@@ -40,7 +40,7 @@ DEVELOPMENT_ONLY = {
                            'bearing_sim_integrator_study'},
     'UNINSTALLED_SCRIPT': {'scripts/build.sh', 'scripts/install_deps.sh', 'scripts/setup_and_run.sh',
                            'scripts/capture_rviz_screenshot.sh', 'scripts/make_validation.py',
-                           'bench/bench_generate.sh'},
+                           'bench/bench_generate.sh', 'bench/bench_campaign.py'},
 }
 
 # Generous bounds: the test waits on events, it does not measure speed.
