@@ -456,7 +456,10 @@ void BearingSimRos::level(const SampleSource::Sample& sample, double accel_rms, 
   msg->accel_rms = accel_rms;
   msg->level_db = vibration_level_db(accel_rms);
   msg->window_s = window_s;
-  bundle_->actions.emplace_back([this, msg] { level_pub_.publish(msg); });
+  bundle_->actions.emplace_back([this, msg] {
+    msg->header.seq = level_seq_++;
+    level_pub_.publish(msg);
+  });
 }
 
 bool BearingSimRos::wants_ball_loads() const {
@@ -469,7 +472,10 @@ void BearingSimRos::ball_loads(const SampleSource::Sample& sample, const Bearing
   msg->header.frame_id = bearing_frame_id_;
   fill_ball_loads(model.ball_states(sample.state->displacement, sample.state->cage_angle_rad), model.rows(),
                   model.balls_per_row(), sample.state->cage_angle_rad, msg.get());
-  bundle_->actions.emplace_back([this, msg] { ball_loads_pub_.publish(msg); });
+  bundle_->actions.emplace_back([this, msg] {
+    msg->header.seq = ball_loads_seq_++;
+    ball_loads_pub_.publish(msg);
+  });
 }
 
 void BearingSimRos::measured_chunk(SampleChunk&& chunk) {
@@ -478,7 +484,10 @@ void BearingSimRos::measured_chunk(SampleChunk&& chunk) {
   const ros::Time first_stamp = stamp_of((chunk.first_sample + 1) * r - 1);
   auto msg = boost::make_shared<VibrationChunk>();
   fill_vibration_chunk(std::move(chunk), first_stamp, frame_id_, measured_rate_hz_, msg.get());
-  bundle_->actions.emplace_back([this, msg] { vibration_pub_.publish(msg); });
+  bundle_->actions.emplace_back([this, msg] {
+    msg->header.seq = vibration_seq_++;
+    vibration_pub_.publish(msg);
+  });
 }
 
 void BearingSimRos::ideal_chunk(SampleChunk&& chunk) {
@@ -489,6 +498,7 @@ void BearingSimRos::ideal_chunk(SampleChunk&& chunk) {
   fill_vibration_chunk(std::move(chunk), first_stamp, frame_id_, sample_rate_hz_, msg.get());
   const bool ideal_is_vibration = pipeline_->sensor() == nullptr;
   bundle_->actions.emplace_back([this, msg, ideal_is_vibration] {
+    msg->header.seq = ideal_seq_++;  // both topics publish every ideal chunk then: the same count
     if (ideal_is_vibration) vibration_pub_.publish(msg);  // without a sensor `vibration` is the ideal acceleration
     ideal_pub_.publish(msg);
   });
@@ -526,6 +536,7 @@ void BearingSimRos::publish_health(const HealthReport& report) {
   msg.header.stamp = ros_start_ + ros::Duration(report.end_time_s);
   msg.header.frame_id = frame_id_;
   fill_bearing_health(report, sensor_description_, measured_rate_hz_, &msg);
+  msg.header.seq = health_seq_++;
   health_pub_.publish(shared);  // not changed after this: read below only
 
   HealthStatus status;

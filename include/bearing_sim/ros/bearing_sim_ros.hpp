@@ -140,6 +140,10 @@ class BearingSimRos : private PipelineSink {
   ros::Time ros_start_;
 
   ros::Publisher vibration_pub_, ideal_pub_, level_pub_, ball_loads_pub_, clock_pub_, health_pub_;
+  // header.seq of each topic, set here: roscpp numbers only the serialised copies, and a
+  // subscriber in the same nodelet manager gets the message itself (publisher thread; health:
+  // the health worker).
+  std::uint32_t vibration_seq_ = 0, ideal_seq_ = 0, level_seq_ = 0, ball_loads_seq_ = 0, health_seq_ = 0;
   ros::ServiceServer inject_srv_, clear_srv_;
   ros::Subscriber load_sub_, speed_sub_;
   std::unique_ptr<NodeDiagnostics> diagnostics_;
