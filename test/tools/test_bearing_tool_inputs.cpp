@@ -66,7 +66,7 @@ class ToolInputTest : public ::testing::Test {
 TEST_F(ToolInputTest, FilesThatAreNoRegularFilesAreRefusedNamingThem) {
   // /dev/zero used to be read until memory ran out; a directory gave "empty file" or
   // "basic_filebuf::underflow" with exit 1.
-  for (const std::string path : {std::string("/dev/zero"), dir_, dir_ + "/missing.yaml"}) {
+  for (const std::string& path : {std::string("/dev/zero"), dir_, dir_ + "/missing.yaml"}) {
     expect_refused("static --bearing '" + path + "'", {path});
     expect_refused("frequencies --bearing '" + path + "' --outer-rpm 10", {path});
     expect_refused("sweep --definition '" + path + "' --csv '" + dir_ + "/out.csv'", {path});
