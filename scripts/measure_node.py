@@ -59,6 +59,14 @@ def main():
     pid = node_pid(node_name)
     if pid is None:
         sys.exit('cannot find the pid of %s' % node_name)
+    try:  # nodelets (ct_gantry.launch's default): the simulation runs in the manager's process
+        manager_pid = node_pid(args.ns.rstrip('/') + '/bearing_nodelet_manager')
+    except Exception:
+        manager_pid = None
+    label = node_name
+    if manager_pid:
+        pid = manager_pid
+        label += ' (nodelet in bearing_nodelet_manager: CPU of the manager, display and LCM bridge included)'
 
     lock = threading.Lock()
     arrivals = []  # (wall arrival, sim time of last sample, first_sample, n, rate)
@@ -104,7 +112,7 @@ def main():
     last_second = [w - s for (w, s, _, _, _) in run if w >= run[-1][0] - 1.0]
     samples = run[-1][2] + run[-1][3] - run[0][2]
     print('node %s (pid %d), %.1f s measured, %d chunks, %d samples (%.1f per wall second)' % (
-        node_name, pid, t1 - t0, len(run), samples, samples / (run[-1][0] - run[0][0] + run[0][3] / run[0][4])))
+        label, pid, t1 - t0, len(run), samples, samples / (run[-1][0] - run[0][0] + run[0][3] / run[0][4])))
     print('CPU: %.1f %% of one core' % (100.0 * (cpu1 - cpu0) / (t1 - t0)))
     print('chunk lag at arrival (ms): p50 %.3f  p99 %.3f  max %.3f' % (
         1e3 * percentile(lags, 0.5), 1e3 * percentile(lags, 0.99), 1e3 * max(lags)))

@@ -14,9 +14,11 @@ build/devel/setup.bash, or the install space's setup.bash). Figures:
     lag p50/p99/max at publication, from its /diagnostics;
   - lag at arrival here: arrival wall time minus the time of a chunk's last sample,
     p50/p99/max over the whole run (includes ROS transport and this script's scheduling);
-  - CPU of every process of the launch (% of one core over the run, after a warm-up);
-  - resident memory (RSS) of the simulation node at the start and at the end, and its
-    largest value: a leak shows as growth.
+  - CPU of every process of the launch (roslaunch and all it started: master, rosout, nodes,
+    the nodelet manager and its loaders) and of the whole launch, % of one core over the run,
+    after a warm-up;
+  - resident memory (RSS) of the simulation's process (the nodelet manager when the launch
+    runs nodelets) at the start and at the end, and its largest value: a leak shows as growth.
 The machine's CPU and load average are printed with the figures. Exit status 0 when the run
 completed (whatever the figures); 1 when the launch failed or nothing was received.
 """
@@ -38,6 +40,35 @@ from bearing_sim.msg import VibrationChunk
 from measure_node import cpu_seconds, node_pid, percentile
 
 LAUNCH_NODES = ['/bearing/bearing_sim_node', '/bearing/bearing_viz', '/bearing/recorder']
+MANAGER = '/bearing/bearing_nodelet_manager'
+
+
+def launch_processes(root_pid):
+    """pid -> name of root_pid and every process below it (roslaunch starts each node in a
+    session of its own: the parent links, not the session, hold the launch together)."""
+    children, names = {}, {}
+    for d in os.listdir('/proc'):
+        if not d.isdigit():
+            continue
+        try:
+            with open('/proc/%s/stat' % d) as f:
+                stat = f.read()
+            with open('/proc/%s/cmdline' % d, 'rb') as f:
+                argv = f.read().decode(errors='replace').split('\0')
+        except OSError:
+            continue
+        pid = int(d)
+        ppid = int(stat.rsplit(')', 1)[1].split()[1])
+        children.setdefault(ppid, []).append(pid)
+        ros_name = [a[len('__name:='):] for a in argv if a.startswith('__name:=')]
+        names[pid] = ros_name[0] if ros_name else stat[stat.index('(') + 1:stat.rindex(')')]
+    found, todo = {}, [root_pid]
+    while todo:
+        pid = todo.pop()
+        if pid in names:
+            found[pid] = names[pid]
+        todo.extend(children.get(pid, []))
+    return found
 
 
 def rss_mib(pid):
@@ -140,10 +171,15 @@ def main():
         listener = Listener('/bearing', node)
         for name in LAUNCH_NODES[1:]:
             pids[name] = wait_for_pid(name, 30.0)
+        try:  # nodelets: the simulation runs in the manager, its node name is the loader's
+            sim_pid = node_pid(MANAGER) or pids[node]
+        except Exception:
+            sim_pid = pids[node]
         time.sleep(args.warmup)
 
-        cpu0 = {n: cpu_seconds(p) for n, p in pids.items() if p}
-        rss_start = rss_mib(pids[node])
+        procs = launch_processes(launch.pid)
+        cpu0 = {p: cpu_seconds(p) for p in procs}
+        rss_start = rss_mib(sim_pid)
         rss_max = rss_start
         with listener.lock:
             listener.recording = True
@@ -154,18 +190,23 @@ def main():
             if launch.poll() is not None:
                 sys.exit('the launch ended early (exit %s): %s' % (launch.returncode, launch.stderr.read().decode()[-2000:]))
             time.sleep(1.0)
-            rss_max = max(rss_max, rss_mib(pids[node]))
+            rss_max = max(rss_max, rss_mib(sim_pid))
             if time.time() >= next_print:
                 next_print += 60.0
                 with listener.lock:
                     print('%6.0f s: %d chunks, gaps %d, repeats %d, overruns %s, RSS %.1f MiB' % (
                         time.time() - t0, listener.chunks, listener.gaps, listener.repeats,
-                        int(listener.diag.get('overruns', 0)) - overruns_before, rss_mib(pids[node])), flush=True)
+                        int(listener.diag.get('overruns', 0)) - overruns_before, rss_mib(sim_pid)), flush=True)
         t1 = time.time()
         with listener.lock:
             listener.recording = False
-        cpu1 = {n: cpu_seconds(p) for n, p in pids.items() if p}
-        rss_end = rss_mib(pids[node])
+        cpu1 = {}
+        for p in cpu0:
+            try:
+                cpu1[p] = cpu_seconds(p)
+            except OSError:  # ended during the run
+                pass
+        rss_end = rss_mib(sim_pid)
         time.sleep(2.5)  # the node's next diagnostics, with the whole run counted
         with listener.lock:
             if not listener.chunks:
@@ -194,7 +235,10 @@ def main():
                 'simd_target': listener.diag.get('SIMD target'),
                 'arrival_lag_ms': {'p50': 1e3 * percentile(lags, 0.5), 'p99': 1e3 * percentile(lags, 0.99),
                                    'max': 1e3 * lags[-1]},
-                'cpu_percent_of_one_core': {n: 100.0 * (cpu1[n] - cpu0[n]) / (t1 - t0) for n in cpu1},
+                'cpu_percent_of_one_core': {'%s (pid %d)' % (procs[p], p): 100.0 * (cpu1[p] - cpu0[p]) / (t1 - t0)
+                                            for p in sorted(cpu1)},
+                'cpu_percent_whole_launch': 100.0 * sum(cpu1[p] - cpu0[p] for p in cpu1) / (t1 - t0),
+                'nodelets': sim_pid != pids[node],
                 'node_rss_mib': {'start': rss_start, 'end': rss_end, 'max': rss_max},
             }
     finally:
@@ -222,7 +266,9 @@ def main():
         r['arrival_lag_ms']['p50'], r['arrival_lag_ms']['p99'], r['arrival_lag_ms']['max']))
     for n, c in r['cpu_percent_of_one_core'].items():
         print('  CPU %s: %.1f %% of one core' % (n, c))
-    print('  RSS of the node (MiB): start %.1f, end %.1f, max %.1f' % (
+    print('  CPU of the whole launch (%s): %.1f %% of one core' % (
+        'nodelets in one manager' if r['nodelets'] else 'standalone nodes', r['cpu_percent_whole_launch']))
+    print('  RSS of the simulation\'s process (MiB): start %.1f, end %.1f, max %.1f' % (
         r['node_rss_mib']['start'], r['node_rss_mib']['end'], r['node_rss_mib']['max']))
     if args.json:
         with open(args.json, 'w') as f:

@@ -128,12 +128,7 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
 }
 
 BearingConfig bearing_config_from_string(const std::string& yaml_text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError(source + ": malformed YAML: " + e.what());
-  }
+  const YAML::Node root = detail::load_yaml(yaml_text, source);
   return parse_bearing_config(root, source);
 }
 

@@ -183,7 +183,7 @@ void BearingModel::set_deflection_offsets(const std::vector<double>& offsets_m) 
   stamp_ = next_stamp();
 }
 
-// The loops below share this kinematics (MODEL.md section 2); it is written once and
+// The loops below share this kinematics (docs/model.md section 5); it is written once and
 // inlined so that the force loop vectorizes.
 namespace {
 struct Kinematics {

@@ -1,7 +1,7 @@
 #pragma once
 // The per-ball contact force loop of BearingModel::contact_force (internal to the core):
 // the force and the moments on the ring follow from seven sums over the balls
-// (MODEL.md section 2).
+// (docs/model.md section 5.4).
 // One Google Highway kernel compiled for every SIMD target of the architecture (SSE4, AVX2,
 // AVX-512, ...) and picked at run time for the CPU, so that a portable binary package runs
 // the widest vectors the machine has; and a plain scalar loop, the reference it is tested

@@ -64,7 +64,10 @@ ModalResult solve_modes(const RigidBody& body, const std::vector<BushingSupport>
   }
 
   Eigen::GeneralizedSelfAdjointEigenSolver<Matrix6> solver(result.stiffness, result.mass);
-  if (solver.info() != Eigen::Success) throw InvalidInputError("modal analysis: eigen solver failed");
+  if (solver.info() != Eigen::Success || !solver.eigenvalues().allFinite())
+    throw InvalidInputError(
+        "modal analysis: the eigenvalues K/m are not a finite number: the mass and inertia must be "
+        "positive and large enough for the stiffness (a mass of 5e-324 kg overflows every K/m)");
   const Vector6 lambda = solver.eigenvalues();
   const double lambda_max = std::max(lambda.cwiseAbs().maxCoeff(), 1e-300);
   for (int i = 0; i < 6; ++i) {

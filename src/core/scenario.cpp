@@ -111,12 +111,7 @@ Scenario Scenario::load(const std::string& path) {
 }
 
 Scenario Scenario::from_string(const std::string& yaml, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError(source + ": malformed YAML: " + e.what());
-  }
+  const YAML::Node root = detail::load_yaml(yaml, source);
   if (!root.IsMap()) throw ConfigError(source + ": expected a mapping at the top level");
   Scenario sc;
   sc.source_ = source;

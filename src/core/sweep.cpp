@@ -14,6 +14,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "bearing_sim/core/errors.hpp"
+#include "yaml_reader.hpp"
 
 namespace bearing_sim {
 namespace {
@@ -81,7 +82,8 @@ std::string known_parameters() {
 void check_keys(const YAML::Node& map, const std::string& source, const std::string& prefix,
                 const std::vector<std::string>& known) {
   for (const auto& kv : map) {
-    const std::string k = kv.first.as<std::string>();
+    if (!kv.first.IsScalar()) fail(source, prefix + "?", "a key must be a plain name, not a list or mapping");
+    const std::string k = kv.first.Scalar();
     if (std::find(known.begin(), known.end(), k) == known.end()) {
       std::string list;
       for (const auto& n : known) list += (list.empty() ? "" : ", ") + n;
@@ -231,13 +233,15 @@ const std::vector<SweepParameterInfo>& sweep_parameters() {
 SweepDefinition load_sweep_definition(const std::string& path) {
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw InvalidInputError("sweep definition " + path + ": cannot open the file");
-  } catch (const YAML::Exception& e) {
-    throw InvalidInputError("sweep definition " + path + ": YAML error: " + e.what());
+    root = detail::load_yaml(detail::read_config_file(path, "sweep definition"), path);
+  } catch (const ConfigError& e) {  // not a readable regular file, malformed, a key twice
+    throw InvalidInputError(std::string("sweep definition ") + e.what());
   }
-  return parse_sweep_definition(root, path, dirname_of(path));
+  try {
+    return parse_sweep_definition(root, path, dirname_of(path));
+  } catch (const YAML::Exception& e) {  // a mapping where a name or number belongs, ...
+    throw InvalidInputError("sweep definition " + path + ": a value of the wrong type: " + e.what());
+  }
 }
 
 SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string& source,
@@ -254,9 +258,9 @@ SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string
   const std::string b = root["bearing"].as<std::string>();
   d.bearing_path = (!b.empty() && b[0] == '/') ? b : base_dir + "/" + b;
   try {
-    d.bearing = YAML::LoadFile(d.bearing_path);
-  } catch (const YAML::Exception& e) {
-    fail(source, "bearing", "cannot read '" + d.bearing_path + "': " + e.what());
+    d.bearing = detail::load_yaml(detail::read_config_file(d.bearing_path, "bearing file"), d.bearing_path);
+  } catch (const ConfigError& e) {
+    fail(source, "bearing", std::string("cannot read the base bearing file: ") + e.what());
   }
   // The base file must be valid on its own.
   try {

@@ -108,12 +108,7 @@ AccelerometerConfig parse_accelerometer_config(const YAML::Node& sensor, const s
 }
 
 AccelerometerConfig accelerometer_config_from_string(const std::string& yaml, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError(source + ": malformed YAML: " + e.what());
-  }
+  const YAML::Node root = detail::load_yaml(yaml, source);
   if (!root || !root.IsMap()) throw ConfigError(source + ": expected a mapping with the key 'sensor'");
   detail::Reader top(root, source, "");
   top.check_keys({"sensor"});

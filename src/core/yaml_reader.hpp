@@ -1,13 +1,18 @@
 #pragma once
-// Strict reading of one YAML mapping of a bearing file: every error names the file
-// (source) and the key. Internal to the core library.
+// Strict reading of the package's YAML files (bearing, sensor, scenario, sweep): the text of
+// a sane file, parsed with keys written twice refused, and one mapping read key by key. Every
+// error names the file (source) and the key. Internal to the core library.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
+#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/mark.h>
 #include <yaml-cpp/yaml.h>
 
 #include "bearing_sim/core/errors.hpp"
@@ -20,8 +25,10 @@ namespace detail {
 inline std::string read_config_file(const std::string& path, const std::string& what) {
   constexpr std::uintmax_t kMaxBytes = 1u << 20;
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw ConfigError(path + ": cannot open " + what + " (not a regular file)");
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    const bool exists = std::filesystem::exists(path, ec);
+    throw ConfigError(path + ": cannot open " + what + (exists ? " (not a regular file)" : " (no such file)"));
+  }
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec || size > kMaxBytes)
     throw ConfigError(path + ": " + what + " larger than 1 MiB (or unreadable), refused");
@@ -30,6 +37,111 @@ inline std::string read_config_file(const std::string& path, const std::string& 
   std::stringstream buffer;
   buffer << in.rdbuf();
   return buffer.str();
+}
+
+// Finds a key written twice in one mapping. yaml-cpp's Node API silently keeps the first
+// (a stray `balls_per_row: 10` above the real one would win), so the text is first walked
+// with the event parser, which still sees both and where they are.
+class DuplicateKeyFinder : public YAML::EventHandler {
+ public:
+  explicit DuplicateKeyFinder(std::string source) : source_(std::move(source)) {}
+
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& mark, YAML::anchor_t) override { node("~", mark); }
+  void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override { node("*alias", mark); }
+  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t, const std::string& value) override {
+    node(value, mark);
+  }
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    open(false);
+  }
+  void OnSequenceEnd() override { close(); }
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    open(true);
+  }
+  void OnMapEnd() override { close(); }
+
+ private:
+  struct Level {
+    bool is_map = false;
+    bool at_key = true;                  // map: the next node is a key
+    bool is_key = false;                 // this collection is itself a mapping key
+    std::string key;                     // map: the current key; sequence: the current index
+    std::size_t index = 0;               // sequence: entries so far
+    std::map<std::string, int> lines;    // map: key -> line (1-based) of its first occurrence
+  };
+
+  std::string path() const {
+    std::string p;
+    for (const Level& l : stack_) {
+      if (l.is_map) {
+        if (!l.at_key) p += (p.empty() ? "" : ".") + l.key;
+      } else {
+        p += "[" + l.key + "]";
+      }
+    }
+    return p;
+  }
+
+  // A scalar, null or alias at the current level.
+  void node(const std::string& scalar, const YAML::Mark& mark) {
+    if (stack_.empty()) return;
+    Level& top = stack_.back();
+    if (!top.is_map) {
+      top.key = std::to_string(++top.index);  // index of the next entry
+      return;
+    }
+    if (!top.at_key) {
+      top.at_key = true;
+      return;
+    }
+    top.at_key = false;
+    top.key = scalar;
+    const int line = mark.line + 1;
+    const auto [it, inserted] = top.lines.emplace(scalar, line);
+    if (!inserted)
+      throw ConfigError(source_ + ": key '" + path() + "' appears twice (lines " + std::to_string(it->second) +
+                        " and " + std::to_string(line) + "); remove one");
+  }
+
+  void open(bool is_map) {
+    Level l;
+    l.is_map = is_map;
+    l.key = "0";
+    if (!stack_.empty() && stack_.back().is_map && stack_.back().at_key) {
+      // A collection used as a key (nothing the loaders read): its value follows.
+      l.is_key = true;
+      stack_.back().key = "<complex key>";
+    }
+    stack_.push_back(std::move(l));
+  }
+
+  void close() {
+    const bool was_key = stack_.back().is_key;
+    stack_.pop_back();
+    if (stack_.empty()) return;
+    Level& top = stack_.back();
+    if (!top.is_map) top.key = std::to_string(++top.index);
+    else top.at_key = !was_key;
+  }
+
+  std::string source_;
+  std::vector<Level> stack_;
+};
+
+// The first document of a YAML text; a malformed text or a key written twice in one mapping
+// is a ConfigError naming `source` (and the key and both lines).
+inline YAML::Node load_yaml(const std::string& text, const std::string& source) {
+  try {
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    DuplicateKeyFinder finder(source);
+    parser.HandleNextDocument(finder);
+    return YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(source + ": malformed YAML: " + e.what());
+  }
 }
 
 class Reader {
@@ -43,7 +155,8 @@ class Reader {
 
   void check_keys(const std::set<std::string>& known) const {
     for (const auto& kv : map_) {
-      const std::string key = kv.first.as<std::string>();
+      if (!kv.first.IsScalar()) fail("?", "a key must be a plain name, not a list or mapping");
+      const std::string key = kv.first.Scalar();
       if (!known.count(key)) {
         std::string list;
         for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;

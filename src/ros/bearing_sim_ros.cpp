@@ -13,6 +13,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include <boost/make_shared.hpp>
 #include <rosgraph_msgs/Clock.h>
 
 #include "bearing_sim/BallLoads.h"
@@ -26,18 +27,13 @@
 #include "bearing_sim/core/simd_info.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
 #include "bearing_sim/ros/message_conversion.hpp"
+#include "bearing_sim/ros/private_parameters.hpp"
 #include "bearing_sim/ros/realtime_pacer.hpp"
+#include "bearing_sim/ros/sim_node_parameters.hpp"
 
 namespace bearing_sim {
 namespace ros_node {
 namespace {
-
-template <typename T>
-T param(const ros::NodeHandle& pnh, const std::string& name, const T& fallback) {
-  T value;
-  pnh.param(name, value, fallback);
-  return value;
-}
 
 std::string fmt(double v, int decimals) {
   char buf[64];
@@ -73,50 +69,46 @@ std::string raise_process_threads_to_fifo() {
 
 }  // namespace
 
-BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {
-  const std::string bearing_file = param<std::string>(pnh_, "bearing_file", "");
-  if (bearing_file.empty()) throw std::runtime_error("parameter ~bearing_file is not set");
+BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScope thread_scope)
+    : nh_(nh), pnh_(pnh), thread_scope_(thread_scope) {
+  // Every parameter checked before anything starts: a bad one stops the node, naming it.
+  const SimNodeParameters params = read_sim_node_parameters(private_parameters(pnh_), pnh_.getNamespace());
+  const std::string& bearing_file = params.bearing_file;
   BearingModel model(load_bearing_config(bearing_file));
   if (!model.config().has_dynamics())
     throw std::runtime_error("bearing file " + bearing_file + " has no rotating_mass_kg: no dynamics possible");
 
-  sample_rate_hz_ = param(pnh_, "sample_rate_hz", 10000.0);
-  const double load_ramp_s = param(pnh_, "load_ramp_s", 0.0);
-  if (!(load_ramp_s >= 0.0) || load_ramp_s > 1.0) throw std::runtime_error("~load_ramp_s must be in [0, 1] s");
-  load_ramp_ = LoadRamp(static_cast<std::uint64_t>(std::llround(load_ramp_s * sample_rate_hz_)));
-  const int substeps = param(pnh_, "substeps", 0);
-  const std::string integrator = param<std::string>(pnh_, "integrator", "etdrk4");
-  if (integrator != "etdrk4" && integrator != "rk4") throw std::runtime_error("~integrator must be etdrk4 or rk4");
-  const IntegrationMethod method = integrator == "rk4" ? IntegrationMethod::Rk4 : IntegrationMethod::ExponentialRk4;
-  real_time_ = param(pnh_, "real_time", true);
-  publish_clock_ = param(pnh_, "publish_clock", !real_time_);
-  realtime_priority_ = param(pnh_, "realtime_priority", 0);
-  lock_memory_ = param(pnh_, "lock_memory", true);
-  const double lead_ms = param(pnh_, "lead_ms", 30.0);
-  if (!(lead_ms >= 0.0) || lead_ms > 1000.0) throw std::runtime_error("~lead_ms must be in [0, 1000] ms");
-  lead_s_ = lead_ms * 1e-3;
+  sample_rate_hz_ = params.sample_rate_hz;
+  load_ramp_ = LoadRamp(static_cast<std::uint64_t>(std::llround(params.load_ramp_s * sample_rate_hz_)));
+  const int substeps = params.substeps;
+  const IntegrationMethod method = params.integrator;
+  real_time_ = params.real_time;
+  publish_clock_ = params.publish_clock;
+  realtime_priority_ = params.realtime_priority;
+  lock_memory_ = params.lock_memory;
+  lead_s_ = params.lead_s;
   const bool outer = model.config().rotating_ring == RotatingRing::Outer;
-  frame_id_ = param<std::string>(pnh_, "frame_id", outer ? "bearing_outer_ring" : "bearing_inner_ring");
-  bearing_frame_id_ = param<std::string>(pnh_, "bearing_frame_id", "bearing");
-  limits_.max_force_N = param(pnh_, "max_force_N", limits_.max_force_N);
-  limits_.max_moment_Nm = param(pnh_, "max_moment_Nm", limits_.max_moment_Nm);
-  limits_.max_speed_rad_s = param(pnh_, "max_speed_rad_s", limits_.max_speed_rad_s);
+  frame_id_ = params.frame_id.value_or(outer ? "bearing_outer_ring" : "bearing_inner_ring");
+  bearing_frame_id_ = params.bearing_frame_id;
+  limits_ = params.limits;
   DiagnosticsSettings diag;
   diag.real_time = real_time_;
-  diag.max_lag_s = param(pnh_, "max_lag_s", diag.max_lag_s);
-  diag.hold_s = param(pnh_, "diagnostic_hold_s", diag.hold_s);
-  const double diagnostic_period_s = param(pnh_, "diagnostic_period_s", 1.0);
+  diag.max_lag_s = params.max_lag_s;
+  diag.hold_s = params.diagnostic_hold_s;
+  const double diagnostic_period_s = params.diagnostic_period_s;
 
-  Vector5 load;
-  load << param(pnh_, "initial_force_x_N", 0.0), param(pnh_, "initial_force_y_N", 0.0),
-      param(pnh_, "initial_force_z_N", 0.0), param(pnh_, "initial_moment_x_Nm", 0.0),
-      param(pnh_, "initial_moment_y_Nm", 0.0);
-  const double speed = param(pnh_, "initial_speed_rad_s", 0.0);
+  const Vector5 load = params.initial_load;
+  const double speed = params.initial_speed_rad_s;
   // The initial inputs obey the same rules as the topics, but a bad one stops the node.
   const InputCheck load_check = check_load(load, limits_, &model);
   if (!load_check.accepted) throw std::runtime_error("initial load: " + load_check.reason);
   const InputCheck speed_check = check_speed(speed, limits_);
   if (!speed_check.accepted) throw std::runtime_error("initial speed: " + speed_check.reason);
+  // A bearing value that makes a mode no bearing has would stall the automatic step.
+  if (substeps == 0) {
+    const InputCheck work_check = check_integrator_work(model, load);
+    if (!work_check.accepted) throw std::runtime_error("bearing file " + bearing_file + ": " + work_check.reason);
+  }
   accepted_load_ = load;
   accepted_speed_rad_s_ = speed;
   accepted_max_pressure_Pa_ = load_check.max_contact_pressure_Pa;
@@ -126,7 +118,7 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh),
   substeps_ = dynamics.substeps();
 
   // Virtual sensor: `vibration` carries what it records, at its output rate.
-  const std::string sensor_file = param<std::string>(pnh_, "sensor_file", "");
+  const std::string& sensor_file = params.sensor_file;
   std::unique_ptr<TriaxialSensor> sensor;
   measured_rate_hz_ = sample_rate_hz_;
   sensor_description_ = "ideal ring acceleration";
@@ -156,17 +148,14 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh),
   // Health: analysed on a worker thread (HealthMonitor), never in the simulation thread.
   HealthSettings health;
   health.sample_rate_hz = measured_rate_hz_;
-  health.window_s = param(pnh_, "health_window_s", health.window_s);
-  health.life.dynamic_load_rating_N = param(pnh_, "dynamic_load_rating_N", 0.0);
+  health.window_s = params.health_window_s;
+  health.life.dynamic_load_rating_N = params.dynamic_load_rating_N;
   // Envelope band around the sensor's transmission-path resonance, where impacts ring.
   const double default_resonance_hz = sensor ? sensor->config().path_resonance_hz : 0.0;
-  health.analysis.resonance_hz = param(pnh_, "envelope_resonance_hz", default_resonance_hz);
-  health.analysis.envelope_band_width_hz =
-      param(pnh_, "envelope_band_width_hz", health.analysis.envelope_band_width_hz);
-  health.analysis.thresholds.fault_snr_db = param(pnh_, "fault_snr_db", health.analysis.thresholds.fault_snr_db);
-  const double health_rate_hz = param(pnh_, "health_rate_hz", 1.0);
-  if (!(health_rate_hz > 0.0) || health_rate_hz > 100.0)
-    throw std::runtime_error("~health_rate_hz must be in (0, 100]");
+  health.analysis.resonance_hz = params.envelope_resonance_hz.value_or(default_resonance_hz);
+  health.analysis.envelope_band_width_hz = params.envelope_band_width_hz;
+  health.analysis.thresholds.fault_snr_db = params.fault_snr_db;
+  const double health_rate_hz = params.health_rate_hz;
   health_ = std::make_unique<HealthMonitor>(model, load, speed, health,
                                             [this](const HealthReport& r) { publish_health(r); });
   pipeline_ = std::make_unique<SamplePipeline>(std::move(dynamics), std::move(sensor), OutputSettings{}, health_rate_hz);
@@ -175,15 +164,17 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh),
                                            [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
 
   // dynamic_reconfigure: clearance and damping start from the bearing file unless the
-  // parameters were set explicitly (the server would otherwise impose the cfg defaults).
-  const bool clearance_given = pnh_.hasParam("clearance_um");
-  const bool damping_given = pnh_.hasParam("contact_damping_Ns_per_m");
+  // parameters were set explicitly (the server would otherwise impose the cfg defaults);
+  // the other settings from the parameters, else the cfg defaults.
   reconfigure_server_ =
       std::make_unique<dynamic_reconfigure::Server<BearingSimConfig>>(reconfigure_mutex_, pnh_);
-  BearingSimConfig initial;
-  initial.__fromServer__(pnh_);
-  if (!clearance_given) initial.clearance_um = model.config().clearance_m * 1e6;
-  if (!damping_given) initial.contact_damping_Ns_per_m = model.config().contact_damping_Ns_per_m;
+  BearingSimConfig initial = BearingSimConfig::__getDefault__();
+  initial.clearance_um = params.clearance_um.value_or(model.config().clearance_m * 1e6);
+  initial.contact_damping_Ns_per_m = params.contact_damping_Ns_per_m.value_or(model.config().contact_damping_Ns_per_m);
+  if (params.chunk_samples) initial.chunk_samples = *params.chunk_samples;
+  if (params.level_window_s) initial.level_window_s = *params.level_window_s;
+  if (params.level_rate_hz) initial.level_rate_hz = *params.level_rate_hz;
+  if (params.ball_loads_rate_hz) initial.ball_loads_rate_hz = *params.ball_loads_rate_hz;
   reconfigure_server_->updateConfig(initial);
   reconfigure_server_->setCallback(
       [this](BearingSimConfig& config, std::uint32_t level) { on_reconfigure(config, level); });
@@ -205,9 +196,11 @@ void BearingSimRos::start() {
   if (sim_thread_.joinable()) return;
   stop_ = false;
   lock_memory();
-  if (real_time_ && realtime_priority_ > 1)
+  // Its own process: every thread of it at SCHED_FIFO 1. A guest in a nodelet manager: the
+  // manager's and the other nodelets' threads are not the node's to change (docs/node.md).
+  if (real_time_ && realtime_priority_ > 1 && thread_scope_ == ThreadScope::Process)
     diagnostics_->set_realtime_value("other threads scheduling", raise_process_threads_to_fifo());
-  health_->start();
+  start_health_worker();
   // Real time: stamps on the ROS clock, sample 0 at start. Otherwise simulated time itself
   // is the clock (published on /clock).
   wall_start_ = RealtimePacer::Clock::now();
@@ -222,6 +215,26 @@ void BearingSimRos::start() {
     publisher_thread_ = std::thread([this] { run_publisher(); });
   }
   sim_thread_ = std::thread([this] { run(); });
+}
+
+void BearingSimRos::start_health_worker() {
+  if (thread_scope_ == ThreadScope::Process || !real_time_ || realtime_priority_ <= 1) {
+    health_->start();  // in its own process at the scheduling just given to every thread
+    return;
+  }
+  // A new thread inherits its creator's scheduling: the worker is created by a short-lived
+  // thread at SCHED_FIFO 1, so that no thread of the manager changes.
+  std::string scheduling;
+  std::thread([this, &scheduling] {
+    sched_param p{};
+    p.sched_priority = 1;
+    const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p);
+    scheduling = err == 0 ? "health worker SCHED_FIFO priority 1; nodelet manager's threads unchanged"
+                          : std::string("normal (SCHED_FIFO refused for the health worker: ") + std::strerror(err) +
+                                "); nodelet manager's threads unchanged";
+    health_->start();
+  }).join();
+  diagnostics_->set_realtime_value("other threads scheduling", scheduling);
 }
 
 void BearingSimRos::stop() {
@@ -346,7 +359,11 @@ void BearingSimRos::on_reconfigure(BearingSimConfig& config, std::uint32_t /*lev
       // The spalls present now, not only those of the file (the sim thread re-times them).
       model.clear_spalls();
       for (const Spall& sp : validation_model_->imperfections().spalls()) model.add_spall(sp);
-      const InputCheck check = check_load(accepted_load_, limits_, &model);
+      InputCheck check = check_load(accepted_load_, limits_, &model);
+      if (check.accepted) {
+        const InputCheck work = check_integrator_work(model, accepted_load_);  // would stall the step
+        if (!work.accepted) check = work;
+      }
       if (check.accepted) {
         accepted_max_pressure_Pa_ = check.max_contact_pressure_Pa;
         new_model = std::move(model);
@@ -442,13 +459,16 @@ ros::Time BearingSimRos::stamp_of(std::uint64_t sample_index) const {
 }
 
 void BearingSimRos::level(const SampleSource::Sample& sample, double accel_rms, double window_s) {
-  VibrationLevel msg;
-  msg.header.stamp = stamp_of(sample.index);
-  msg.header.frame_id = frame_id_;
-  msg.accel_rms = accel_rms;
-  msg.level_db = vibration_level_db(accel_rms);
-  msg.window_s = window_s;
-  bundle_->actions.emplace_back([this, msg] { level_pub_.publish(msg); });
+  auto msg = boost::make_shared<VibrationLevel>();
+  msg->header.stamp = stamp_of(sample.index);
+  msg->header.frame_id = frame_id_;
+  msg->accel_rms = accel_rms;
+  msg->level_db = vibration_level_db(accel_rms);
+  msg->window_s = window_s;
+  bundle_->actions.emplace_back([this, msg] {
+    msg->header.seq = level_seq_++;
+    level_pub_.publish(msg);
+  });
 }
 
 bool BearingSimRos::wants_ball_loads() const {
@@ -456,31 +476,38 @@ bool BearingSimRos::wants_ball_loads() const {
 }
 
 void BearingSimRos::ball_loads(const SampleSource::Sample& sample, const BearingModel& model) {
-  BallLoads msg;
-  msg.header.stamp = stamp_of(sample.index);
-  msg.header.frame_id = bearing_frame_id_;
+  auto msg = boost::make_shared<BallLoads>();
+  msg->header.stamp = stamp_of(sample.index);
+  msg->header.frame_id = bearing_frame_id_;
   fill_ball_loads(model.ball_states(sample.state->displacement, sample.state->cage_angle_rad), model.rows(),
-                  model.balls_per_row(), sample.state->cage_angle_rad, &msg);
-  bundle_->actions.emplace_back([this, msg = std::move(msg)] { ball_loads_pub_.publish(msg); });
+                  model.balls_per_row(), sample.state->cage_angle_rad, msg.get());
+  bundle_->actions.emplace_back([this, msg] {
+    msg->header.seq = ball_loads_seq_++;
+    ball_loads_pub_.publish(msg);
+  });
 }
 
 void BearingSimRos::measured_chunk(SampleChunk&& chunk) {
   // Sensor sample k is the output at dynamics sample (k + 1) R - 1 (docs/sensor.md).
   const std::uint64_t r = static_cast<std::uint64_t>(pipeline_->sensor()->decimation_ratio());
   const ros::Time first_stamp = stamp_of((chunk.first_sample + 1) * r - 1);
-  VibrationChunk msg;
-  fill_vibration_chunk(std::move(chunk), first_stamp, frame_id_, measured_rate_hz_, &msg);
-  bundle_->actions.emplace_back([this, msg = std::move(msg)] { vibration_pub_.publish(msg); });
+  auto msg = boost::make_shared<VibrationChunk>();
+  fill_vibration_chunk(std::move(chunk), first_stamp, frame_id_, measured_rate_hz_, msg.get());
+  bundle_->actions.emplace_back([this, msg] {
+    msg->header.seq = vibration_seq_++;
+    vibration_pub_.publish(msg);
+  });
 }
 
 void BearingSimRos::ideal_chunk(SampleChunk&& chunk) {
   bundle_->samples = chunk.size();
   bundle_->last_index = chunk.first_sample + chunk.size() - 1;
   const ros::Time first_stamp = stamp_of(chunk.first_sample);
-  VibrationChunk msg;
-  fill_vibration_chunk(std::move(chunk), first_stamp, frame_id_, sample_rate_hz_, &msg);
+  auto msg = boost::make_shared<VibrationChunk>();
+  fill_vibration_chunk(std::move(chunk), first_stamp, frame_id_, sample_rate_hz_, msg.get());
   const bool ideal_is_vibration = pipeline_->sensor() == nullptr;
-  bundle_->actions.emplace_back([this, msg = std::move(msg), ideal_is_vibration] {
+  bundle_->actions.emplace_back([this, msg, ideal_is_vibration] {
+    msg->header.seq = ideal_seq_++;  // both topics publish every ideal chunk then: the same count
     if (ideal_is_vibration) vibration_pub_.publish(msg);  // without a sensor `vibration` is the ideal acceleration
     ideal_pub_.publish(msg);
   });
@@ -501,8 +528,8 @@ void BearingSimRos::chunk_end(std::uint64_t last_index, std::size_t samples, con
     health_->add_operation(load, ring_speed_rad_s, chunk_s);  // Miner damage for the chunk's inputs
   });
   if (publish_clock_) {
-    rosgraph_msgs::Clock clock;
-    clock.clock = stamp_of(last_index);
+    auto clock = boost::make_shared<rosgraph_msgs::Clock>();
+    clock->clock = stamp_of(last_index);
     bundle_->actions.emplace_back([this, clock] { clock_pub_.publish(clock); });
   }
 }
@@ -513,11 +540,13 @@ void BearingSimRos::divergence(const std::string& message) {
 }
 
 void BearingSimRos::publish_health(const HealthReport& report) {
-  BearingHealth msg;
+  const auto shared = boost::make_shared<BearingHealth>();
+  BearingHealth& msg = *shared;
   msg.header.stamp = ros_start_ + ros::Duration(report.end_time_s);
   msg.header.frame_id = frame_id_;
   fill_bearing_health(report, sensor_description_, measured_rate_hz_, &msg);
-  health_pub_.publish(msg);
+  msg.header.seq = health_seq_++;
+  health_pub_.publish(shared);  // not changed after this: read below only
 
   HealthStatus status;
   status.level = msg.level;

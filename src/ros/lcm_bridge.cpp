@@ -6,46 +6,35 @@
 #include "bearing_sim/BearingHealth.h"
 #include "bearing_sim/VibrationChunk.h"
 #include "bearing_sim/VibrationLevel.h"
+#include "bearing_sim/ros/lcm_bridge_parameters.hpp"
 #include "bearing_sim/ros/lcm_conversion.hpp"
+#include "bearing_sim/ros/private_parameters.hpp"
 
 namespace bearing_sim {
 namespace ros_node {
-namespace {
 
-constexpr const char* kDefaultUrl = "udpm://239.255.76.67:7667?ttl=0";
-
-template <typename T>
-T param(const ros::NodeHandle& pnh, const std::string& name, const T& fallback) {
-  T value;
-  pnh.param(name, value, fallback);
-  return value;
-}
-
-}  // namespace
-
-LcmBridge::LcmBridge(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh), updater_(nh, pnh) {
-  const std::string url = param<std::string>(pnh_, "lcm_url", kDefaultUrl);
-  // LCM's file provider only reads unless told to write: every publish would fail.
-  if (url.rfind("file://", 0) == 0 && url.find("mode=w") == std::string::npos)
-    throw std::invalid_argument("~lcm_url '" + url +
-                                "': a file:// URL needs mode=w to write a log, e.g. file:///tmp/run.lcm?mode=w");
-  const double max_queue_mb = param(pnh_, "max_queue_mb", 64.0);
-  if (!(max_queue_mb > 0.0))
-    throw std::invalid_argument("~max_queue_mb must be positive, got " + std::to_string(max_queue_mb));
-  queue_ = std::make_unique<LcmPublishQueue>(url, static_cast<std::size_t>(max_queue_mb * 1e6));
+LcmBridge::LcmBridge(ros::NodeHandle nh, ros::NodeHandle pnh)
+    // Named after the node's own namespace, not the process (the same in a nodelet manager).
+    : nh_(nh), pnh_(pnh), updater_(nh, pnh, pnh.getNamespace()) {
+  // Every parameter checked before LCM opens: a bad one stops the bridge, naming it.
+  const LcmBridgeParameters params = read_lcm_bridge_parameters(private_parameters(pnh_), pnh_.getNamespace());
+  const std::string& url = params.lcm_url;
+  queue_ = std::make_unique<LcmPublishQueue>(url, static_cast<std::size_t>(params.max_queue_mb * 1e6));
 
   // Deep ROS queues (a few seconds of simulated time): with real_time:=false the node runs
   // 20-30x real time, ~3000 chunks and ~800 ball-load messages per wall second, and a
   // shallow queue overflows whenever this process is not scheduled for a moment.
-  add_route<VibrationChunk>("vibration", "BEARING_VIBRATION", true, 10000);
-  add_route<VibrationChunk>("vibration_ideal", "BEARING_VIBRATION_IDEAL", false, 10000);
-  add_route<VibrationLevel>("vibration_level", "BEARING_VIBRATION_LEVEL", true, 1000);
-  add_route<BallLoads>("ball_loads", "BEARING_BALL_LOADS", true, 3000);
-  add_route<BearingHealth>("health", "BEARING_HEALTH", true, 1000);
+  for (const LcmRouteParameters& route : params.routes) {
+    if (!route.enabled) continue;
+    if (route.topic == "vibration" || route.topic == "vibration_ideal") add_route<VibrationChunk>(route, 10000);
+    else if (route.topic == "vibration_level") add_route<VibrationLevel>(route, 1000);
+    else if (route.topic == "ball_loads") add_route<BallLoads>(route, 3000);
+    else if (route.topic == "health") add_route<BearingHealth>(route, 1000);
+  }
 
   updater_.setHardwareID("lcm: " + url);
   updater_.add("LCM", this, &LcmBridge::diagnose);
-  diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(param(pnh_, "diagnostic_period_s", 1.0)),
+  diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(params.diagnostic_period_s),
                                            [this](const ros::WallTimerEvent&) { updater_.force_update(); });
   std::string routes;
   for (const Route& r : routes_) routes += " " + r.subscriber.getTopic() + " -> " + r.channel + ";";
@@ -58,16 +47,14 @@ LcmBridge::~LcmBridge() {
 }
 
 template <class RosMessage>
-void LcmBridge::add_route(const std::string& topic, const std::string& default_channel, bool default_enabled,
-                          std::uint32_t queue_size) {
-  if (!param(pnh_, "bridge_" + topic, default_enabled)) return;
+void LcmBridge::add_route(const LcmRouteParameters& parameters, std::uint32_t queue_size) {
   Route& route = routes_.emplace_back();
-  route.topic = topic;
-  route.channel = param<std::string>(pnh_, topic + "_channel", default_channel);
-  if (route.channel.empty()) throw std::invalid_argument("~" + topic + "_channel is empty");
+  route.topic = parameters.topic;
+  route.channel = parameters.channel;
   Route* r = &route;
+  // A ConstPtr callback: in a nodelet manager the simulation's message itself, not a copy.
   route.subscriber = nh_.subscribe<RosMessage>(
-      topic, queue_size, [this, r](const typename RosMessage::ConstPtr& msg) { forward(r, *msg); },
+      route.topic, queue_size, [this, r](const typename RosMessage::ConstPtr& msg) { forward(r, *msg); },
       ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
 }
 

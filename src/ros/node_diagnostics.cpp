@@ -11,7 +11,9 @@ using diagnostic_msgs::DiagnosticStatus;
 
 NodeDiagnostics::NodeDiagnostics(ros::NodeHandle nh, ros::NodeHandle pnh, const std::string& hardware_id,
                                  const DiagnosticsSettings& settings)
-    : settings_(settings), updater_(nh, pnh), lateness_(6000) {
+    // Named after the node's own namespace, not the process: in a nodelet manager the
+    // statuses stay "<ns>/bearing_sim_node: ...".
+    : settings_(settings), updater_(nh, pnh, pnh.getNamespace()), lateness_(6000) {
   unrecorded_lateness_s_.reserve(1000);  // no allocation in the real-time thread
   updater_.setHardwareID(hardware_id);
   updater_.add("Real time", this, &NodeDiagnostics::realtime_task);

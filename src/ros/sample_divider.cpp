@@ -6,18 +6,31 @@
 
 namespace bearing_sim {
 namespace ros_node {
+namespace {
+constexpr double kMaxPeriodSamples = 9007199254740992.0;  // 2^53
+}  // namespace
 
 SampleDivider::SampleDivider(double output_rate_hz, double sample_rate_hz) {
-  set_rate(output_rate_hz, sample_rate_hz);
+  if (!set_rate(output_rate_hz, sample_rate_hz))
+    throw std::invalid_argument("rates must be finite, positive numbers of Hz");
   next_due_ = period_ - 1;  // first output after one full period (sample period-1 closes it)
 }
 
-void SampleDivider::set_rate(double output_rate_hz, double sample_rate_hz) {
-  if (!(output_rate_hz > 0.0) || !(sample_rate_hz > 0.0) || !std::isfinite(output_rate_hz))
-    throw std::invalid_argument("rates must be positive numbers of Hz");
+bool SampleDivider::valid_rates(double output_rate_hz, double sample_rate_hz) {
+  if (!(output_rate_hz > 0.0) || !(sample_rate_hz > 0.0) || !std::isfinite(output_rate_hz) ||
+      !std::isfinite(sample_rate_hz))
+    return false;
+  const double ratio = sample_rate_hz / output_rate_hz;
+  // An output faster than the samples still fires once per sample (period 1).
+  return std::isfinite(ratio) && ratio <= kMaxPeriodSamples;
+}
+
+bool SampleDivider::set_rate(double output_rate_hz, double sample_rate_hz) noexcept {
+  if (!valid_rates(output_rate_hz, sample_rate_hz)) return false;
   period_ = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(sample_rate_hz / output_rate_hz)));
   if (fired_) next_due_ = last_fired_ + period_;
   else next_due_ = period_ - 1;
+  return true;
 }
 
 bool SampleDivider::due(std::uint64_t sample_index) {

@@ -74,6 +74,10 @@ bool ScenarioPlayer::wait_for_node() {
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(wait_timeout_s_);
   auto remaining = [&] { return std::max(0.0, (deadline - ros::WallTime::now()).toSec()); };
   const std::string node = nh_.resolveName(node_name_);
+  // The process whose subscriptions are the node's: the node, or the nodelet manager it runs in.
+  std::string node_process = node_name_;
+  pnh_.param<std::string>("node_process", node_process, node_process);
+  node_process = nh_.resolveName(node_process);
   for (const char* service : {"inject_defect", "clear_defects"}) {
     if (!ros::service::waitForService(nh_.resolveName(service), ros::Duration(remaining()))) {
       if (ros::ok())
@@ -104,7 +108,7 @@ bool ScenarioPlayer::wait_for_node() {
   // the inputs at t = 0 reach the node; and the recorder, if asked to wait for it.
   auto connected = [&](const ros::Publisher& pub, const std::string& topic) {
     const std::vector<std::string> subs = registered_subscribers(nh_.resolveName(topic));
-    return std::find(subs.begin(), subs.end(), node) != subs.end() && pub.getNumSubscribers() >= subs.size();
+    return std::find(subs.begin(), subs.end(), node_process) != subs.end() && pub.getNumSubscribers() >= subs.size();
   };
   while (ros::ok()) {
     if (connected(speed_pub_, "speed") && connected(load_pub_, "load") &&

@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
     app.exit(e);  // prints the message and a hint to --help on stderr
     return tool::kExitBadInput;
   } catch (const bearing_sim::ConfigError& e) {
-    return fail(tool::kExitBadInput, "bad bearing file", e);
+    return fail(tool::kExitBadInput, "bad configuration file", e);
   } catch (const bearing_sim::LoadNotCarriedError& e) {
     return fail(tool::kExitBadInput, "load not carried", e);
   } catch (const bearing_sim::InvalidInputError& e) {

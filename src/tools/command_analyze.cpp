@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -73,6 +74,11 @@ double parse_cell(const std::string& text, const std::string& path, std::size_t 
 
 // A header line of column names, then one sample per line.
 CsvSignal read_csv(const std::string& path, const std::string& wanted) {
+  // A directory opens but reads as empty; /dev/zero or a FIFO would be read forever.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError("--csv '" + path + "': " +
+                     (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file"));
   std::ifstream in(path);
   if (!in) throw InputError("--csv: cannot open '" + path + "': " + std::strerror(errno));
   std::string line;
@@ -106,7 +112,15 @@ CsvSignal read_csv(const std::string& path, const std::string& wanted) {
       throw InputError("--csv '" + path + "' line " + std::to_string(line_no) + ": " + std::to_string(cells.size()) +
                        " columns, " + std::to_string(needed) + " needed");
     s.values.push_back(parse_cell(cells[value_col], path, line_no, s.column));
-    if (time_col >= 0) time.push_back(parse_cell(cells[time_col], path, line_no, header[time_col]));
+    if (time_col >= 0) {
+      const double t = parse_cell(cells[time_col], path, line_no, header[time_col]);
+      // Samples out of order (or repeated) would give a wrong rate and a garbled spectrum.
+      if (!time.empty() && !(t > time.back()))
+        throw InputError("--csv '" + path + "' line " + std::to_string(line_no) + ", column '" + header[time_col] +
+                         "': time " + general(t, 12) + " does not increase (previous sample " +
+                         general(time.back(), 12) + ")");
+      time.push_back(t);
+    }
   }
   if (time.size() >= 2) {
     const double span = time.back() - time.front();
@@ -143,37 +157,40 @@ void run(const AnalyzeCliOptions& o) {
   a.thresholds.kurtosis_warn = o.kurtosis_warn;
   const ConditionIndicators c = analyze_vibration(signal.values, rate, f, a);
 
+  nlohmann::json faults = nlohmann::json::array();
+  for (const FaultIndicator& fi : c.faults)
+    faults.push_back({{"fault", fault_kind_name(fi.kind)},
+                      {"label", fault_frequency_label(fi.kind)},
+                      {"suspected", fi.suspected},
+                      {"modulation", fi.modulation},
+                      {"envelope_peak", peak_json(fi.envelope_peak)}});
+  const nlohmann::json result = {{"bearing", bearing_json(model, o.bearing)},
+                                 {"csv", o.csv},
+                                 {"column", signal.column},
+                                 {"inner_rpm", o.inner_rpm},
+                                 {"outer_rpm", o.outer_rpm},
+                                 {"sample_rate_hz", rate},
+                                 {"samples", c.samples},
+                                 {"window_s", c.window_s},
+                                 {"rms_m_s2", c.acceleration.rms},
+                                 {"peak_m_s2", c.acceleration.peak},
+                                 {"crest_factor", c.acceleration.crest_factor},
+                                 {"kurtosis", c.acceleration.kurtosis},
+                                 {"L_dB", c.level_db},
+                                 {"velocity_rms_mm_s", c.velocity_rms_mm_s},
+                                 {"velocity_band_hz", {a.velocity_low_hz, a.velocity_high_hz}},
+                                 {"zone", velocity_zone_name(c.zone)},
+                                 {"zone_boundaries_mm_s", o.zones},
+                                 {"envelope_band_hz", {c.envelope_low_hz, c.envelope_high_hz}},
+                                 {"envelope_mean_m_s2", c.envelope_mean_m_s2},
+                                 {"envelope_resolution_hz", c.envelope.resolution_hz},
+                                 {"faults", faults},
+                                 {"level", health_level_name(c.diagnosis.level)},
+                                 {"reason", c.diagnosis.reason}};
+  // L and an SNR are +-inf for a silent signal (written as null).
+  require_finite_result(result, "analyze", {"L_dB", "snr_db"});
   if (o.json) {
-    nlohmann::json faults = nlohmann::json::array();
-    for (const FaultIndicator& fi : c.faults)
-      faults.push_back({{"fault", fault_kind_name(fi.kind)},
-                        {"label", fault_frequency_label(fi.kind)},
-                        {"suspected", fi.suspected},
-                        {"modulation", fi.modulation},
-                        {"envelope_peak", peak_json(fi.envelope_peak)}});
-    print_json({{"bearing", bearing_json(model, o.bearing)},
-                {"csv", o.csv},
-                {"column", signal.column},
-                {"inner_rpm", o.inner_rpm},
-                {"outer_rpm", o.outer_rpm},
-                {"sample_rate_hz", rate},
-                {"samples", c.samples},
-                {"window_s", c.window_s},
-                {"rms_m_s2", c.acceleration.rms},
-                {"peak_m_s2", c.acceleration.peak},
-                {"crest_factor", c.acceleration.crest_factor},
-                {"kurtosis", c.acceleration.kurtosis},
-                {"L_dB", c.level_db},
-                {"velocity_rms_mm_s", c.velocity_rms_mm_s},
-                {"velocity_band_hz", {a.velocity_low_hz, a.velocity_high_hz}},
-                {"zone", velocity_zone_name(c.zone)},
-                {"zone_boundaries_mm_s", o.zones},
-                {"envelope_band_hz", {c.envelope_low_hz, c.envelope_high_hz}},
-                {"envelope_mean_m_s2", c.envelope_mean_m_s2},
-                {"envelope_resolution_hz", c.envelope.resolution_hz},
-                {"faults", faults},
-                {"level", health_level_name(c.diagnosis.level)},
-                {"reason", c.diagnosis.reason}});
+    print_json(result);
     return;
   }
 

@@ -1,4 +1,4 @@
-// bearing_tool frequencies: cage, ball-pass and ball-spin frequencies (MODEL.md section 5).
+// bearing_tool frequencies: cage, ball-pass and ball-spin frequencies (docs/model.md section 8.1).
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -20,16 +20,18 @@ struct FrequenciesOptions {
 void run(const FrequenciesOptions& o) {
   const BearingModel model = load_model(o.bearing);
   const BearingFrequencies f = bearing_frequencies(model, rpm_to_rad_s(o.inner_rpm), rpm_to_rad_s(o.outer_rpm));
+  const nlohmann::json result = {{"bearing", bearing_json(model, o.bearing)},
+                                 {"inner_rpm", o.inner_rpm},
+                                 {"outer_rpm", o.outer_rpm},
+                                 {"cage_hz", f.cage_hz},
+                                 {"ball_pass_outer_race_hz", f.ball_pass_outer_race_hz},
+                                 {"ball_pass_inner_race_hz", f.ball_pass_inner_race_hz},
+                                 {"ball_spin_hz", f.ball_spin_hz},
+                                 {"relative_ring_hz", f.relative_ring_hz},
+                                 {"varying_compliance_hz", f.varying_compliance_hz}};
+  require_finite_result(result, "frequencies");
   if (o.json) {
-    print_json({{"bearing", bearing_json(model, o.bearing)},
-                {"inner_rpm", o.inner_rpm},
-                {"outer_rpm", o.outer_rpm},
-                {"cage_hz", f.cage_hz},
-                {"ball_pass_outer_race_hz", f.ball_pass_outer_race_hz},
-                {"ball_pass_inner_race_hz", f.ball_pass_inner_race_hz},
-                {"ball_spin_hz", f.ball_spin_hz},
-                {"relative_ring_hz", f.relative_ring_hz},
-                {"varying_compliance_hz", f.varying_compliance_hz}});
+    print_json(result);
     return;
   }
   std::ostream& out = std::cout;

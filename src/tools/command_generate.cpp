@@ -15,11 +15,14 @@
 #include <set>
 #include <thread>
 
+#include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/scenario.hpp"
 #include "commands.hpp"
 #include "dataset_bag_writer.hpp"
 #include "dataset_plain_writer.hpp"
+#include "finite_data_guard.hpp"
+#include "job_size.hpp"
 #include "scenario_simulation.hpp"
 #include "tool_common.hpp"
 
@@ -37,6 +40,7 @@ struct GenerateOptions {
   double ball_loads_rate_hz = 10.0;
   double health_rate_hz = 1.0;
   bool quiet = false;
+  bool allow_long_run = false;
 };
 
 struct Job {
@@ -68,6 +72,7 @@ void prepare_out_dir(const std::string& dir) {
 void run_job(Job& job, const GenerateOptions& o, std::mutex& print_mutex) {
   const std::string stem = o.out_dir + "/" + file_stem(job.simulation->info().scenario);
   std::vector<std::unique_ptr<DatasetSink>> sinks;
+  sinks.push_back(std::make_unique<FiniteDataGuard>(job.simulation->info().scenario));  // before any writer
   for (const std::string& f : o.formats) {
     if (f == "bag") {
       sinks.push_back(std::make_unique<DatasetBagWriter>(stem + ".bag"));
@@ -133,10 +138,35 @@ void run(const GenerateOptions& o) {
       throw InputError("two scenarios are named '" + jobs[i].simulation->info().scenario +
                        "' (or alike): their files would overwrite each other in --out");
   }
-  prepare_out_dir(o.out_dir);
-
   const unsigned threads = std::max(1u, std::min<unsigned>(o.threads ? o.threads : std::thread::hardware_concurrency(),
                                                            static_cast<unsigned>(jobs.size())));
+  // The integrator's work and the wall time, before anything runs.
+  double total_samples = 0.0, total_estimate_s = 0.0;
+  for (const Job& job : jobs) {
+    const Scenario& sc = job.simulation->scenario();
+    const DatasetInfo& info = job.simulation->info();
+    const BearingModel model(load_bearing_config(sc.bearing_file()));
+    const double samples = static_cast<double>(info.ideal_samples);
+    total_samples += samples;
+    try {
+      for (double t : {0.0, 0.5 * info.duration_s, info.duration_s})
+        check_integrator_work(model, sc.load_at(t), info.sample_rate_hz, sc.bearing_file());
+      if (samples > 1000.0) {
+        const double t = 0.5 * info.duration_s;
+        total_estimate_s += samples * measure_seconds_per_sample(model, sc.load_at(t), sc.ring_speed_at(t),
+                                                                 info.sample_rate_hz, 0);
+      }
+    } catch (const ConfigError& e) {
+      throw InputError("scenario " + job.file + ": " + e.what());
+    } catch (const LoadNotCarriedError&) {
+      // No equilibrium there: the run itself handles it as it always has; no estimate from it.
+    }
+  }
+  check_job_size(total_samples, total_estimate_s / threads, o.allow_long_run,
+                 "generate (" + std::to_string(jobs.size()) + " scenario(s) on " + std::to_string(threads) +
+                     " thread(s), dynamics alone)",
+                 "--allow-long-run");
+  prepare_out_dir(o.out_dir);
   std::mutex print_mutex;
   std::atomic<std::size_t> next{0};
   std::vector<std::thread> pool;
@@ -198,7 +228,8 @@ void register_generate_command(CLI::App& app) {
       ->type_name("N")
       ->check(CLI::NonNegativeNumber);
   add_number_option(cmd, "--duration-s", &o->duration_s, "S", "Simulated time (default: each scenario's duration_s)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(0.0, 1e12));  // beyond, the sample count leaves the integers
   cmd->add_option("--threads", o->threads, "Scenarios run at once (default: hardware concurrency)")
       ->type_name("N")
       ->check(CLI::PositiveNumber);
@@ -210,6 +241,8 @@ void register_generate_command(CLI::App& app) {
                     "Rate of the health reports in the bag (condition indicators of the last 2 s; 0: none)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quiet", o->quiet, "No progress lines on stderr");
+  cmd->add_flag("--allow-long-run", o->allow_long_run,
+                "Start a run estimated (from a short probe) to take over an hour of wall time");
   cmd->callback([o] { run(*o); });
 }
 

@@ -1,7 +1,7 @@
 // bearing_tool modes: natural frequencies and mode shapes of a rigid body on one or more
 // identical bearings, each a 6x6 Bushing spring from the quasi-static stiffness at the
 // given load (core/modal_analysis.hpp); --no-angular-stiffness drops the bearings'
-// rotational stiffness (the INS paper's comparison, seeds/003 table 2).
+// rotational stiffness (the INS paper's comparison, its table 2; docs/model.md section 6.5).
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -46,35 +46,37 @@ void run(const ModesOptions& o) {
   options.zero_angular_stiffness = o.no_angular;
   const ModalResult res = solve_modes(body, supports, options);
 
-  if (o.json) {
-    nlohmann::json modes = nlohmann::json::array();
-    for (std::size_t i = 0; i < res.modes.size(); ++i) {
-      const Mode& m = res.modes[i];
-      nlohmann::json shape = nlohmann::json::array(), energy = nlohmann::json::array();
-      for (int k = 0; k < 6; ++k) {
-        shape.push_back(m.shape[k]);
-        energy.push_back(m.energy_fraction[k]);
-      }
-      modes.push_back({{"order", i + 1},
-                       {"frequency_hz", m.frequency_hz},
-                       {"free", m.free},
-                       {"dominant_dof", rigid_dof_name(m.dominant_dof)},
-                       {"shape", shape},
-                       {"energy_fraction", energy}});
+  nlohmann::json modes = nlohmann::json::array();
+  for (std::size_t i = 0; i < res.modes.size(); ++i) {
+    const Mode& m = res.modes[i];
+    nlohmann::json shape = nlohmann::json::array(), energy = nlohmann::json::array();
+    for (int k = 0; k < 6; ++k) {
+      shape.push_back(m.shape[k]);
+      energy.push_back(m.energy_fraction[k]);
     }
-    print_json({{"bearing", bearing_json(model, o.bearing)},
-                {"load_per_bearing", to_json(load)},
-                {"bearing_positions_mm", o.positions_mm},
-                {"angular_stiffness", !o.no_angular},
-                {"mass_kg", o.mass_kg},
-                {"inertia_kg_m2", o.inertia},
-                {"bushing_matrix", matrix_to_json(bushing)},
-                {"Kr_N_per_m", bushing(0, 0)},
-                {"Ka_N_per_m", bushing(2, 2)},
-                {"Ktheta_Nm_per_rad", bushing(4, 4)},
-                {"stiffness_at_centre_of_mass", matrix_to_json(res.stiffness)},
-                {"mass_matrix", matrix_to_json(res.mass)},
-                {"modes", modes}});
+    modes.push_back({{"order", i + 1},
+                     {"frequency_hz", m.frequency_hz},
+                     {"free", m.free},
+                     {"dominant_dof", rigid_dof_name(m.dominant_dof)},
+                     {"shape", shape},
+                     {"energy_fraction", energy}});
+  }
+  const nlohmann::json result = {{"bearing", bearing_json(model, o.bearing)},
+                                 {"load_per_bearing", to_json(load)},
+                                 {"bearing_positions_mm", o.positions_mm},
+                                 {"angular_stiffness", !o.no_angular},
+                                 {"mass_kg", o.mass_kg},
+                                 {"inertia_kg_m2", o.inertia},
+                                 {"bushing_matrix", matrix_to_json(bushing)},
+                                 {"Kr_N_per_m", bushing(0, 0)},
+                                 {"Ka_N_per_m", bushing(2, 2)},
+                                 {"Ktheta_Nm_per_rad", bushing(4, 4)},
+                                 {"stiffness_at_centre_of_mass", matrix_to_json(res.stiffness)},
+                                 {"mass_matrix", matrix_to_json(res.mass)},
+                                 {"modes", modes}};
+  require_finite_result(result, "modes");
+  if (o.json) {
+    print_json(result);
     return;
   }
   std::ostream& out = std::cout;

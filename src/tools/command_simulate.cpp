@@ -1,5 +1,5 @@
 // bearing_tool simulate: a fixed-load, fixed-speed run of the dynamic model from the
-// static equilibrium (MODEL.md section 5), with an optional streamed CSV of the samples.
+// static equilibrium (docs/model.md section 7), with an optional streamed CSV of the samples.
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +13,7 @@
 #include "bearing_sim/core/simd_info.hpp"
 #include "bearing_sim/core/simulation_run.hpp"
 #include "commands.hpp"
+#include "job_size.hpp"
 #include "tool_common.hpp"
 
 namespace bearing_sim::tool {
@@ -29,6 +30,7 @@ struct SimulateOptions {
   int substeps = 0;
   std::string csv;
   bool json = false;
+  bool allow_long_run = false;
 };
 
 const char* const kCsvHeader =
@@ -91,6 +93,17 @@ void run(const SimulateOptions& o) {
 
   // The static equilibrium the run starts from (also reported, for comparison with the mean).
   const StaticSolution equilibrium = solve_static(model, load);
+  if (model.config().has_dynamics()) {
+    if (o.substeps == 0) check_integrator_work(model, load, o.rate_hz, o.bearing);
+    // Runs the core refuses (under 4 or over 1e9 samples) are refused there; short ones cannot
+    // take a minute.
+    const double samples = std::round(o.duration_s * o.rate_hz);
+    if (samples > 1000.0 && samples <= 1e9) {
+      const double per_sample =
+          measure_seconds_per_sample(model, load, request.ring_speed_rad_s, o.rate_hz, o.substeps);
+      check_job_size(samples, samples * per_sample, o.allow_long_run, "simulate", "--allow-long-run");
+    }
+  }
 
   std::unique_ptr<CsvWriter> csv;
   if (!o.csv.empty()) csv = std::make_unique<CsvWriter>(o.csv);
@@ -100,28 +113,31 @@ void run(const SimulateOptions& o) {
   if (csv) csv->close();
 
   const BearingFrequencies f = bearing_frequencies(model, request.ring_speed_rad_s);
+  const nlohmann::json result = {{"bearing", bearing_json(model, o.bearing)},
+                                 {"load", to_json(load)},
+                                 {"ring_speed_rpm", model.config().rotating_ring == RotatingRing::Outer ? o.outer_rpm : o.inner_rpm},
+                                 {"duration_s", o.duration_s},
+                                 {"rate_hz", o.rate_hz},
+                                 {"samples", s.samples},
+                                 {"substeps", s.substeps},
+                                 {"internal_step_s", s.internal_step_s},
+                                 {"window", "second half of the run, mean removed"},
+                                 {"a_rms_x", s.a_rms_x},
+                                 {"a_rms_y", s.a_rms_y},
+                                 {"a_rms_z", s.a_rms_z},
+                                 {"L_dB", s.level_db},  // -infinity (a perfectly still ring) is written as null
+                                 {"mean_displacement", to_json(s.mean_displacement)},
+                                 {"static_displacement", to_json(equilibrium.displacement)},
+                                 {"varying_compliance_hz", f.varying_compliance_hz},
+                                 {"realtime_factor", s.realtime_factor},
+          // The realtime factor depends on these: the CPU and the kernel's SIMD target.
+                                 {"cpu", cpu_model_name()},
+                                 {"simd_target", simd_target_name()},
+                                 {"csv", o.csv.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.csv)}};
+  // L is -inf for a ring at rest (written as null); the realtime factor of a tiny run may be inf.
+  require_finite_result(result, "simulate", {"L_dB", "realtime_factor"});
   if (o.json) {
-    print_json({{"bearing", bearing_json(model, o.bearing)},
-                {"load", to_json(load)},
-                {"ring_speed_rpm", model.config().rotating_ring == RotatingRing::Outer ? o.outer_rpm : o.inner_rpm},
-                {"duration_s", o.duration_s},
-                {"rate_hz", o.rate_hz},
-                {"samples", s.samples},
-                {"substeps", s.substeps},
-                {"internal_step_s", s.internal_step_s},
-                {"window", "second half of the run, mean removed"},
-                {"a_rms_x", s.a_rms_x},
-                {"a_rms_y", s.a_rms_y},
-                {"a_rms_z", s.a_rms_z},
-                {"L_dB", s.level_db},  // -infinity (a perfectly still ring) is written as null
-                {"mean_displacement", to_json(s.mean_displacement)},
-                {"static_displacement", to_json(equilibrium.displacement)},
-                {"varying_compliance_hz", f.varying_compliance_hz},
-                {"realtime_factor", s.realtime_factor},
-                // The realtime factor depends on these: the CPU and the kernel's SIMD target.
-                {"cpu", cpu_model_name()},
-                {"simd_target", simd_target_name()},
-                {"csv", o.csv.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.csv)}});
+    print_json(result);
     return;
   }
 
@@ -184,6 +200,8 @@ void register_simulate_command(CLI::App& app) {
                   "Write every sample to this CSV file: time, displacements (5) and accelerations (5), "
                   "header line with units")
       ->type_name("FILE");
+  cmd->add_flag("--allow-long-run", o->allow_long_run,
+                "Start a run estimated (from a short probe) to take over an hour of wall time");
   add_json_flag(cmd, &o->json);
   cmd->callback([o] { run(*o); });
 }

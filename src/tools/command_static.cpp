@@ -1,4 +1,4 @@
-// bearing_tool static: quasi-static equilibrium, stiffness and ball loads (MODEL.md section 4).
+// bearing_tool static: quasi-static equilibrium, stiffness and ball loads (docs/model.md section 6).
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -124,9 +124,11 @@ void run(const StaticOptions& o) {
   const BearingModel model = load_model(o.bearing);
   const Vector5 load = make_load(o.force, o.moment);
   const StaticSolution sol = solve_static(model, load, deg_to_rad(o.cage_angle_deg));
+  const nlohmann::json result = solution_json(o, model, load, sol);
+  require_finite_result(result, "static");
   if (sol.exceeds_permissible_pressure()) warn(pressure_warning(sol));
   if (o.json)
-    print_json(solution_json(o, model, load, sol));
+    print_json(result);
   else
     print_tables(o, model, load, sol);
 }

@@ -55,7 +55,7 @@ void run(const SweepOptions& o) {
   if (!o.quiet)
     std::cerr << "bearing_tool sweep: " << def.name << ": " << total << " cases ("
               << (def.dynamic ? "dynamic" : "static") << ")\n";
-  const auto results = run_sweep(def, o.threads, [&](const SweepResult& r, std::size_t done, std::size_t n) {
+  auto results = run_sweep(def, o.threads, [&](const SweepResult& r, std::size_t done, std::size_t n) {
     if (o.quiet) return;
     std::cerr << "  [" << done << "/" << n << "] " << r.c.parameter << " = " << general(r.c.value, 6) << " ("
               << r.c.imperfection_set_name << "): "
@@ -63,6 +63,16 @@ void run(const SweepOptions& o) {
                        : "error: " + r.error)
               << '\n';
   });
+  // A case whose result is not finite fails like any other (no NaN in the CSV or the table).
+  for (auto& r : results) {
+    if (!r.ok) continue;
+    try {
+      require_finite_result(result_json(r), "sweep case", {"L_dB"});
+    } catch (const NonFiniteResultError& e) {
+      r.ok = false;
+      r.error = e.what();
+    }
+  }
   csv << sweep_csv_header() << '\n';
   for (const auto& r : results) csv << sweep_csv_row(r) << '\n';
   csv.close();

@@ -1,12 +1,15 @@
 #include "tool_common.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
 
 #include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/errors.hpp"
 
 namespace bearing_sim::tool {
 namespace {
@@ -25,18 +28,53 @@ std::string format(const char* fmt, int digits, double v) {
 }
 }  // namespace
 
+namespace {
+// The path of the first number of j that is NaN (or infinite where not allowed), "" if none.
+std::string non_finite_path(const nlohmann::json& j, const std::string& path, const std::set<std::string>& may_be_infinite,
+                            const std::string& key) {
+  if (j.is_number_float()) {
+    const double v = j.get<double>();
+    if (std::isnan(v) || (std::isinf(v) && !may_be_infinite.count(key))) return path.empty() ? "(result)" : path;
+    return "";
+  }
+  if (j.is_object()) {
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      const std::string found =
+          non_finite_path(it.value(), path.empty() ? it.key() : path + "." + it.key(), may_be_infinite, it.key());
+      if (!found.empty()) return found;
+    }
+  } else if (j.is_array()) {
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      const std::string found = non_finite_path(j[i], path + "[" + std::to_string(i) + "]", may_be_infinite, key);
+      if (!found.empty()) return found;
+    }
+  }
+  return "";
+}
+}  // namespace
+
+void require_finite_result(const nlohmann::json& result, const std::string& command,
+                           const std::set<std::string>& may_be_infinite) {
+  const std::string path = non_finite_path(result, "", may_be_infinite, "");
+  if (!path.empty())
+    throw NonFiniteResultError(command + ": the result '" + path +
+                               "' is not a finite number: the inputs (load, speed, bearing values) are beyond what "
+                               "the model computes in double precision; nothing was printed");
+}
+
 const CLI::Validator& finite_number() {
   static const CLI::Validator validator(
       [](std::string& text) -> std::string {
-        double value = 0.0;
-        std::size_t used = 0;
-        try {
-          value = std::stod(text, &used);
-        } catch (const std::exception&) {
-          return "'" + text + "' is not a number";
-        }
-        if (used != text.size()) return "'" + text + "' is not a number";
-        if (!std::isfinite(value)) return "'" + text + "' is not a finite number";
+        // strtod, not stod: a number too small for a double (5e-324, 1e-400) is still a
+        // number (denormal or 0, refused or carried on by the checks of its option);
+        // stod throws on it as if it were text.
+        const char* begin = text.c_str();
+        char* end = nullptr;
+        errno = 0;
+        const double value = std::strtod(begin, &end);
+        if (end == begin || *end != '\0') return "'" + text + "' is not a number";
+        if (!std::isfinite(value) || (errno == ERANGE && std::abs(value) == HUGE_VAL))
+          return "'" + text + "' is not a finite number";
         return std::string();
       },
       "");
@@ -48,7 +86,7 @@ void add_json_flag(CLI::App* command, bool* json) {
 }
 
 void add_bearing_option(CLI::App* command, std::string* path) {
-  command->add_option("--bearing", *path, "Bearing file (YAML, see MODEL.md section 8)")
+  command->add_option("--bearing", *path, "Bearing file (YAML, see docs/bearing_file.md)")
       ->required()
       ->type_name("FILE");
 }
@@ -61,17 +99,37 @@ void add_load_options(CLI::App* command, std::vector<double>* force, std::vector
 
 CLI::Option* add_vector_option(CLI::App* command, const std::string& name, std::vector<double>* values,
                                const std::vector<std::string>& components, const std::string& description) {
-  const int n = static_cast<int>(components.size());
+  const std::size_t n = components.size();
   std::string defaults;
   for (double v : *values) defaults += (defaults.empty() ? "" : ",") + general(v, 6);
+  const std::string shape = join(components, ",");
+  // One argument, split here: CLI11's own splitting drops empty fields and then takes the next
+  // argument (`--force ,, --json` complained that '--json' is not a number).
   return command
-      ->add_option(name, *values,
-                   description + "; " + std::to_string(n) + " comma-separated numbers [default: " + defaults + "]")
-      ->delimiter(',')
-      ->expected(n)
-      ->allow_extra_args(false)
-      ->type_name(join(components, ","))
-      ->check(finite_number());
+      ->add_option_function<std::string>(
+          name,
+          [values, n, name, shape](const std::string& text) {
+            std::vector<std::string> fields;
+            std::size_t start = 0;
+            for (;;) {
+              const std::size_t comma = text.find(',', start);
+              fields.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+              if (comma == std::string::npos) break;
+              start = comma + 1;
+            }
+            if (fields.size() != n)
+              throw CLI::ValidationError(name, "expected " + std::to_string(n) + " comma-separated numbers " + shape +
+                                                   ", got " + std::to_string(fields.size()) + " in '" + text + "'");
+            std::vector<double> parsed;
+            for (std::string field : fields) {
+              const std::string problem = finite_number()(field);
+              if (!problem.empty()) throw CLI::ValidationError(name, problem + " (in '" + text + "')");
+              parsed.push_back(std::stod(field));
+            }
+            *values = parsed;
+          },
+          description + "; " + std::to_string(n) + " comma-separated numbers [default: " + defaults + "]")
+      ->type_name(shape);
 }
 
 CLI::Option* add_number_option(CLI::App* command, const std::string& name, double* value,
@@ -82,7 +140,14 @@ CLI::Option* add_number_option(CLI::App* command, const std::string& name, doubl
       ->capture_default_str();
 }
 
-BearingModel load_model(const std::string& path) { return BearingModel(load_bearing_config(path)); }
+BearingModel load_model(const std::string& path) {
+  const BearingConfig config = load_bearing_config(path);
+  try {
+    return BearingModel(config);
+  } catch (const ConfigError& e) {  // a defect that does not fit: the model names the bearing, not the file
+    throw ConfigError(path + ": " + e.what());
+  }
+}
 
 Vector5 make_load(const std::vector<double>& force, const std::vector<double>& moment) {
   if (force.size() != 3) throw InputError("--force: expected 3 values FX,FY,FZ");

@@ -8,6 +8,7 @@
 // Commands report bad input by throwing InputError (or a core error); the main maps
 // exceptions to exit codes (see exit codes below).
 #include <ostream>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -29,6 +30,19 @@ class InputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// A result that is not a finite number although every input passed its checks (inputs at
+// the edge of what the model computes in double precision): exit 2, never printed.
+class NonFiniteResultError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+// Throws NonFiniteResultError naming the first NaN or infinite number of `result` by its path
+// (e.g. "stiffness[2][3]"). Keys listed in `may_be_infinite` may hold +-inf (not NaN), such as
+// the level in dB of a ring at rest.
+void require_finite_result(const nlohmann::json& result, const std::string& command,
+                           const std::set<std::string>& may_be_infinite = {});
 
 // --json: machine-readable output on stdout instead of the tables.
 void add_json_flag(CLI::App* command, bool* json);

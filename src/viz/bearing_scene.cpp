@@ -86,8 +86,8 @@ BearingScene build_scene(const BearingModel& model, const BallLoadArrays& loads,
       scene.polar_curves[r].push_back(on_circle(polar_base + options.polar_curve_height_m * fraction, phi, zr));
 
       if (q > 0.0) {
-        // Force of the outer raceway on the ball: along the loaded contact line (MODEL.md
-        // section 2, e = (cos a cos phi, cos a sin phi, c_r sin a) from inner to outer
+        // Force of the outer raceway on the ball: along the loaded contact line (docs/model.md
+        // section 5.2, e = (cos a cos phi, cos a sin phi, c_r sin a) from inner to outer
         // contact), pointing inward, its head on the ball's surface.
         const double a = loads.contact_angle_rad[b];
         const Eigen::Vector3d e(std::cos(a) * std::cos(phi), std::cos(a) * std::sin(phi), cr * std::sin(a));

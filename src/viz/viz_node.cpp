@@ -7,6 +7,8 @@
 #include <geometry_msgs/TransformStamped.h>
 
 #include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/ros/private_parameters.hpp"
+#include "bearing_sim/viz/viz_parameters.hpp"
 
 namespace bearing_sim {
 namespace viz {
@@ -33,37 +35,24 @@ geometry_msgs::TransformStamped to_msg(const Eigen::Isometry3d& pose, const std:
   return t;
 }
 
-double positive_param(const ros::NodeHandle& pnh, const std::string& name, double fallback, bool allow_zero) {
-  double value = fallback;
-  pnh.param(name, value, fallback);
-  if (!std::isfinite(value) || value < 0.0 || (!allow_zero && value == 0.0)) {
-    throw std::runtime_error("parameter ~" + name + " must be " + (allow_zero ? ">= 0" : "> 0") + ", got " +
-                             std::to_string(value));
-  }
-  return value;
-}
 }  // namespace
 
 VizNode::VizNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : nh_(nh), pnh_(private_nh), level_db_(std::numeric_limits<double>::quiet_NaN()) {
-  std::string bearing_file;
-  if (!pnh_.getParam("bearing_file", bearing_file) || bearing_file.empty()) {
-    throw std::runtime_error("parameter ~bearing_file (path of the bearing YAML file) is required");
-  }
-  model_ = std::make_unique<BearingModel>(load_bearing_config(bearing_file));
-
-  pnh_.param<std::string>("fixed_frame", fixed_frame_, "gantry");
-  pnh_.param<std::string>("bearing_frame", bearing_frame_, "bearing");
-  pnh_.param<std::string>("rotating_ring_frame", ring_frame_, "rotating_ring");
-  pnh_.param<std::string>("cage_frame", cage_frame_, "cage");
-  const double rate_hz = positive_param(pnh_, "update_rate_hz", 30.0, false);
-  pnh_.param("initial_speed_rad_s", speed_rad_s_, 0.0);
-  if (!std::isfinite(speed_rad_s_)) throw std::runtime_error("parameter ~initial_speed_rad_s must be finite");
-  exaggeration_ = positive_param(pnh_, "displacement_exaggeration", 1000.0, true);
-  colour_full_scale_N_ = positive_param(pnh_, "colour_full_scale_N", 0.0, true);
-  display_.ball_scale = positive_param(pnh_, "ball_scale", display_.ball_scale, false);
-  display_.force_arrow_length_m = positive_param(pnh_, "force_arrow_length_m", display_.force_arrow_length_m, true);
-  display_.polar_curve_height_m = positive_param(pnh_, "polar_curve_height_m", display_.polar_curve_height_m, true);
+  // Every parameter checked before anything starts: a bad one stops the display, naming it.
+  const VizParameters params = read_viz_parameters(ros_node::private_parameters(pnh_), pnh_.getNamespace());
+  model_ = std::make_unique<BearingModel>(load_bearing_config(params.bearing_file));
+  fixed_frame_ = params.fixed_frame;
+  bearing_frame_ = params.bearing_frame;
+  ring_frame_ = params.rotating_ring_frame;
+  cage_frame_ = params.cage_frame;
+  const double rate_hz = params.update_rate_hz;
+  speed_rad_s_ = params.initial_speed_rad_s;
+  exaggeration_ = params.displacement_exaggeration;
+  colour_full_scale_N_ = params.colour_full_scale_N;
+  display_.ball_scale = params.ball_scale;
+  display_.force_arrow_length_m = params.force_arrow_length_m;
+  display_.polar_curve_height_m = params.polar_curve_height_m;
 
   const bool outer_rotates = model_->config().rotating_ring == RotatingRing::Outer;
   const RingSection rotating = outer_rotates ? outer_ring_section(*model_) : inner_ring_section(*model_);

@@ -1,4 +1,4 @@
-// Bearing file validation (MODEL.md section 8): every kind of bad file is a ConfigError
+// Bearing file validation (docs/bearing_file.md): every kind of bad file is a ConfigError
 // naming the source and the key; the shipped files load.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Loaded contact angle (MODEL.md section 2): closed form for a0 = 0 under pure axial load,
+// Loaded contact angle (docs/model.md section 5.2): closed form for a0 = 0 under pure axial load,
 // and growth with axial load for an angular contact bearing.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Dynamic model (MODEL.md section 5): the mean displacement of a run equals the static
+// Dynamic model (docs/model.md section 7): the mean displacement of a run equals the static
 // solution, and the run starts at rest at the equilibrium.
 #include <gtest/gtest.h>
 

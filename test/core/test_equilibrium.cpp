@@ -1,4 +1,4 @@
-// Quasi-static equilibrium (MODEL.md section 4): residual, per-ball force and moment
+// Quasi-static equilibrium (docs/model.md section 6): residual, per-ball force and moment
 // balance, and the sign symmetry between an outer and an inner moving ring.
 #include <gtest/gtest.h>
 
@@ -33,7 +33,7 @@ void check_residual(const BearingModel& model, const Vector5& load) {
 
   // Independent reassembly from the per-ball states: the force on the moving ring is
   // sign * sum Q e and the moment sign * sum P_o x Q e, with P_o the outer-groove centre
-  // rebuilt here from MODEL.md section 2.
+  // rebuilt here from docs/model.md section 3.4.
   const BearingConfig& c = model.config();
   const double sign = c.rotating_ring == RotatingRing::Outer ? 1.0 : -1.0;
   Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();

@@ -1,4 +1,4 @@
-// Cage, ball-pass and ball-spin frequencies (MODEL.md section 5).
+// Cage, ball-pass and ball-spin frequencies (docs/model.md section 8.1).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -31,7 +31,7 @@ TEST(Frequencies, Bearing6205PublishedMultipliers) {
 TEST(Frequencies, CtBearingOuterRingAt180Rpm) {
   const BearingModel model(ct_bearing());
   const BearingFrequencies f = bearing_frequencies(model, kCtSpeedRadS);
-  // MODEL.md section 5: cage about 1.513 Hz, varying compliance about 313 Hz.
+  // docs/model.md section 8.1: cage about 1.513 Hz, varying compliance about 313 Hz.
   // Hand: gamma = 12 cos 35 / 1111 = 0.008848; f_c = 3 (1 + gamma)/2 = 1.51327 Hz;
   // 207 f_c = 313.25 Hz. 0.1% covers the three-digit rounding of the MODEL values.
   EXPECT_NEAR(f.cage_hz, 1.513, 1e-3 * 1.513);

@@ -1,4 +1,4 @@
-// Hertz contact constant (Hamrock-Brewe, MODEL.md section 3) against a hand calculation,
+// Hertz contact constant (Hamrock-Brewe, docs/model.md section 4) against a hand calculation,
 // the exact Hertz theory (complete elliptic integrals) and the Hertz scaling laws.
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@ using namespace bearing_sim;
 using namespace bearing_sim::test;
 
 namespace {
-// ISO reference bearing (MODEL.md section 4).
+// ISO reference bearing (docs/model.md section 6.4).
 constexpr double d = 11.1e-3, dm = 43.5e-3, fi = 0.52, fo = 0.53, E = 210e9, nu = 0.3;
 
 struct Hand {

@@ -1,4 +1,4 @@
-// Distributed imperfections and spalls (MODEL.md section 6) against the classic waviness
+// Distributed imperfections and spalls (docs/model.md section 9) against the classic waviness
 // rules, closed-form deflection changes and the determinism the datasets rely on.
 #include <gtest/gtest.h>
 
@@ -64,7 +64,7 @@ TEST(Waviness, InnerRaceOrdersZPlusMinusOneExciteThePredictedRadialFrequencies) 
   const BearingModel model(deep_groove(""));
   const double fi = kInnerRpm / 60.0;
   const double fc = bearing_frequencies(model, fi * 2.0 * kPi, 0.0).cage_hz;
-  // MODEL.md section 6: q = kZ - 1 at |kZ (f_c - f_r) + f_r|, q = kZ + 1 at |kZ (f_c - f_r) - f_r|.
+  // docs/model.md section 8.2: q = kZ - 1 at |kZ (f_c - f_r) + f_r|, q = kZ + 1 at |kZ (f_c - f_r) - f_r|.
   const double expected_minus = std::abs(kBalls * (fc - fi) + fi);  // q = Z - 1: 132.4 Hz
   const double expected_plus = std::abs(kBalls * (fc - fi) - fi);   // q = Z + 1: 192.4 Hz
   // The 0.25 s window resolves 4 Hz; the peak search grid is 1 Hz, so 4 Hz is one bin.
@@ -158,6 +158,36 @@ TEST(Spall, DefectsThatDoNotFitTheBearingAreRejected) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("waviness[0].surface"), std::string::npos) << e.what();
   }
+}
+
+TEST(Spall, RuntimeGrowthStopsAtTheLargestSpallTheBearingHolds) {
+  // Outer race spall under ball 0, 1 mm wide and 20 um deep, growing 1 mm/s and 10 um/s.
+  const BearingModel model(deep_groove(""));
+  Imperfections imperfections = model.imperfections();
+  Spall spall{Surface::OuterRace, 0.0, 0, 1e-3, 20e-6};
+  spall.width_growth_m_per_s = 1e-3;
+  spall.depth_growth_m_per_s = 10e-6;
+  imperfections.add_spall(spall);
+  const auto drops_at = [&](double time_s) {
+    RollingPhase phase;  // cage and rings at 0: ball j at azimuth 40 j deg
+    phase.time_s = time_s;
+    std::vector<double> offsets(kBalls, 0.0);
+    imperfections.add_offsets(phase, offsets.data());
+    return offsets;
+  };
+  // Growing at 2 s: 3 mm wide, 40 um deep (below w^2 / (4 d) = 283 um), all of it under ball 0.
+  EXPECT_NEAR(drops_at(2.0)[0], -40e-6, 1e-12);
+  // Unbounded, 1e4 s would make it 10 m wide and 0.1 m deep: every ball in it. It stops at a
+  // quarter of the raceway (pi/2 of arc) and d/4 deep, so ball 0 drops d/4, balls 1 and 8
+  // (40 deg from the centre, inside its 45 deg half width) d/4 cos(pi 40/90), the others not at all.
+  const double d = 7.94e-3;
+  const std::vector<double> late = drops_at(1e4), much_later = drops_at(1e9);
+  EXPECT_NEAR(late[0], -d / 4.0, 1e-12);
+  EXPECT_NEAR(late[1], -d / 4.0 * std::cos(4.0 * kPi / 9.0), 1e-12);
+  EXPECT_NEAR(late[8], -d / 4.0 * std::cos(4.0 * kPi / 9.0), 1e-12);
+  for (int j = 2; j <= 7; ++j) EXPECT_EQ(late[j], 0.0) << "ball " << j;
+  // And it stays there.
+  for (int j = 0; j < kBalls; ++j) EXPECT_EQ(much_later[j], late[j]) << "ball " << j;
 }
 
 TEST(Spall, InjectedAndClearedAtRuntime) {

@@ -1,4 +1,4 @@
-// Three-way stiffness of the INS paper's 618/22 DB pair (seeds/003) against its empirical
+// Three-way stiffness of the INS paper's 618/22 DB pair ([2] in docs/model.md) against its empirical
 // formulas (8)-(9), implemented exactly as published (kgf, mm; the constants 256 and 1500
 // come from its references [11] and [12]), within the factor that docs/validation.md states
 // (2), and stiffness rising with load and with preload.

@@ -1,4 +1,4 @@
-// ISO/TS 16281 reference load-deflection set (MODEL.md section 4).
+// ISO/TS 16281 reference load-deflection set (docs/model.md section 6.4).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,7 +10,7 @@ using namespace bearing_sim;
 using namespace bearing_sim::test;
 
 namespace {
-// MODEL.md: the Hamrock-Brewe approximations land within about 2% of the ISO values;
+// docs/model.md section 6.4: the Hamrock-Brewe approximations land within about 2% of the ISO values;
 // 2.5% leaves room for that and nothing else.
 constexpr double kIsoTolerance = 0.025;
 }

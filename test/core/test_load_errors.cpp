@@ -1,4 +1,4 @@
-// Loads the bearing cannot carry and non-finite loads (MODEL.md section 4): a clear error,
+// Loads the bearing cannot carry and non-finite loads (docs/model.md section 6.2): a clear error,
 // promptly, not a hang or a NaN.
 #include <gtest/gtest.h>
 

@@ -33,7 +33,7 @@ TEST(StepHalving, AutomaticStepIsConverged) {
   const SimulationSummary half = run(model, 2 * automatic);
   const SimulationSummary quarter = run(model, 4 * automatic);
   ASSERT_GT(a.a_rms_x, 0.0);
-  // MODEL.md criterion: halving the step changes the RMS by < 1%.
+  // docs/model.md section 10.1 criterion: halving the step changes the RMS by < 1%.
   EXPECT_LT(std::abs(a.a_rms_x / half.a_rms_x - 1.0), 0.01) << a.a_rms_x << " vs " << half.a_rms_x;
   // RK4 is 4th order: the next halving changes it much less (a factor 4 bounds 16 loosely).
   EXPECT_LT(std::abs(half.a_rms_x / quarter.a_rms_x - 1.0), 0.25 * std::abs(a.a_rms_x / half.a_rms_x - 1.0) + 1e-6);
@@ -45,6 +45,6 @@ TEST(StepHalving, OneStepPerSampleIsMeasurablyWorse) {
   ASSERT_GT(automatic, 1) << "the CT ring modes need more than one RK4 step per 100 us sample";
   const SimulationSummary coarse = run(model, 1);
   const SimulationSummary fine = run(model, 4 * automatic);
-  // MODEL.md: about 4% off. More than 2% proves the < 1% check above can fail.
+  // docs/model.md section 10.1: about 4% off. More than 2% proves the < 1% check above can fail.
   EXPECT_GT(std::abs(coarse.a_rms_x / fine.a_rms_x - 1.0), 0.02) << coarse.a_rms_x << " vs " << fine.a_rms_x;
 }

@@ -1,4 +1,4 @@
-// Analytic stiffness matrix against central differences of the contact forces (MODEL.md section 4).
+// Analytic stiffness matrix against central differences of the contact forces (docs/model.md section 5.5).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Stribeck load distribution of a zero-clearance single-row deep groove bearing (MODEL.md section 4).
+// Stribeck load distribution of a zero-clearance single-row deep groove bearing (docs/model.md section 6.4).
 //
 // Stribeck's ratio assumes each ball is compressed by x cos(phi). The model's exact
 // geometry adds the second-order term x^2 sin^2(phi) / (2A) (the groove centres also move

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 #include "bearing_6205_yaml.hpp"
@@ -11,6 +12,17 @@ namespace bearing_sim::test {
 
 std::string bearing_file(const std::string& name) {
   return std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/" + name;
+}
+
+std::string config_path(const std::string& relative) {
+  return std::string(BEARING_SIM_SOURCE_DIR) + "/config/" + relative;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
 }
 
 BearingConfig iso_reference_bearing(double clearance_m) {

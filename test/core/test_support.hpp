@@ -13,8 +13,12 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Path of a shipped bearing file, e.g. bearing_file("ct_gantry_lyc.yaml").
 std::string bearing_file(const std::string& name);
+// Path of a shipped config file, e.g. config_path("sensors/ct_gantry_housing_accelerometer.yaml").
+std::string config_path(const std::string& relative);
+// The whole text of a file ("" when it cannot be read).
+std::string read_text(const std::string& path);
 
-// The ISO/TS 16281 reference bearing of MODEL.md section 4 (6 balls, 11.1 mm, a0 = 0).
+// The ISO/TS 16281 reference bearing of docs/model.md section 6.4 (6 balls, 11.1 mm, a0 = 0).
 BearingConfig iso_reference_bearing(double clearance_m = 0.0);
 
 // The CT gantry bearing of config/bearings/ct_gantry_lyc.yaml.

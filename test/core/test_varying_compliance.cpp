@@ -1,4 +1,4 @@
-// Varying compliance (MODEL.md section 5): balls passing the load zone at Z f_c give the
+// Varying compliance (docs/model.md section 8.1): balls passing the load zone at Z f_c give the
 // dominant line of the acceleration spectrum of a smooth bearing.
 #include <gtest/gtest.h>
 

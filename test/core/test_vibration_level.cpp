@@ -25,7 +25,7 @@ TEST(VibrationLevel, SineOfKnownAmplitude) {
   EXPECT_NEAR(vibration_level_db(rms), 37.156, 1e-3);
   EXPECT_NEAR(vibration_level_db(9.81e-3), 0.0, 1e-12);
   EXPECT_NEAR(vibration_level_db(9.81e-2), 20.0, 1e-12);
-  // MODEL.md: the smooth CT bearing at ~1e-4 m/s^2 is at about -40 dB.
+  // docs/model.md section 11.2: the smooth CT bearing at ~1e-4 m/s^2 is at about -40 dB.
   EXPECT_NEAR(vibration_level_db(1e-4), -39.83, 0.01);
   EXPECT_EQ(vibration_level_db(0.0), -std::numeric_limits<double>::infinity());
   EXPECT_THROW(vibration_level_db(-1.0), InvalidInputError);

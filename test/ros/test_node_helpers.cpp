@@ -6,11 +6,14 @@
 #include <cmath>
 #include <deque>
 #include <optional>
+#include <regex>
 #include <limits>
 #include <stdexcept>
 #include <thread>
 
 #include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
 
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
@@ -238,6 +241,36 @@ TEST(InputValidator, RejectsALoadTheBearingCannotCarry) {
   EXPECT_NE(bad.reason.find("not carried"), std::string::npos) << bad.reason;
 }
 
+TEST(InputValidator, RejectsABearingWhoseStiffModeWouldStallTheIntegrator) {
+  const BearingConfig ct = load_bearing_config(kCtBearing);
+  // The shipped CT bearing is far below the ceiling.
+  double rate = 0.0;
+  EXPECT_TRUE(check_integrator_work(BearingModel(ct), ct_load(), &rate).accepted);
+  EXPECT_LT(rate, 0.1 * kMaxStiffRateRadS);
+  // A tilt inertia a million times too small: the tilt block decouples from the 46 kg ring, so
+  // the fastest mode is sqrt(largest eigenvalue of K_tilt / J) to a relative J K_xt^2 /
+  // (m K_tt^2) ~ 1e-9.
+  BearingConfig tiny = ct;
+  tiny.tilt_inertia_kg_m2 = 7.9e-6;
+  const BearingModel model(tiny);
+  const InputCheck c = check_integrator_work(model, ct_load());
+  ASSERT_FALSE(c.accepted);
+  EXPECT_NE(c.reason.find("tilt_inertia_kg_m2"), std::string::npos) << c.reason;
+  const Matrix5 k = solve_static(model, ct_load()).stiffness;
+  const Eigen::Matrix2d k_tilt = 0.5 * (k.bottomRightCorner<2, 2>() + k.bottomRightCorner<2, 2>().transpose());
+  const double expected_hz =
+      std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(k_tilt).eigenvalues()[1] / 7.9e-6) / (2.0 * M_PI);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(c.reason, m, std::regex("tilt mode at ([0-9.]+) MHz"))) << c.reason;
+  EXPECT_NEAR(std::stod(m[1]) * 1e6, expected_hz, 0.005 * expected_hz) << c.reason;  // 3 digits printed
+  // Overdamped contacts (1e10 N*s/m): named by their key.
+  BearingConfig damped = ct;
+  damped.contact_damping_Ns_per_m = 1e10;
+  const InputCheck d = check_integrator_work(BearingModel(damped), ct_load());
+  ASSERT_FALSE(d.accepted);
+  EXPECT_NE(d.reason.find("contact_damping_Ns_per_m"), std::string::npos) << d.reason;
+}
+
 TEST(SampleSource, NumbersSamplesFromTheInitialEquilibrium) {
   const BearingModel model(load_bearing_config(kCtBearing));
   const StaticSolution s = solve_static(model, ct_load());
@@ -296,6 +329,35 @@ TEST(SampleDivider, FiresOncePerPeriodOnTheSampleGrid) {
   fired = 0;
   for (std::uint64_t i = 10000; i < 20000; ++i) fired += d.due(i);
   EXPECT_EQ(fired, 30);  // 10000 / 333 = 30.03
+}
+
+TEST(SampleDivider, ARefusedRateNeverThrowsAndKeepsTheLastGoodPeriod) {
+  SampleDivider d(10.0, 10000.0);  // every 1000 samples
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  // Each of these once threw std::invalid_argument in the simulation thread (and so aborted
+  // the node), or overflowed the period: refused with false, nothing changed.
+  for (double bad : {nan, inf, -inf, 0.0, -1.0, 5e-324, 1e-300}) {
+    EXPECT_FALSE(SampleDivider::valid_rates(bad, 10000.0)) << bad;
+    bool accepted = true;
+    EXPECT_NO_THROW(accepted = d.set_rate(bad, 10000.0)) << bad;
+    EXPECT_FALSE(accepted) << bad;
+    EXPECT_EQ(d.period_samples(), 1000u) << bad;
+  }
+  EXPECT_FALSE(d.set_rate(10.0, nan));
+  // Still on its grid: outputs at 999, 1999, ... as before any refused call.
+  int fired = 0;
+  std::uint64_t last = 0;
+  for (std::uint64_t i = 0; i < 5000; ++i)
+    if (d.due(i)) {
+      ++fired;
+      last = i;
+    }
+  EXPECT_EQ(fired, 5);
+  EXPECT_EQ(last, 4999u);
+  // A good rate after the refused ones applies: 10000 / 250 = 40 samples.
+  EXPECT_TRUE(d.set_rate(250.0, 10000.0));
+  EXPECT_EQ(d.period_samples(), 40u);
+  EXPECT_THROW(SampleDivider(nan, 10000.0), std::invalid_argument);  // at construction (node start-up)
 }
 
 TEST(TimingStats, PercentilesOfTheRecentValues) {

@@ -93,6 +93,13 @@ class NodeInputs : public ::testing::Test {
   void settle(std::uint64_t from, double seconds) {
     ASSERT_TRUE(recorder().wait_for_sample(from + static_cast<std::uint64_t>(seconds * kRate), 10.0 + 2 * seconds));
   }
+  // The "Inputs" diagnostic from a message composed after `new_messages` more arrive, and the
+  // node's count of rejected inputs in it.
+  static int inputs_diagnostic(int new_messages, diagnostic_msgs::DiagnosticStatus* in) {
+    EXPECT_TRUE(recorder().wait_for_new_diagnostics(new_messages, 5.0));
+    EXPECT_TRUE(recorder().diagnostic("Inputs", in));
+    return std::stoi(Recorder::value(*in, "rejected inputs"));
+  }
 };
 
 TEST_F(NodeInputs, LoadStepOf2xReachesTheNewEquilibrium) {
@@ -160,9 +167,7 @@ TEST_F(NodeInputs, BadInputsAreRejectedAndTheNodeKeepsItsLastGoodInputs) {
   const bearing_sim::BearingModel model = ct_model();
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
   diagnostic_msgs::DiagnosticStatus in;
-  ASSERT_TRUE(recorder().wait_for_new_diagnostics(1, 5.0));
-  ASSERT_TRUE(recorder().diagnostic("Inputs", &in));
-  const int rejected_before = std::stoi(Recorder::value(in, "rejected inputs"));
+  const int rejected_before = inputs_diagnostic(1, &in);
   Vector5 bad = ct_load();
   bad[0] = nan;
   send_load(bad);
@@ -181,9 +186,7 @@ TEST_F(NodeInputs, BadInputsAreRejectedAndTheNodeKeepsItsLastGoodInputs) {
   settle(sent, 1.0);
   // Still publishing, at the equilibrium of the last good load.
   expect_mean_at_static(ct_load(), sent, sent + 10000, "after bad inputs", model);
-  ASSERT_TRUE(recorder().wait_for_new_diagnostics(2, 5.0));  // composed after the inputs
-  ASSERT_TRUE(recorder().diagnostic("Inputs", &in));
-  EXPECT_EQ(std::stoi(Recorder::value(in, "rejected inputs")) - rejected_before, 6);
+  EXPECT_EQ(inputs_diagnostic(2, &in) - rejected_before, 6);  // composed after the inputs
   EXPECT_EQ(in.level, diagnostic_msgs::DiagnosticStatus::WARN);
   EXPECT_NEAR(std::stod(Recorder::value(in, "ring speed (rad/s)")), kCtSpeed, 1e-3);
 }
@@ -213,9 +216,7 @@ TEST_F(NodeInputs, BadReconfigureValuesAndDefectGrowthsAreRefused) {
   const bearing_sim::BearingModel model = ct_model();
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
   diagnostic_msgs::DiagnosticStatus in;
-  ASSERT_TRUE(recorder().wait_for_new_diagnostics(1, 5.0));
-  ASSERT_TRUE(recorder().diagnostic("Inputs", &in));
-  const int rejected_before = std::stoi(Recorder::value(in, "rejected inputs"));
+  const int rejected_before = inputs_diagnostic(1, &in);
   const std::uint64_t sent = recorder().next_index();
   // The good values of ct_gantry.launch / the cfg defaults that must come back.
   dynamic_reconfigure::Config before;
@@ -255,9 +256,7 @@ TEST_F(NodeInputs, BadReconfigureValuesAndDefectGrowthsAreRefused) {
   const std::uint64_t after = recorder().next_index();
   settle(after, 1.0);
   expect_mean_at_static(ct_load(), after, after + 10000, "after bad reconfigure values", model);
-  ASSERT_TRUE(recorder().wait_for_new_diagnostics(2, 5.0));
-  ASSERT_TRUE(recorder().diagnostic("Inputs", &in));
-  EXPECT_GE(std::stoi(Recorder::value(in, "rejected inputs")) - rejected_before, refused);
+  EXPECT_GE(inputs_diagnostic(2, &in) - rejected_before, refused);
   // The last one refused names the parameter and the accepted range.
   const std::string last = Recorder::value(in, "last rejection");
   EXPECT_NE(last.find("ball_loads_rate_hz"), std::string::npos) << last;

@@ -85,7 +85,7 @@ TEST(SteadyState, BallLoadsBalanceTheAppliedLoad) {
   ASSERT_EQ(msg->load.size(), 414u);
   ASSERT_EQ(msg->azimuth.size(), 414u);
   ASSERT_EQ(model.moving_sign(), 1.0);  // outer ring moving: force on it is +Q e
-  // Sum of the contact forces Q e and their moments P_o x Q e (MODEL.md section 2) from
+  // Sum of the contact forces Q e and their moments P_o x Q e (docs/model.md section 5.4) from
   // the message alone plus the geometry: e = (cos a cos phi, cos a sin phi, c_r sin a).
   Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < msg->load.size(); ++i) {

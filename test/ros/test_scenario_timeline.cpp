@@ -257,7 +257,9 @@ TEST(LoadRamp, LinearToTheTargetOverItsSamples) {
     const Vector5 l = ramp.next();
     const Vector5 expected = a + (b - a) * (k / 100.0);
     EXPECT_NEAR((l - expected).norm(), 0.0, 1e-9) << "sample " << k;
-    if (k == 100) EXPECT_EQ(l, b);  // exactly the target at the end
+    if (k == 100) {
+      EXPECT_EQ(l, b);  // exactly the target at the end
+    }
   }
   EXPECT_FALSE(ramp.active());
   // A new load mid-way starts from where the ramp is.

@@ -262,7 +262,7 @@ TEST_F(ToolTest, StaticMatchesCoreSolverAndBallLoadsBalanceTheForce) {
 
     // Equilibrium from the ball list alone: the contact forces Q e on the moving ring
     // balance the applied force. With the reported normals: to the solver's tolerance
-    // (1e-6 relative). From azimuth phi and contact angle a alone (MODEL.md section 2): the
+    // (1e-6 relative). From azimuth phi and contact angle a alone (docs/model.md section 5.2): the
     // contact line v = A e0 - s u has the radial-axial part at angle a and a tangential part
     // v_t = -s u.t (t = (-sin phi, cos phi, 0)) of length |v| = A + g0 + delta; leaving v_t
     // out is 0.44 % off for the CT case (|u| / A = 6.6 um / 1.3 mm). Taking v_t from the
@@ -423,7 +423,7 @@ TEST_F(ToolTest, SimulateCsvHasOneRowPerSampleAndMeanIsTheStaticDisplacement) {
     EXPECT_NEAR(j["mean_displacement"][i].get<double>(), eq.displacement[i], tol) << "dof " << i;
   }
 
-  // L is a_rms_x in dB re 9.81e-3 m/s^2; a smooth 207-ball bearing is near -40 dB (MODEL.md 5).
+  // L is a_rms_x in dB re 9.81e-3 m/s^2; a smooth 207-ball bearing is near -40 dB (docs/model.md section 11.2).
   const double a_rms = j["a_rms_x"];
   EXPECT_GT(a_rms, 0.0);
   EXPECT_NEAR(j["L_dB"].get<double>(), 20 * std::log10(a_rms / 9.81e-3), 1e-9);

@@ -72,7 +72,7 @@ struct Fake {
 
     bearing_sim::VibrationLevel level;
     level.header = msg.header;
-    level.level_db = -40.0;  // a smooth bearing (MODEL.md section 5); fixed in this fake
+    level.level_db = -40.0;  // a smooth bearing (docs/model.md section 11.2); fixed in this fake
     level.accel_rms = 9.81e-3 * std::pow(10.0, -40.0 / 20.0);
     level.window_s = 1.0;
     level_pub.publish(level);

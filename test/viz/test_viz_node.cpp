@@ -183,7 +183,7 @@ TEST(VizNode, RingAndCageTurnAtTheCommandedSpeed) {
   // The ring angle is integrated from the commanded speed against the same clock as the
   // stamps: only timer jitter at the ends remains (one 33 ms tick over 2 s is < 2 %).
   EXPECT_NEAR(ring_total / dt, speed, 0.03 * speed);
-  // Cage speed, MODEL.md section 5, inner ring fixed: w_c = w_o (1 + gamma) / 2 with
+  // Cage speed, docs/model.md section 7.2, inner ring fixed: w_c = w_o (1 + gamma) / 2 with
   // gamma = d cos a0 / dm = 12 cos 35 deg / 1111. The cage follows the simulation's
   // 30 Hz cage angle, so allow a little more (5 %).
   const double gamma = 12.0 * std::cos(35.0 * kPi / 180.0) / 1111.0;

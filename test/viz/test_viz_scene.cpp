@@ -272,6 +272,6 @@ TEST(MarkerBuilder, StatusTextNamesTheMostLoadedBall) {
   std::snprintf(expected, sizeof expected, "Q_max = %.0f N", scene.max_load_N);
   EXPECT_NE(text.find(expected), std::string::npos) << text;
   EXPECT_NE(text.find("L = -- dB"), std::string::npos) << text;
-  // Stribeck (MODEL.md 4): Qmax ~ 4.37 Fr / (Z cos a) for one row; two rows share Fr.
+  // Stribeck (docs/model.md section 6.4): Qmax ~ 4.37 Fr / (Z cos a) for one row; two rows share Fr.
   EXPECT_NEAR(scene.max_load_N, 4.37 * 3400.0 / (207 * std::cos(35 * kPi / 180)), 0.15 * scene.max_load_N);
 }

@@ -1,5 +1,5 @@
 #pragma once
-// The bearing file of MODEL.md section 8, in SI units once loaded.
+// The bearing file (docs/bearing_file.md), in SI units once loaded.
 #include <string>
 
 #include <yaml-cpp/yaml.h>
@@ -40,7 +40,7 @@ struct BearingConfig {
   double tilt_inertia_kg_m2 = 0.0;   // after loading: given or derived from the envelope
   bool tilt_inertia_given = false;
   double contact_damping_Ns_per_m = 0.0;
-  // Extension of MODEL.md section 8: `imperfections:` and `defects:` (docs/bearing_file.md).
+  // Extension of the bearing file: `imperfections:` and `defects:` (docs/bearing_file.md).
   ImperfectionSpec imperfections;
 
   bool has_dynamics() const { return rotating_mass_kg > 0.0; }

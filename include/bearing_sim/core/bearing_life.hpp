@@ -1,5 +1,5 @@
 #pragma once
-// Fatigue life (MODEL.md section 6; docs/health.md): ISO 281 basic rating life, a
+// Fatigue life (docs/model.md section 14; docs/health.md): ISO 281 basic rating life, a
 // reference life in the manner of ISO/TS 16281 from the ball loads, and Palmgren-Miner
 // damage over a load and speed history. Ball bearings only; sizes in the formulas of
 // ISO 281 are in mm and N, everything at this interface is SI.

@@ -1,5 +1,5 @@
 #pragma once
-// Geometry, Hertz constants and contact forces of one bearing (MODEL.md sections 2-4).
+// Geometry, Hertz constants and contact forces of one bearing (docs/model.md sections 3-5).
 // Everything derived from the bearing file is computed here, once.
 #include <cstdint>
 #include <vector>
@@ -137,7 +137,7 @@ class BearingModel {
   // Spin speed of the balls relative to the cage, rad/s.
   double ball_spin_speed_rad_s(double inner_rad_s, double outer_rad_s) const;
 
-  // Nominal cage speed for the given ring speeds (MODEL.md section 5).
+  // Nominal cage speed for the given ring speeds (docs/model.md section 7.2).
   double cage_speed_rad_s(double inner_rad_s, double outer_rad_s) const;
   // Inner and outer ring speeds (rad/s) for a speed of the rotating ring.
   void ring_speeds(double rotating_ring_rad_s, double* inner_rad_s, double* outer_rad_s) const;

@@ -1,5 +1,5 @@
 #pragma once
-// Condition indicators of a vibration window and a diagnosis (MODEL.md section 6; docs/health.md):
+// Condition indicators of a vibration window and a diagnosis (docs/model.md section 13; docs/health.md):
 // RMS, peak, crest factor, kurtosis, L, velocity RMS with its ISO 20816-3 zone, and the
 // envelope spectrum at the fault frequencies.
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Cage, ball-pass and ball-spin frequencies (MODEL.md section 5).
+// Cage, ball-pass and ball-spin frequencies (docs/model.md section 8).
 #include "bearing_sim/core/bearing_model.hpp"
 
 namespace bearing_sim {

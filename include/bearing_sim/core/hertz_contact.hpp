@@ -1,5 +1,5 @@
 #pragma once
-// Hamrock-Brewe approximation of the Hertz point contact (MODEL.md section 3).
+// Hamrock-Brewe approximation of the Hertz point contact (docs/model.md section 4).
 
 namespace bearing_sim {
 

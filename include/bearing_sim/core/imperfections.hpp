@@ -1,5 +1,5 @@
 #pragma once
-// Distributed imperfections and localised defects (MODEL.md section 6). Each one changes
+// Distributed imperfections and localised defects (docs/model.md section 9). Each one changes
 // the contact deflection of the ball concerned at its current position.
 #include <cstdint>
 #include <string>

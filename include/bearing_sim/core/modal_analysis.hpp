@@ -1,6 +1,6 @@
 #pragma once
 // Natural frequencies and mode shapes of a rigid body on bearing stiffness: the modal
-// comparison of the INS paper (seeds/003, table 2), with and without the bearings'
+// comparison of the INS paper (its table 2; docs/model.md section 6.5), with and without the bearings'
 // angular stiffness. Generalized eigenproblem K phi = w^2 M phi in the six rigid-body
 // coordinates (x, y, z, rx, ry, rz) of the body's centre of mass, axes parallel to the
 // bearing frame (z along the bearing axis).

@@ -1,5 +1,5 @@
 #pragma once
-// 5-DOF quasi-static equilibrium of the moving ring (MODEL.md section 4).
+// 5-DOF quasi-static equilibrium of the moving ring (docs/model.md section 6).
 #include <vector>
 
 #include "bearing_sim/core/bearing_model.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Time-domain statistics of a vibration signal (MODEL.md section 6, condition indicators).
+// Time-domain statistics of a vibration signal (docs/model.md section 13, condition indicators).
 // All of them are taken about the mean of the samples: an accelerometer is AC-coupled,
 // and an offset (gravity, a DC drift) says nothing about the bearing.
 #include <cstddef>

@@ -37,14 +37,20 @@
 namespace bearing_sim {
 namespace ros_node {
 
+// Which threads the node may give real-time scheduling (docs/node.md, nodelets).
+enum class ThreadScope {
+  Process,     // its own process (bearing_sim_node): every thread of it
+  OwnThreads,  // a guest in a nodelet manager: only the threads it starts itself
+};
+
 // The sink of the per-sample pipeline (shared with `bearing_tool generate`): turns its
 // outputs into messages, queued per chunk for their due time.
 class BearingSimRos : private PipelineSink {
  public:
-  // Reads the parameters and the bearing file, builds the model at the static
-  // equilibrium of the initial load. Throws (ConfigError, LoadNotCarriedError,
-  // std::runtime_error) when it cannot start.
-  BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh);
+  // Reads the parameters (read_sim_node_parameters) and the bearing file, builds the model
+  // at the static equilibrium of the initial load. Throws (ParameterError, ConfigError,
+  // LoadNotCarriedError, std::runtime_error) when it cannot start.
+  BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScope thread_scope = ThreadScope::Process);
   ~BearingSimRos() override;
 
   void start();  // the simulation thread
@@ -80,6 +86,7 @@ class BearingSimRos : private PipelineSink {
   void run();
   ChunkBundle compute_chunk();
   std::string set_thread_scheduling(int priority);  // description for /diagnostics
+  void start_health_worker();  // at SCHED_FIFO 1 (real time, priority > 1), like the process's other threads
   void lock_memory();
   // Publisher thread (real time; the sim thread as fast as possible).
   void run_publisher();
@@ -99,6 +106,7 @@ class BearingSimRos : private PipelineSink {
   ros::Time stamp_of(std::uint64_t sample_index) const;
 
   ros::NodeHandle nh_, pnh_;
+  ThreadScope thread_scope_;
   // Parameters (fixed after construction).
   double sample_rate_hz_ = 10000.0;
   LoadRamp load_ramp_;  // sim thread: a new load over ~load_ramp_s (0: a step)
@@ -132,6 +140,10 @@ class BearingSimRos : private PipelineSink {
   ros::Time ros_start_;
 
   ros::Publisher vibration_pub_, ideal_pub_, level_pub_, ball_loads_pub_, clock_pub_, health_pub_;
+  // header.seq of each topic, set here: roscpp numbers only the serialised copies, and a
+  // subscriber in the same nodelet manager gets the message itself (publisher thread; health:
+  // the health worker).
+  std::uint32_t vibration_seq_ = 0, ideal_seq_ = 0, level_seq_ = 0, ball_loads_seq_ = 0, health_seq_ = 0;
   ros::ServiceServer inject_srv_, clear_srv_;
   ros::Subscriber load_sub_, speed_sub_;
   std::unique_ptr<NodeDiagnostics> diagnostics_;

@@ -24,6 +24,22 @@ struct InputCheck {
 InputCheck check_load(const Vector5& load, const InputLimits& limits, const BearingModel* model);
 InputCheck check_speed(double ring_speed_rad_s, const InputLimits& limits);
 
+// Fastest rate of the linearized ring dynamics (a mode's angular frequency, or the decay rate
+// c/m of overdamped contacts) that the automatic integration step may follow: 1e7 rad/s
+// (1.6 MHz) is far above the modes of any bearing and already 1000 steps per sample at 10 kHz.
+// A bearing value that passes its own range check can still create such a mode (a tilt
+// inertia of 7.9e-6 kg m^2 on the CT bearing: tens of thousands of steps per sample).
+constexpr double kMaxStiffRateRadS = 1.0e7;
+// Rejects a bearing whose fastest rate at `load` exceeds kMaxStiffRateRadS (or is not finite);
+// the reason names the mode (radial, axial, tilt; or the overdamped contacts), its frequency
+// and the key behind it, e.g. "tilt mode at 35 MHz: tilt_inertia_kg_m2 (7.9e-06) is
+// implausibly small for this bearing". Throws LoadNotCarriedError if the load has no
+// equilibrium. `fastest_rate_rad_s` receives the rate when given.
+InputCheck check_integrator_work(const BearingModel& model, const Vector5& load, double* fastest_rate_rad_s = nullptr);
+
+// A frequency with 3 significant digits in Hz, kHz or MHz, for messages.
+std::string frequency_text(double hz);
+
 // Accepted range of one dynamic_reconfigure parameter (the ranges of cfg/BearingSim.cfg:
 // the server clamps finite values to them but lets NaN through).
 struct SettingRange {

@@ -10,6 +10,7 @@
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
 
+#include "bearing_sim/ros/lcm_bridge_parameters.hpp"
 #include "bearing_sim/ros/lcm_publish_queue.hpp"
 
 namespace bearing_sim {
@@ -17,8 +18,8 @@ namespace ros_node {
 
 class LcmBridge {
  public:
-  // Reads the parameters and opens ~lcm_url; throws LcmUrlError if LCM refuses the URL and
-  // std::invalid_argument for a bad parameter.
+  // Reads the parameters (read_lcm_bridge_parameters) and opens ~lcm_url; throws
+  // ParameterError for a bad parameter and LcmUrlError if LCM refuses the URL.
   LcmBridge(ros::NodeHandle nh, ros::NodeHandle pnh);
   // Publishes what is still queued, then closes LCM (a file:// log is complete).
   ~LcmBridge();
@@ -31,8 +32,7 @@ class LcmBridge {
     ros::Subscriber subscriber;
   };
   template <class RosMessage>
-  void add_route(const std::string& topic, const std::string& default_channel, bool default_enabled,
-                 std::uint32_t queue_size);
+  void add_route(const LcmRouteParameters& parameters, std::uint32_t queue_size);
   template <class RosMessage>
   void forward(Route* route, const RosMessage& msg);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);

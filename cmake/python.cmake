@@ -1,0 +1,67 @@
+# The Python package bearing_sim (docs/python.md): python/bearing_sim (campaigns, the
+# re-export) through catkin_python_setup, and the compiled core bearing_sim._core (pybind11,
+# Debian's pybind11-dev) beside the generated messages in the devel and install space.
+# Included after the core library, whose sources and settings it copies.
+# catkin_python_setup() is called in CMakeLists.txt, before generate_messages() as catkin requires.
+
+# Python3 is already found (Interpreter only) by a ROS package, which sends pybind11 to
+# CMake's FindPython: it then needs the Development.Module component too.
+find_package(Python3 REQUIRED COMPONENTS Interpreter Development.Module)
+find_package(pybind11 CONFIG REQUIRED)
+# The module links its own static, position-independent copy of the core, built from the
+# core target's sources and settings: bearing_sim_core turns into a shared library once
+# catkin has cached BUILD_SHARED_LIBS, and is not installed, so an installed module could
+# not load it.
+get_target_property(bearing_sim_core_sources bearing_sim_core SOURCES)
+add_library(bearing_sim_core_python STATIC ${bearing_sim_core_sources})
+foreach(property INCLUDE_DIRECTORIES COMPILE_OPTIONS COMPILE_DEFINITIONS INTERFACE_INCLUDE_DIRECTORIES)
+  get_target_property(value bearing_sim_core ${property})
+  if(value)
+    set_target_properties(bearing_sim_core_python PROPERTIES ${property} "${value}")
+  endif()
+endforeach()
+# Its libraries (Highway included, private to the core) go to the module's link line.
+get_target_property(bearing_sim_core_libraries bearing_sim_core LINK_LIBRARIES)
+target_link_libraries(bearing_sim_core_python PUBLIC ${bearing_sim_core_libraries})
+set_target_properties(bearing_sim_core_python PROPERTIES POSITION_INDEPENDENT_CODE ON)
+
+# Scenario generation reuses bearing_tool generate's ScenarioSimulation and the node's
+# ROS-free per-sample pipeline; they are compiled in here (position-independent), not linked
+# from the static helper library.
+# A plain MODULE library with pybind11's extension naming (no link-time optimisation, so
+# the module builds in the time of its objects; and a target catkin_lint can follow).
+add_library(bearing_sim_python MODULE
+  src/python/module.cpp
+  src/python/bearing_binding.cpp
+  src/python/scenario_binding.cpp
+  src/python/analysis_binding.cpp
+  src/tools/scenario_simulation.cpp
+  src/ros/sample_pipeline.cpp
+  src/ros/sample_source.cpp
+  src/ros/sample_divider.cpp
+  src/ros/chunk_assembler.cpp
+  src/ros/triaxial_sensor.cpp
+  src/ros/health_monitor.cpp
+  src/ros/message_conversion.cpp
+)
+pybind11_extension(bearing_sim_python)
+target_include_directories(bearing_sim_python PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/tools)
+target_link_libraries(bearing_sim_python PRIVATE pybind11::module bearing_sim_core_python ${rostime_LIBRARIES})
+# message_conversion.cpp includes the generated message headers.
+add_dependencies(bearing_sim_python bearing_sim_generate_messages_cpp)
+bearing_sim_optimize(bearing_sim_python)
+set_target_properties(bearing_sim_python PROPERTIES OUTPUT_NAME _core
+  LIBRARY_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_PYTHON_DESTINATION}/${PROJECT_NAME})
+install(TARGETS bearing_sim_python LIBRARY DESTINATION ${CATKIN_GLOBAL_PYTHON_DESTINATION}/${PROJECT_NAME})
+# (catkin_package() has not yet set CATKIN_PACKAGE_BIN_DESTINATION, lib/bearing_sim)
+catkin_install_python(PROGRAMS scripts/bearing_campaign DESTINATION ${CATKIN_GLOBAL_LIBEXEC_DESTINATION}/${PROJECT_NAME})
+
+if(CATKIN_ENABLE_TESTING)
+  # pytest of the module and the campaigns (test/python), a JUnit file in test_results like
+  # the gtests. Runs against the devel space (run_tests sources its environment).
+  set(bearing_sim_pytest_xml ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME}/pytest-test_python.xml)
+  catkin_run_tests_target(pytest test_python pytest-test_python.xml
+    COMMAND "/usr/bin/python3 -m pytest -q -p no:cacheprovider ${CMAKE_CURRENT_SOURCE_DIR}/test/python --junitxml=${bearing_sim_pytest_xml}"
+    WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
+  add_dependencies(tests bearing_sim_python)
+endif()

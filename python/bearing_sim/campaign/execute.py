@@ -1,0 +1,166 @@
+"""Runs of a campaign: one run as a pure function of (campaign, index) that writes its own
+files, and the campaign on Dask distributed (a LocalCluster, or a scheduler's address) or
+serially in this process (reference runs, or one task of a job array)."""
+import logging
+import os
+import shutil
+import socket
+import sys
+import tempfile
+import time
+import uuid
+
+import bearing_sim
+from bearing_sim import _core
+
+from .errors import CampaignError
+from .run_files import encode_hdf5, encode_npy, run_labels
+from .spec import Campaign
+from .store import RunStore, write_atomically
+
+_campaigns = {}  # per worker process: parsed once per (file, text)
+
+
+def _campaign(path, text):
+    key = (path, text)
+    if key not in _campaigns:
+        _campaigns[key] = Campaign(text, path)
+    return _campaigns[key]
+
+
+def scenario_text(campaign, run, work_dir):
+    """The scenario of a run as YAML text and the source name it resolves against (the
+    campaign's directory); derived bearing/sensor files are written into work_dir."""
+    scenario = dict(run.scenario)
+    for key, (file_name, text) in run.derived_files.items():
+        path = os.path.join(work_dir, file_name)
+        with open(path, 'w', encoding='utf-8') as f:
+            f.write(text)
+        scenario[key] = path
+    source = os.path.join(campaign.directory, f'{os.path.basename(campaign.path)}, scenario of run {run.index}')
+    return bearing_sim.yaml_text(scenario), source
+
+
+def run_index(campaign_path, campaign_text, out_dir, index):
+    """Runs run `index` and writes its data file and status record; never raises for a run
+    that fails (the error is recorded). Returns the status record."""
+    campaign = _campaign(campaign_path, campaign_text)
+    store = RunStore(out_dir, campaign)
+    store.remove_leftovers(index)
+    start = time.perf_counter()
+    record = {'index': index, 'campaign': campaign.name, 'host': socket.gethostname(), 'pid': os.getpid()}
+    work_dir = os.path.join(store.runs_dir, f'.run_{index:07d}.{socket.gethostname()}.{os.getpid()}.tmp')
+    try:
+        run = campaign.definition(index)
+        record['parameters'] = run.parameters
+        record['seed'] = run.scenario['seed']
+        os.makedirs(work_dir, exist_ok=True)
+        text, source = scenario_text(campaign, run, work_dir)
+        result = _core.generate_from_yaml(text, source, None, None, float(campaign.label_rate_hz))
+        data = encode_npy(result) if campaign.format == 'npy' else encode_hdf5(result, run.parameters)
+        write_atomically(store.data_path(index), data)
+        record.update(status='ok', file=os.path.relpath(store.data_path(index), store.out_dir), bytes=len(data),
+                      labels=run_labels(result), simulated_s=result['info']['duration_s'], cpu_s=result['cpu_s'],
+                      divergences=result['divergences'])
+    except Exception as e:  # a failing run is recorded, never stops the campaign
+        record.update(status='failed', error=f'{type(e).__name__}: {e}')
+    finally:
+        shutil.rmtree(work_dir, ignore_errors=True)
+    record['wall_s'] = time.perf_counter() - start
+    store.write_status(index, record)
+    return record
+
+
+def check_template(campaign, indices, tries=3):
+    """Loads the scenario, bearing and sensor of the first runs without running them. If none
+    of them loads, the template is bad and the command stops before anything is dispatched;
+    a run that fails on its own parameters is recorded when it runs."""
+    first_error = None
+    for index in indices[:tries]:
+        run = campaign.definition(index)
+        with tempfile.TemporaryDirectory() as work_dir:
+            text, source = scenario_text(campaign, run, work_dir)
+            try:
+                _core.check_scenario(text, source)
+                return
+            except (bearing_sim.ConfigError, bearing_sim.InvalidInputError) as e:
+                first_error = first_error or f"{campaign.path}: key 'scenario' (run {index}): {e}"
+    raise CampaignError(first_error)
+
+
+def parse_index_range(text, count):
+    """'A:B' -> range(A, B), half-open as in Python; checked against the campaign's count."""
+    try:
+        a, b = (int(x) for x in text.split(':'))
+    except ValueError:
+        raise CampaignError(f"--index-range: expected A:B (runs A to B-1), got '{text}'") from None
+    if not 0 <= a < b <= count:
+        raise CampaignError(f"--index-range {text}: expected 0 <= A < B <= {count} (the campaign's count)")
+    return range(a, b)
+
+
+def run_campaign(campaign, out_dir, indices=None, client=None, scheduler=None, workers=None, serial=False,
+                 log=lambda line: print(line, file=sys.stderr)):
+    """Runs the unfinished runs among `indices` (default all) and rebuilds the manifest.
+    Returns {'requested', 'skipped', 'ok', 'failed', 'records'}."""
+    store = RunStore(out_dir, campaign)
+    store.prepare()
+    indices = range(campaign.count) if indices is None else indices
+    todo = [i for i in indices if not store.is_finished(i)]
+    summary = {'requested': len(indices), 'skipped': len(indices) - len(todo), 'ok': 0, 'failed': 0, 'records': []}
+    if todo:
+        check_template(campaign, todo)
+    log(f'campaign {campaign.name}: {len(todo)} run(s) to do, {summary["skipped"]} already finished')
+
+    def done(record):
+        summary['records'].append(record)
+        summary['ok' if record['status'] == 'ok' else 'failed'] += 1
+        if record['status'] != 'ok':
+            log(f"campaign {campaign.name}: run {record['index']} failed: {record.get('error')}")
+
+    args = (campaign.path, campaign.text, os.path.abspath(out_dir))
+    if serial or not todo:
+        for i in todo:
+            done(run_index(*args, i))
+    else:
+        _run_on_dask(args, todo, client, scheduler, workers, store, done)
+    store.write_manifest()
+    log(f"campaign {campaign.name}: {summary['ok']} finished, {summary['failed']} failed, "
+        f"{summary['skipped']} skipped (finished before); manifest {os.path.join(store.out_dir, 'manifest.csv')}")
+    return summary
+
+
+def _run_on_dask(args, todo, client, scheduler, workers, store, done):
+    from dask.distributed import Client, LocalCluster, as_completed
+    own = []
+    try:
+        if client is None:
+            if scheduler:
+                client = Client(scheduler, timeout='30s')
+            else:
+                n = workers or len(os.sched_getaffinity(0))
+                # One single-threaded process per core: a crashing run takes only its worker.
+                cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                       dashboard_address=None, silence_logs=logging.ERROR)
+                own.append(cluster)
+                client = Client(cluster)
+            own.insert(0, client)
+        token = uuid.uuid4().hex[:8]
+        futures = client.map(run_index, *[[a] * len(todo) for a in args], todo, pure=False,
+                             key=[f'bearing-campaign-{token}-run-{i}' for i in todo])
+        index_of = {f.key: i for f, i in zip(futures, todo)}
+        for future in as_completed(futures):
+            try:
+                done(future.result())
+            except Exception as e:  # the worker died (after the scheduler's retries) or was lost
+                i = index_of[future.key]
+                record = {'index': i, 'status': 'failed', 'error': f'{type(e).__name__}: {e}'}
+                if store.is_finished(i):
+                    record = store.read_status(i)
+                else:
+                    store.write_status(i, record)
+                done(record)
+            future.release()
+    finally:
+        for thing in own:
+            thing.close()

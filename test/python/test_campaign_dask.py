@@ -1,0 +1,141 @@
+"""Campaigns on Dask distributed: a LocalCluster of 2 workers gives the same bytes as a
+serial run; a worker killed mid-campaign loses nothing (the rerun completes it); partial
+files never count; a failing run is recorded and the others go on."""
+import csv
+import os
+import signal
+import threading
+import time
+
+import pytest
+from dask.distributed import Client, LocalCluster
+
+from bearing_sim.campaign import Campaign, run_campaign
+from conftest import small_campaign
+
+
+@pytest.fixture(scope='module')
+def client():
+    import logging
+    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                           silence_logs=logging.CRITICAL)
+    c = Client(cluster)
+    yield c
+    c.close()
+    cluster.close()
+
+
+def files(out):
+    return {p.name: p.read_bytes() for p in sorted((out / 'runs').glob('run_*.npy'))}
+
+
+def manifest(out):
+    with open(out / 'manifest.csv', newline='') as f:
+        return list(csv.DictReader(f))
+
+
+def quiet(line):
+    pass
+
+
+def test_two_workers_give_the_bytes_of_a_serial_run(client, campaign_file, tmp_path):
+    c = Campaign.load(campaign_file(small_campaign(count=20)))
+    s = run_campaign(c, tmp_path / 'serial', serial=True, log=quiet)
+    d = run_campaign(c, tmp_path / 'dask', client=client, log=quiet)
+    assert s['ok'] == d['ok'] == 20 and s['failed'] == d['failed'] == 0
+    serial, dask = files(tmp_path / 'serial'), files(tmp_path / 'dask')
+    assert len(serial) == 20 and serial == dask
+    # Both workers took part: no run order or placement enters the bytes.
+    assert len({r['pid'] for r in d['records']}) == 2
+    rows = manifest(tmp_path / 'dask')
+    assert [int(r['index']) for r in rows] == list(range(20)) and {r['status'] for r in rows} == {'ok'}
+    assert {r['label_defects_at_end'] for r in rows} == {'none', 'outer_race'}
+    # A rerun skips everything.
+    again = run_campaign(c, tmp_path / 'dask', client=client, log=quiet)
+    assert again['skipped'] == 20 and again['ok'] == 0
+
+
+def test_hdf5_runs_are_reproducible(campaign_file, tmp_path):
+    import h5py
+    import numpy as np
+    c = Campaign.load(campaign_file(small_campaign(count=2, fmt='hdf5')))
+    run_campaign(c, tmp_path / 'a', serial=True, log=quiet)
+    time.sleep(1.1)  # a creation time in the file would now differ
+    run_campaign(c, tmp_path / 'b', serial=True, log=quiet)
+    for i in range(2):
+        a = (tmp_path / 'a' / 'runs' / f'run_{i:07d}.h5').read_bytes()
+        assert a == (tmp_path / 'b' / 'runs' / f'run_{i:07d}.h5').read_bytes()
+    with h5py.File(tmp_path / 'a' / 'runs' / 'run_0000001.h5') as f:
+        assert f['vibration'].shape == (2000, 3) and f['vibration'].dtype == np.float32
+        assert f['label_time_s'][:] == pytest.approx([0.0, 0.1])
+
+
+def test_a_killed_worker_loses_nothing(client, campaign_file, tmp_path):
+    # Runs of 5 s simulated (~0.1 s of CPU each): the kill lands inside one.
+    c = Campaign.load(campaign_file(small_campaign(count=12, duration_s=5.0)))
+    out = tmp_path / 'killed'
+    killed = {}
+
+    def kill_a_busy_worker():
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and not list((out / 'runs').glob('run_*.json')):
+            time.sleep(0.01)
+        busy = [w for w, keys in client.processing().items() if keys]
+        if not busy:
+            return
+        killed['pid'] = client.run(os.getpid, workers=[busy[0]])[busy[0]]
+        killed['runs'] = len(list((out / 'runs').glob('run_*.json')))
+        os.kill(killed['pid'], signal.SIGKILL)
+    t = threading.Thread(target=kill_a_busy_worker)
+    t.start()
+    first = run_campaign(c, out, client=client, log=quiet)
+    t.join()
+    assert killed and killed['runs'] < 12, 'the worker was not killed while runs were left'
+    # Dask reruns what the dead worker held, or the run is recorded as failed; either way
+    # the rerun leaves every run finished, with the bytes of a serial run.
+    second = run_campaign(c, out, client=client, log=quiet)
+    assert first['ok'] + second['ok'] == 12 and second['failed'] == 0
+    run_campaign(c, tmp_path / 'serial', serial=True, log=quiet)
+    assert files(out) == files(tmp_path / 'serial')
+    assert {r['status'] for r in manifest(out)} == {'ok'}
+    client.wait_for_workers(2, timeout=60)  # the nanny restarted the killed worker
+
+
+def test_partial_files_never_count(campaign_file, tmp_path):
+    c = Campaign.load(campaign_file(small_campaign(count=4)))
+    out = tmp_path / 'partial'
+    run_campaign(c, out, serial=True, log=quiet)
+    reference = files(out)
+    runs = out / 'runs'
+    # Run 1 cut short after its record was written, run 2's record lost, run 3 left as a
+    # temporary file by a killed writer: none of them is finished.
+    data = (runs / 'run_0000001.npy').read_bytes()
+    (runs / 'run_0000001.npy').write_bytes(data[:len(data) // 2])
+    (runs / 'run_0000002.json').unlink()
+    (runs / 'run_0000003.npy').rename(runs / '.run_0000003.npy.host.123.tmp')
+    again = run_campaign(c, out, serial=True, log=quiet)
+    assert again['skipped'] == 1 and again['ok'] == 3
+    assert files(out) == reference
+    assert not list(runs.glob('.*.tmp'))
+
+
+def test_a_failing_run_is_recorded_and_the_others_go_on(campaign_file, tmp_path):
+    doc = small_campaign(count=10)
+    # A 60 mm spall cannot fit a 6205 outer raceway (a quarter of it is 37 mm): those runs fail.
+    doc['parameters']['width_mm'] = {'choice': [0.5, 60.0]}
+    doc['parameters']['defects'] = {'choice': [[{'type': 'spall', 'at_s': 0.05, 'surface': 'outer_race',
+                                                 'position_deg': 0.0, 'width_mm': '${width_mm}',
+                                                 'depth_um': 10.0}]]}
+    c = Campaign.load(campaign_file(doc))
+    wide = [i for i in range(10) if c.parameters_of(i)['width_mm'] == 60.0]
+    assert 0 < len(wide) < 10 and not {0, 1, 2} <= set(wide)  # else the template would count as bad
+    out = tmp_path / 'failing'
+    s = run_campaign(c, out, serial=True, log=quiet)
+    assert s['failed'] == len(wide) and s['ok'] == 10 - len(wide)
+    rows = {int(r['index']): r for r in manifest(out)}
+    for i in range(10):
+        if i in wide:
+            assert rows[i]['status'] == 'failed' and 'defects[0]' in rows[i]['error'] and rows[i]['file'] == ''
+            assert not (out / 'runs' / f'run_{i:07d}.npy').exists()
+        else:
+            assert rows[i]['status'] == 'ok' and (out / rows[i]['file']).is_file()

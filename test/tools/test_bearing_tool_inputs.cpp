@@ -1,0 +1,152 @@
+// bearing_tool driven as a careless user would: files that are no files, keys written twice,
+// option values CLI parsing mangles, CSV time going backwards, bearing values that stall the
+// integrator and runs of years. Every one exits 2 naming the argument or the file, before any
+// work starts, and prints no result.
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tool_runner.hpp"
+
+namespace {
+
+using bearing_sim::test::read_file;
+using bearing_sim::test::RunResult;
+
+const std::string kConfig = std::string(BEARING_SIM_SOURCE_DIR) + "/config";
+const std::string kCt = kConfig + "/bearings/ct_gantry_lyc.yaml";
+const std::string kScan = kConfig + "/scenarios/ct_gantry_scan.yaml";
+
+bool contains(const std::string& haystack, const std::string& needle) {
+  return haystack.find(needle) != std::string::npos;
+}
+
+class ToolInputTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char tmpl[] = "/tmp/test_bearing_tool_inputs_XXXXXX";
+    ASSERT_NE(mkdtemp(tmpl), nullptr);
+    dir_ = tmpl;
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& text) {
+    const std::string path = dir_ + "/" + name;
+    std::ofstream(path) << text;
+    return path;
+  }
+  // The CT bearing file with one line replaced (the key must be in it).
+  std::string ct_with(const std::string& key, const std::string& value) {
+    const std::string text = std::regex_replace(read_file(kCt), std::regex("(^|\n)( *)" + key + ":[^\n]*"),
+                                                "$1$2" + key + ": " + value);
+    EXPECT_NE(text, read_file(kCt)) << key;
+    return write("ct_" + key + ".yaml", text);
+  }
+  RunResult run(const std::string& args) { return bearing_sim::test::run_bearing_tool(args, dir_); }
+
+  // Exit 2, each word in stderr, nothing on stdout.
+  void expect_refused(const std::string& args, const std::vector<std::string>& words) {
+    SCOPED_TRACE(args);
+    const RunResult r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    for (const auto& w : words) EXPECT_TRUE(contains(r.err, w)) << "'" << w << "' not in: " << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+
+  std::string dir_;
+};
+
+TEST_F(ToolInputTest, FilesThatAreNoRegularFilesAreRefusedNamingThem) {
+  // /dev/zero used to be read until memory ran out; a directory gave "empty file" or
+  // "basic_filebuf::underflow" with exit 1.
+  for (const std::string& path : {std::string("/dev/zero"), dir_, dir_ + "/missing.yaml"}) {
+    expect_refused("static --bearing '" + path + "'", {path});
+    expect_refused("frequencies --bearing '" + path + "' --outer-rpm 10", {path});
+    expect_refused("sweep --definition '" + path + "' --csv '" + dir_ + "/out.csv'", {path});
+    expect_refused("generate '" + path + "' --out '" + dir_ + "/out' --quiet", {path});
+    expect_refused("analyze --csv '" + path + "' --bearing '" + kCt + "' --outer-rpm 180", {"--csv", path});
+  }
+}
+
+TEST_F(ToolInputTest, AKeyWrittenTwiceIsRefusedNamingFileKeyAndLines) {
+  std::string text = read_file(kCt);
+  text.insert(0, "balls_per_row: 10\n");  // a stale line above the real one (now line 2 + its old number)
+  const std::string path = write("twice.yaml", text);
+  const RunResult r = run("static --bearing '" + path + "' --force 6800,0,0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, path)) << r.err;
+  EXPECT_TRUE(contains(r.err, "'balls_per_row'")) << r.err;
+  EXPECT_TRUE(std::regex_search(r.err, std::regex("lines 1 and [0-9]+"))) << r.err;
+  EXPECT_TRUE(r.out.empty());
+}
+
+TEST_F(ToolInputTest, EmptyVectorFieldsNameTheOptionNotTheNextArgument) {
+  const std::string b = " --bearing '" + kCt + "'";
+  for (const std::string value : {",,", ",", "1,,3", "''"}) {
+    SCOPED_TRACE(value);
+    const RunResult r = run("static" + b + " --force " + value + " --json");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.err, "--force")) << r.err;
+    EXPECT_FALSE(contains(r.err, "'--json'")) << r.err;
+    EXPECT_TRUE(r.out.empty());
+  }
+  // The comma-separated form still works: 6800 N radial on the CT bearing is carried.
+  EXPECT_EQ(run("static" + b + " --force 6800,0,0 --moment 0,2100 --json").exit_code, 0);
+}
+
+TEST_F(ToolInputTest, ACsvWhoseTimeGoesBackwardsIsRefusedNamingTheLine) {
+  std::string csv = "time_s,ax_m_s2\n";
+  for (int i = 0; i < 100; ++i) csv += std::to_string(i * 1e-4) + "," + std::to_string(i % 7) + "\n";
+  csv += "0.005,1\n";  // line 102: back in time
+  const std::string path = write("backwards.csv", csv);
+  expect_refused("analyze --csv '" + path + "' --bearing '" + kCt + "' --outer-rpm 180",
+                 {path, "line 102", "time_s", "does not increase"});
+}
+
+TEST_F(ToolInputTest, ABearingValueThatStallsTheIntegratorIsRefusedNamingTheKeyAndTheMode) {
+  // A tilt inertia a million times too small: the tilt mode rises a thousandfold, far above any
+  // bearing's (the run would need tens of thousands of steps per sample).
+  expect_refused("simulate --bearing '" + ct_with("tilt_inertia_kg_m2", "7.9e-06") +
+                     "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.01",
+                 {"tilt mode at", "MHz", "tilt_inertia_kg_m2", "implausibly small", "ct_tilt_inertia_kg_m2.yaml"});
+  // Contact damping of 1e10 N*s/m: overdamped contacts, c/m ~ 1e11 1/s.
+  expect_refused("simulate --bearing '" + ct_with("contact_damping_Ns_per_m", "1e10") +
+                     "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.01",
+                 {"overdamped", "contact_damping_Ns_per_m", "implausibly large"});
+  // The shipped file runs.
+  EXPECT_EQ(run("simulate --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.01")
+                .exit_code,
+            0);
+}
+
+TEST_F(ToolInputTest, RunsOfYearsNeedTheConfirmationFlagAndNothingStarts) {
+  // 1e9 samples of the CT bearing (414 balls) at 10 kHz with 200 integration steps each: weeks
+  // here (about 1 ms per sample), and still days on a machine 50 times faster.
+  expect_refused("simulate --bearing '" + kCt + "' --force 6800,0,0 --outer-rpm 180 --duration 1e5 --substeps 200",
+                 {"simulate", "--allow-long-run", "measured on this machine"});
+  // 1e13 samples: years at any speed.
+  const std::string out = dir_ + "/never";
+  expect_refused("generate '" + kScan + "' --out '" + out + "' --duration-s 1e9 --quiet",
+                 {"generate", "--allow-long-run"});
+  EXPECT_FALSE(std::filesystem::exists(out)) << "nothing may be written for a refused run";
+}
+
+TEST_F(ToolInputTest, AResultThatIsNotFiniteIsNeverPrinted) {
+  // A body of 5e-324 kg: every K/m overflows. Refused (exit 2) instead of a table of NaN.
+  expect_refused("modes --bearing '" + kCt + "' --force 6800,0,0 --mass-kg 5e-324 --inertia-kg-m2 1,1,1",
+                 {"modal analysis", "not a finite number"});
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
