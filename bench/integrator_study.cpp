@@ -577,6 +577,8 @@ int main(int argc, char** argv) {
         {"ETD-ABM4 PECE x2", etd_adams(exponential(2), phi4_function(x.lin.L, 0.5 / rate), 2, 4, AdamsMode::Pece)},
         {"ETD-ABM4 PEC x1", etd_adams(exponential(1), phi4_function(x.lin.L, 1.0 / rate), 1, 4, AdamsMode::Pec)},
         {"ETD-ABM4 PEC x2", etd_adams(exponential(2), phi4_function(x.lin.L, 0.5 / rate), 2, 4, AdamsMode::Pec)},
+        {"ETD-ABM4 PEC x3", etd_adams(exponential(3), phi4_function(x.lin.L, 1.0 / 3.0 / rate), 3, 4, AdamsMode::Pec)},
+        {"ETD-ABM4 PEC x4", etd_adams(exponential(4), phi4_function(x.lin.L, 0.25 / rate), 4, 4, AdamsMode::Pec)},
     };
     for (const auto& [name, stepper] : methods) {
       const Result r = run(c, model, stepper, duration, rate);

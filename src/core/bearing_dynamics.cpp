@@ -50,12 +50,40 @@ double BearingDynamics::fastest_rate_rad_s(const BearingModel& model, const Vect
   return Eigen::EigenSolver<Eigen::Matrix<double, 10, 10>>(a, false).eigenvalues().cwiseAbs().maxCoeff();
 }
 
+const char* integration_method_name(IntegrationMethod method) {
+  switch (method) {
+    case IntegrationMethod::ExponentialAdamsPec: return "adams_pec";
+    case IntegrationMethod::ExponentialAdams: return "adams_pece";
+    case IntegrationMethod::ExponentialRk4: return "etdrk4";
+    case IntegrationMethod::Rk4: return "rk4";
+  }
+  return "unknown";
+}
+
+std::vector<std::string> integration_method_names() { return {"adams_pec", "adams_pece", "etdrk4", "rk4"}; }
+
+std::optional<IntegrationMethod> integration_method_from_name(const std::string& name) {
+  for (const IntegrationMethod m : {IntegrationMethod::ExponentialAdamsPec, IntegrationMethod::ExponentialAdams,
+                                    IntegrationMethod::ExponentialRk4, IntegrationMethod::Rk4})
+    if (name == integration_method_name(m)) return m;
+  return std::nullopt;
+}
+
+double BearingDynamics::step_times_omega_max(IntegrationMethod method) {
+  switch (method) {
+    case IntegrationMethod::Rk4: return kStepTimesOmegaMax;
+    case IntegrationMethod::ExponentialRk4: return kExponentialStepTimesOmegaMax;
+    case IntegrationMethod::ExponentialAdams:
+    case IntegrationMethod::ExponentialAdamsPec: return kAdamsStepTimesOmegaMax;
+  }
+  return kStepTimesOmegaMax;
+}
+
 int BearingDynamics::choose_substeps(const BearingModel& model, const Vector5& load, double sample_rate_hz,
                                      IntegrationMethod method) {
   const double rate_max = fastest_rate_rad_s(model, load);
   const double h_sample = 1.0 / sample_rate_hz;
-  const double limit = method == IntegrationMethod::Rk4 ? kStepTimesOmegaMax : kExponentialStepTimesOmegaMax;
-  return std::max(1, static_cast<int>(std::ceil(rate_max * h_sample / limit)));
+  return std::max(1, static_cast<int>(std::ceil(rate_max * h_sample / step_times_omega_max(method))));
 }
 
 void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {

@@ -20,8 +20,8 @@ SimNodeParameters read_sim_node_parameters(const XmlRpc::XmlRpcValue& private_pa
   p.sample_rate_hz = r.number("sample_rate_hz", p.sample_rate_hz, 1.0e3, 1.0e6, "Hz");
   // 0 lets the core choose from the stiffest mode; beyond 1000 a sample costs milliseconds.
   p.substeps = r.integer("substeps", p.substeps, 0, 1000);
-  p.integrator = r.choice("integrator", "etdrk4", {"etdrk4", "rk4"}) == "rk4" ? IntegrationMethod::Rk4
-                                                                               : IntegrationMethod::ExponentialRk4;
+  p.integrator = *integration_method_from_name(
+      r.choice("integrator", integration_method_name(p.integrator), integration_method_names()));
   // A ramp longer than a second would hide the load steps the node is meant to show.
   p.load_ramp_s = r.number("load_ramp_s", p.load_ramp_s, 0.0, 1.0, "s");
 

@@ -8,6 +8,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "bearing_sim/core/simd_info.hpp"
@@ -28,6 +29,7 @@ struct SimulateOptions {
   double duration_s = 1.0;
   double rate_hz = 10000.0;
   int substeps = 0;
+  std::string integrator = integration_method_name(kDefaultIntegrationMethod);
   std::string csv;
   bool json = false;
   bool allow_long_run = false;
@@ -90,17 +92,18 @@ void run(const SimulateOptions& o) {
   request.duration_s = o.duration_s;
   request.sample_rate_hz = o.rate_hz;
   request.substeps = o.substeps;
+  request.method = *integration_method_from_name(o.integrator);  // CLI11 checked the name
 
   // The static equilibrium the run starts from (also reported, for comparison with the mean).
   const StaticSolution equilibrium = solve_static(model, load);
   if (model.config().has_dynamics()) {
-    if (o.substeps == 0) check_integrator_work(model, load, o.rate_hz, o.bearing);
+    if (o.substeps == 0) check_integrator_work(model, load, o.rate_hz, o.bearing, request.method);
     // Runs the core refuses (under 4 or over 1e9 samples) are refused there; short ones cannot
     // take a minute.
     const double samples = std::round(o.duration_s * o.rate_hz);
     if (samples > 1000.0 && samples <= 1e9) {
       const double per_sample =
-          measure_seconds_per_sample(model, load, request.ring_speed_rad_s, o.rate_hz, o.substeps);
+          measure_seconds_per_sample(model, load, request.ring_speed_rad_s, o.rate_hz, o.substeps, request.method);
       check_job_size(samples, samples * per_sample, o.allow_long_run, "simulate", "--allow-long-run");
     }
   }
@@ -119,6 +122,7 @@ void run(const SimulateOptions& o) {
                                  {"duration_s", o.duration_s},
                                  {"rate_hz", o.rate_hz},
                                  {"samples", s.samples},
+                                 {"integrator", o.integrator},
                                  {"substeps", s.substeps},
                                  {"internal_step_s", s.internal_step_s},
                                  {"window", "second half of the run, mean removed"},
@@ -150,7 +154,7 @@ void run(const SimulateOptions& o) {
   KeyValueList run_info;
   run_info.add("samples", std::to_string(s.samples) + " at " + general(o.rate_hz, 6) + " Hz (" +
                               general(o.duration_s, 6) + " s)");
-  run_info.add("integration", std::to_string(s.substeps) + " ETDRK4 steps per sample, step " +
+  run_info.add("integration", std::to_string(s.substeps) + " " + o.integrator + " steps per sample, step " +
                                   general(s.internal_step_s * 1e6, 4) + " us");
   run_info.add("realtime factor", general(s.realtime_factor, 4) + " (simulated s per wall s, " + cpu_model_name() +
                                        ", SIMD " + simd_target_name() + ")");
@@ -192,7 +196,13 @@ void register_simulate_command(CLI::App& app) {
   add_number_option(cmd, "--duration", &o->duration_s, "S", "Simulated time, s")->check(CLI::PositiveNumber);
   add_number_option(cmd, "--rate", &o->rate_hz, "HZ", "Output sample rate, Hz (not the integration step)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--substeps", o->substeps, "Internal ETDRK4 steps per sample (0: automatic)")
+  cmd->add_option("--integrator", o->integrator,
+                  "Integrator (docs/model.md, section 10): adams_pec (1 force evaluation per step), adams_pece (2), "
+                  "etdrk4 (4) or rk4 (4, smaller steps)")
+      ->type_name("NAME")
+      ->check(CLI::IsMember(integration_method_names()))
+      ->capture_default_str();
+  cmd->add_option("--substeps", o->substeps, "Internal integrator steps per sample (0: automatic)")
       ->type_name("N")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();

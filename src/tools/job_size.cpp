@@ -29,12 +29,12 @@ std::string duration_text(double s) {
 }  // namespace
 
 int check_integrator_work(const BearingModel& model, const Vector5& load, double sample_rate_hz,
-                          const std::string& bearing_file) {
+                          const std::string& bearing_file, IntegrationMethod method) {
   double rate = 0.0;
   const ros_node::InputCheck check = ros_node::check_integrator_work(model, load, &rate);
   // As BearingDynamics::choose_substeps, in double: an absurd mode overflows an int.
   const double needed =
-      std::max(1.0, std::ceil(rate / sample_rate_hz / BearingDynamics::kExponentialStepTimesOmegaMax));
+      std::max(1.0, std::ceil(rate / sample_rate_hz / BearingDynamics::step_times_omega_max(method)));
   if (check.accepted) return static_cast<int>(std::min(needed, 1e9));
   throw ConfigError(bearing_file + ": " + check.reason + "; the integrator would need " + general(needed, 3) +
                     " steps per sample at " + general(sample_rate_hz, 6) + " Hz; no bearing has a mode above " +
@@ -42,8 +42,8 @@ int check_integrator_work(const BearingModel& model, const Vector5& load, double
 }
 
 double measure_seconds_per_sample(const BearingModel& model, const Vector5& load, double ring_speed_rad_s,
-                                  double sample_rate_hz, int substeps) {
-  BearingDynamics dynamics(model, load, ring_speed_rad_s, DynamicsOptions{sample_rate_hz, substeps});
+                                  double sample_rate_hz, int substeps, IntegrationMethod method) {
+  BearingDynamics dynamics(model, load, ring_speed_rad_s, DynamicsOptions{sample_rate_hz, substeps, true, method});
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = Clock::now();
   int n = 0;

@@ -4,6 +4,7 @@
 // whole run, estimated from the speed measured on a short probe on this machine.
 #include <string>
 
+#include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/bearing_model.hpp"
 
 namespace bearing_sim::tool {
@@ -18,12 +19,14 @@ constexpr double kLongRunLimitS = 3600.0;
 // contacts), its frequency and the key behind it, e.g. "tilt mode at 35 MHz:
 // tilt_inertia_kg_m2 (7.9e-06) is implausibly small for this bearing".
 int check_integrator_work(const BearingModel& model, const Vector5& load, double sample_rate_hz,
-                          const std::string& bearing_file);
+                          const std::string& bearing_file,
+                          IntegrationMethod method = kDefaultIntegrationMethod);
 
 // Wall time per output sample of the dynamics alone, measured on a short run (a fraction of a
 // second) from the static equilibrium.
 double measure_seconds_per_sample(const BearingModel& model, const Vector5& load, double ring_speed_rad_s,
-                                  double sample_rate_hz, int substeps);
+                                  double sample_rate_hz, int substeps,
+                                  IntegrationMethod method = kDefaultIntegrationMethod);
 
 // Refuses (InputError) a run of `samples` estimated to take `estimate_s` of wall time beyond
 // kLongRunLimitS unless `confirmed`; says the estimate on stderr above kAnnounceRunS. `what` names

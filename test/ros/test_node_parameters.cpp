@@ -112,7 +112,7 @@ TEST(SimNodeParameters, ShippedFileIsReadAsWritten) {
   EXPECT_EQ(p.realtime_priority, yaml["realtime_priority"].as<int>());
   EXPECT_EQ(p.limits.max_force_N, yaml["max_force_N"].as<double>());
   EXPECT_EQ(*p.chunk_samples, yaml["chunk_samples"].as<int>());
-  EXPECT_EQ(p.integrator, bearing_sim::IntegrationMethod::ExponentialRk4);
+  EXPECT_EQ(bearing_sim::integration_method_name(p.integrator), yaml["integrator"].as<std::string>());
   EXPECT_FALSE(p.frame_id.has_value());  // commented out: the rotating ring's frame
   EXPECT_FALSE(p.clearance_um.has_value());  // commented out: the bearing file's
   EXPECT_EQ(p.publish_clock, !p.real_time);
@@ -148,7 +148,7 @@ TEST(SimNodeParameters, EachBadValueIsNamedWithItsKeyAndRange) {
       {"lead_ms", XmlRpcValue(std::string("fast")), "\"fast\": must be a number in [0, 1000] ms"},
       {"realtime_priority", XmlRpcValue(120), "120: must be an integer in [0, 99]"},
       {"chunk_samples", XmlRpcValue(100.5), "100.5: must be an integer in [1, 10000]"},
-      {"integrator", XmlRpcValue(std::string("euler")), "\"euler\": must be one of etdrk4, rk4"},
+      {"integrator", XmlRpcValue(std::string("euler")), "\"euler\": must be one of adams_pec, adams_pece, etdrk4, rk4"},
       {"real_time", XmlRpcValue(1), "1: must be true or false"},
       {"bearing_frame_id", XmlRpcValue(std::string("")), "\"\": must be a non-empty string"},
       {"max_speed_rad_s", XmlRpcValue(0.0), "0: must be a finite number in [0.1, 10000] rad/s"},

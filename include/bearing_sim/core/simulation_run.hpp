@@ -13,7 +13,7 @@ struct SimulationRequest {
   double duration_s = 1.0;
   double sample_rate_hz = 10000.0;
   int substeps = 0;                // 0: automatic
-  IntegrationMethod method = IntegrationMethod::ExponentialRk4;
+  IntegrationMethod method = kDefaultIntegrationMethod;
 };
 
 struct SimulationSummary {

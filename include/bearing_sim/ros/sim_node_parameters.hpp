@@ -17,7 +17,7 @@ struct SimNodeParameters {
   std::string sensor_file;   // "": no sensor, `vibration` is the ideal acceleration
   double sample_rate_hz = 10000.0;
   int substeps = 0;  // 0: chosen by the core
-  IntegrationMethod integrator = IntegrationMethod::ExponentialRk4;
+  IntegrationMethod integrator = kDefaultIntegrationMethod;
   double load_ramp_s = 0.0;
   bool real_time = true;
   bool publish_clock = false;  // default: !real_time
