@@ -58,11 +58,12 @@ def frequencies(bearing, ring_speed_rad_s):
 
 
 def simulate(bearing, force_N, ring_speed_rad_s, moment_Nm=(0.0, 0.0), duration_s=1.0, sample_rate_hz=10000.0,
-             substeps=0):
+             substeps=0, integrator="adams_pec"):
     """A fixed-load, fixed-speed dynamic run from the static equilibrium (bearing_tool simulate).
+    integrator: adams_pec (default), adams_pece, etdrk4 or rk4 (docs/model.md, section 10).
     Returns time_s, displacement and acceleration (samples x 5) and the run's summary."""
     return load_bearing(bearing).simulate(list(force_N), ring_speed_rad_s, list(moment_Nm), duration_s,
-                                          sample_rate_hz, substeps)
+                                          sample_rate_hz, substeps, integrator)
 
 
 def generate(scenario, seed=None, duration_s=None, label_rate_hz=10.0, base_dir=None):

@@ -119,13 +119,21 @@ void bind_bearing(py::module_& m) {
       .def(
           "simulate",
           [](const PyBearing& b, const std::vector<double>& force, double ring_speed_rad_s,
-             const std::vector<double>& moment, double duration_s, double sample_rate_hz, int substeps) {
+             const std::vector<double>& moment, double duration_s, double sample_rate_hz, int substeps,
+             const std::string& integrator) {
             SimulationRequest r;
             r.load = make_load(force, moment);
             r.ring_speed_rad_s = ring_speed_rad_s;
             r.duration_s = duration_s;
             r.sample_rate_hz = sample_rate_hz;
             r.substeps = substeps;
+            const std::optional<IntegrationMethod> method = integration_method_from_name(integrator);
+            if (!method) {
+              std::string names;
+              for (const std::string& n : integration_method_names()) names += (names.empty() ? "" : ", ") + n;
+              throw InvalidInputError("integrator \"" + integrator + "\": must be one of " + names);
+            }
+            r.method = *method;
             if (!(duration_s > 0.0) || !std::isfinite(duration_s)) throw InvalidInputError("duration_s must be > 0");
             if (!(sample_rate_hz > 0.0) || !std::isfinite(sample_rate_hz))
               throw InvalidInputError("sample_rate_hz must be > 0");
@@ -145,6 +153,7 @@ void bind_bearing(py::module_& m) {
             d["time_s"] = py::array_t<double>(n, time.data());
             d["displacement"] = py::array_t<double>({n, py::ssize_t{5}}, displacement.data());
             d["acceleration"] = py::array_t<double>({n, py::ssize_t{5}}, acceleration.data());
+            d["integrator"] = integrator;
             d["substeps"] = s.substeps;
             d["internal_step_s"] = s.internal_step_s;
             d["a_rms"] = py::make_tuple(s.a_rms_x, s.a_rms_y, s.a_rms_z);
@@ -155,6 +164,7 @@ void bind_bearing(py::module_& m) {
           },
           py::arg("force_N"), py::arg("ring_speed_rad_s"), py::arg("moment_Nm") = std::vector<double>{0.0, 0.0},
           py::arg("duration_s") = 1.0, py::arg("sample_rate_hz") = 10000.0, py::arg("substeps") = 0,
+          py::arg("integrator") = std::string(integration_method_name(kDefaultIntegrationMethod)),
           "Dynamic run at a fixed load and speed from the static equilibrium (the GIL is released): time_s, "
           "displacement and acceleration (samples x 5) and the summary of `bearing_tool simulate`")
       .def("__repr__", [](const PyBearing& b) {
