@@ -10,6 +10,19 @@
 #include "bearing_sim/core/quasi_static.hpp"
 
 namespace bearing_sim {
+namespace {
+
+// m x for the integrators' small fixed-size matrices, summed column by column: a column is
+// contiguous (column-major), so each axpy vectorizes, where a coefficient-based product takes
+// a strided dot product per row (28 % of a small bearing's time in the Adams step).
+template <int Rows, int Cols>
+Eigen::Matrix<double, Rows, 1> times(const Eigen::Matrix<double, Rows, Cols>& m, const Eigen::Matrix<double, Cols, 1>& x) {
+  Eigen::Matrix<double, Rows, 1> sum = m.col(0) * x(0);
+  for (int j = 1; j < Cols; ++j) sum.noalias() += m.col(j) * x(j);
+  return sum;
+}
+
+}  // namespace
 
 BearingDynamics::BearingDynamics(BearingModel model, const Vector5& load, double ring_speed_rad_s,
                                  DynamicsOptions options)
@@ -399,18 +412,14 @@ bool BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
     const RollingPhase end = advanced(phase, h);
     const CageTrig trig_end = rotate(rotate(trig));  // the same rotations as ETDRK4's stages
     const Vector5 r =
-        i == 0         ? Vector5(a_start - lin_accel_.lazyProduct(y))
-        : evaluate_end ? Vector5(acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls, trig) -
-                                 lin_accel_.lazyProduct(y))
+        i == 0         ? Vector5(a_start - times(lin_accel_, y))
+        : evaluate_end ? Vector5(acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls, trig) - times(lin_accel_, y))
                        : r_predicted;
     const Vector5* past = history.r.data();
-    const Vector10 e_y = exp_full_.lazyProduct(y);
-    const Vector10 y_p = e_y + p[0].lazyProduct(r) + p[1].lazyProduct(past[0]) + p[2].lazyProduct(past[1]) +
-                         p[3].lazyProduct(past[2]);
-    const Vector5 r_p = acceleration(q_lin_ + y_p.head<5>(), y_p.tail<5>(), end, balls, trig_end) -
-                        lin_accel_.lazyProduct(y_p);
-    const Vector10 y_next = e_y + c[0].lazyProduct(r_p) + c[1].lazyProduct(r) + c[2].lazyProduct(past[0]) +
-                            c[3].lazyProduct(past[1]);
+    const Vector10 e_y = times(exp_full_, y);
+    const Vector10 y_p = e_y + times(p[0], r) + times(p[1], past[0]) + times(p[2], past[1]) + times(p[3], past[2]);
+    const Vector5 r_p = acceleration(q_lin_ + y_p.head<5>(), y_p.tail<5>(), end, balls, trig_end) - times(lin_accel_, y_p);
+    const Vector10 y_next = e_y + times(c[0], r_p) + times(c[1], r) + times(c[2], past[0]) + times(c[3], past[1]);
     history.push(r);
     r_predicted = r_p;
     y = y_next;
@@ -421,7 +430,7 @@ bool BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
   q = q_lin_ + y.head<5>();
   v = y.tail<5>();
   // PEC: a_p + A (y_c - y_p) = r_p + A y_c (its remainder is then the predicted one again).
-  if (!evaluate_end) *a_end = r_predicted + lin_accel_.lazyProduct(y);
+  if (!evaluate_end) *a_end = r_predicted + times(lin_accel_, y);
   return !evaluate_end;
 }
 
