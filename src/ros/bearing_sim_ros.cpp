@@ -133,14 +133,15 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
     sensor_description_ = "sensor: " + sensor->config().name;
   }
 
-  // As fast as possible, everything comes at ~15-30x its rate: deeper queues, so that a
-  // subscriber descheduled for a moment (a recorder, the LCM bridge) loses nothing.
+  // Outgoing queues (per subscriber; memory is used only while one lags) hold about 10 s of
+  // each stream in real time: a recorder or bridge descheduled for a second on a busy machine
+  // loses nothing. As fast as possible everything comes at 10-30x its rate: 20 times deeper.
   const int depth = real_time_ ? 1 : 20;
-  vibration_pub_ = nh_.advertise<VibrationChunk>("vibration", 100 * depth);
-  ideal_pub_ = nh_.advertise<VibrationChunk>("vibration_ideal", 100 * depth);
+  vibration_pub_ = nh_.advertise<VibrationChunk>("vibration", 1000 * depth);
+  ideal_pub_ = nh_.advertise<VibrationChunk>("vibration_ideal", 1000 * depth);
   health_pub_ = nh_.advertise<BearingHealth>("health", 10 * depth);
-  level_pub_ = nh_.advertise<VibrationLevel>("vibration_level", 10 * depth);
-  ball_loads_pub_ = nh_.advertise<BallLoads>("ball_loads", 10 * depth);
+  level_pub_ = nh_.advertise<VibrationLevel>("vibration_level", 100 * depth);
+  ball_loads_pub_ = nh_.advertise<BallLoads>("ball_loads", 300 * depth);
   if (publish_clock_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 100);
 
   diagnostics_ = std::make_unique<NodeDiagnostics>(nh_, pnh_, "bearing_sim: " + model.config().name, diag);
@@ -186,7 +187,7 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
   ROS_INFO("bearing_sim_node: '%s', %d balls, %.0f Hz dynamics, %d %s substeps per sample, %s; "
            "vibration: %s at %.0f Hz",
            model.config().name.c_str(), model.ball_count(), sample_rate_hz_, substeps_,
-           method == IntegrationMethod::Rk4 ? "RK4" : "ETDRK4",
+           integration_method_name(method),
            real_time_ ? "real time" : "as fast as possible", sensor_description_.c_str(), measured_rate_hz_);
 }
 
