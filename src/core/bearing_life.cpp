@@ -63,6 +63,26 @@ double iso281_fc(double ratio, bool double_row_deep_groove) {
   return interpolate(kFcRatio, table, ratio);
 }
 
+double iso281_groove_radius_factor(const BearingConfig& b) {
+  // ISO 281 Table 2 holds for groove radii up to 0.52 D_w (inner) and 0.53 D_w (outer); a
+  // wider groove lowers C, a tighter one does not raise it. The factor is the closed form
+  // behind the table (Lundberg-Palmgren, ISO/TR 1281-1) at the actual radii over the same at
+  // the table's: f_c ~ Q_ci [1 + (Q_ci/Q_ce)^(10/3)]^(-0.3), the inner and outer contact
+  // ratings combined into the ring's rating.
+  const auto ring_rating = [&](double fi, double fe) {
+    BearingConfig g = b;
+    g.inner_groove_curvature = fi;
+    g.outer_groove_curvature = fe;
+    const double qi = contact_dynamic_load_rating_N(g, Surface::InnerRace);
+    const double qe = contact_dynamic_load_rating_N(g, Surface::OuterRace);
+    return qi * std::pow(1.0 + std::pow(qi / qe, 10.0 / 3.0), -0.3);
+  };
+  constexpr double kTableInner = 0.52, kTableOuter = 0.53;
+  return ring_rating(std::max(b.inner_groove_curvature, kTableInner),
+                     std::max(b.outer_groove_curvature, kTableOuter)) /
+         ring_rating(kTableInner, kTableOuter);
+}
+
 double basic_dynamic_load_rating_N(const BearingConfig& b, const LifeConfig& life) {
   check_life_config(life);
   if (life.dynamic_load_rating_N > 0.0) return life.dynamic_load_rating_N;
@@ -71,7 +91,7 @@ double basic_dynamic_load_rating_N(const BearingConfig& b, const LifeConfig& lif
   const double ratio = b.ball_diameter_m * cos_a / b.pitch_diameter_m;
   const bool double_row_deep_groove = b.rows == 2 && b.contact_angle_rad == 0.0;
   const double fc = iso281_fc(ratio, double_row_deep_groove);
-  const double common = life.material_factor * fc * std::pow(b.rows * cos_a, 0.7) *
+  const double common = life.material_factor * fc * iso281_groove_radius_factor(b) * std::pow(b.rows * cos_a, 0.7) *
                         std::pow(static_cast<double>(b.balls_per_row), 2.0 / 3.0);
   return dw_mm <= 25.4 ? common * std::pow(dw_mm, 1.8) : common * 3.647 * std::pow(dw_mm, 1.4);
 }

@@ -70,11 +70,32 @@ TEST(Iso281, DoubleRowAngularContactCtBearing) {
   const double ratio = 12.0 * std::cos(35.0 * kPi / 180.0) / 1111.0;
   const double fc = 29.1 * std::pow(ratio / 0.01, 0.3);
   EXPECT_NEAR(iso281_fc(ratio, false), fc, 1e-9);
-  // C = 1.3 f_c (2 cos35)^0.7 207^(2/3) 12^1.8 = 1.3 * 28.05 * 1.4128 * 34.993 * 87.604 = 157.9 kN.
-  const double c_hand = 1.3 * fc * std::pow(2.0 * std::cos(35.0 * kPi / 180.0), 0.7) * std::pow(207.0, 2.0 / 3.0) *
-                        std::pow(12.0, 1.8);
-  EXPECT_NEAR(basic_dynamic_load_rating_N(ct), c_hand, 1e-9 * c_hand);
-  EXPECT_NEAR(c_hand, 157.9e3, 0.1e3);  // the rounded product above
+  // The table's f_c holds up to groove radii 0.52 D_w / 0.53 D_w; the CT's 0.554 reduces it
+  // by 0.7440 (GrooveRadiusFactor.WideGroovesOfTheCtBearing).
+  // C = 1.3 f_c 0.7440 (2 cos35)^0.7 207^(2/3) 12^1.8 = 1.3 * 28.05 * 0.7440 * 1.4128 * 34.993 * 87.604 = 117.5 kN.
+  const double c_hand = 1.3 * fc * 0.744034 * std::pow(2.0 * std::cos(35.0 * kPi / 180.0), 0.7) *
+                        std::pow(207.0, 2.0 / 3.0) * std::pow(12.0, 1.8);
+  EXPECT_NEAR(basic_dynamic_load_rating_N(ct), c_hand, 1e-6 * c_hand);
+  EXPECT_NEAR(c_hand, 117.5e3, 0.1e3);  // the rounded product above
+}
+
+TEST(GrooveRadiusFactor, NoChangeAtOrBelowTheTableRadii) {
+  // ISO 281 Table 2 assumes 0.52 (inner) and 0.53 (outer); tighter grooves do not raise C.
+  EXPECT_DOUBLE_EQ(iso281_groove_radius_factor(test::single_row(9, 7.94, 39.04, 0.0, 0.52, 0.53)), 1.0);
+  EXPECT_DOUBLE_EQ(iso281_groove_radius_factor(test::single_row(9, 7.94, 39.04, 0.0, 0.51, 0.515)), 1.0);
+}
+
+TEST(GrooveRadiusFactor, WideGroovesOfTheCtBearing) {
+  // The closed form behind Table 2 (ISO/TR 1281-1): f_c ~ Q_ci [1 + (Q_ci/Q_ce)^(10/3)]^-0.3,
+  // Q_ci ~ (2f_i/(2f_i - 1))^0.41 (1-g)^1.39 / (1+g)^(1/3), Q_ce ~ (2f_e/(2f_e - 1))^0.41 (1+g)^1.39 / (1-g)^(1/3).
+  // CT: g = 12 cos35 / 1111 = 0.008848. At 0.52/0.53: Q_ci 3.7454, Q_ce 3.2956, ring 2.8345;
+  // at 0.554/0.554: Q_ci 2.5581, Q_ce 2.6373, ring 2.1089; ratio 0.7440: the table's C
+  // is 1.344 times too high for these grooves, the L10 = (C/P)^3 2.43 times.
+  EXPECT_NEAR(iso281_groove_radius_factor(test::ct_bearing()), 0.74403, 2e-5);
+  // Wider grooves, lower rating: the INS pair's 0.528 inner groove costs ~9 % at g = 0.1.
+  const double ins_like = iso281_groove_radius_factor(test::single_row(20, 8.0, 80.0, 0.0, 0.528, 0.53));
+  EXPECT_NEAR(ins_like, 0.91210, 2e-5);
+  EXPECT_LT(iso281_groove_radius_factor(test::single_row(20, 8.0, 80.0, 0.0, 0.56, 0.53)), ins_like);
 }
 
 TEST(ReferenceLife, UniformBallLoadsByHand) {

@@ -25,8 +25,14 @@ struct LifeConfig {
 // above 0.40 held at the last value. double_row_deep_groove selects the second column.
 double iso281_fc(double dw_cos_alpha_over_dpw, bool double_row_deep_groove);
 
+// Reduction of f_c for groove radii above the 0.52 D_w (inner) and 0.53 D_w (outer) that
+// ISO 281 Table 2 assumes, from the Lundberg-Palmgren closed form behind the table; 1 for
+// radii at or below those (a tighter groove does not raise C).
+double iso281_groove_radius_factor(const BearingConfig& bearing);
+
 // C, N: the configured value, or b_m f_c (i cos a)^0.7 Z^(2/3) D_w^1.8 (D_w <= 25.4 mm),
-// b_m f_c (i cos a)^0.7 Z^(2/3) 3.647 D_w^1.4 (above), D_w in mm, Z balls per row.
+// b_m f_c (i cos a)^0.7 Z^(2/3) 3.647 D_w^1.4 (above), D_w in mm, Z balls per row, f_c
+// reduced by iso281_groove_radius_factor.
 double basic_dynamic_load_rating_N(const BearingConfig& bearing, const LifeConfig& life = {});
 
 // P = X Fr + Y Fa (ISO 281 Table 3), see docs/health.md for the rows used.
