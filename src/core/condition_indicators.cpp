@@ -117,11 +117,18 @@ Diagnosis diagnose(const ConditionIndicators& c, const DiagnosisThresholds& t) {
   return d;
 }
 
+double iso20816_velocity_low_hz(double shaft_speed_hz) {
+  constexpr double kSlowMachineHz = 600.0 / 60.0;
+  return std::abs(shaft_speed_hz) < kSlowMachineHz ? 2.0 : 10.0;
+}
+
 ConditionIndicators analyze_vibration(const std::vector<double>& accel, double fs, const BearingFrequencies& freq,
                                       const AnalysisOptions& o) {
   if (!(fs > 0.0) || !std::isfinite(fs)) throw InvalidInputError("analysis: the sample rate must be > 0 Hz");
   if (!(o.window_s >= 0.0) || !std::isfinite(o.window_s)) throw InvalidInputError("analysis: window_s must be >= 0");
-  if (!(o.velocity_low_hz > 0.0) || !(o.velocity_high_hz > o.velocity_low_hz))
+  const double velocity_low_hz =
+      o.velocity_low_hz > 0.0 ? o.velocity_low_hz : iso20816_velocity_low_hz(freq.relative_ring_hz);
+  if (!(o.velocity_low_hz >= 0.0) || !(o.velocity_high_hz > velocity_low_hz) || !std::isfinite(o.velocity_high_hz))
     throw InvalidInputError("analysis: the velocity band must satisfy 0 < low < high");
   std::size_t n = accel.size();
   if (o.window_s > 0.0) n = std::min(n, static_cast<std::size_t>(std::llround(o.window_s * fs)));
@@ -136,10 +143,10 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
   c.acceleration = signal_statistics(x);
   c.level_db = vibration_level_db(c.acceleration.rms);
   const double nyquist = 0.5 * fs;
+  c.velocity_low_hz = velocity_low_hz;
+  c.velocity_high_hz = std::min(o.velocity_high_hz, nyquist);
   c.velocity_rms_mm_s =
-      o.velocity_low_hz < nyquist
-          ? 1e3 * band_velocity_rms(x, fs, o.velocity_low_hz, std::min(o.velocity_high_hz, nyquist))
-          : 0.0;
+      velocity_low_hz < nyquist ? 1e3 * band_velocity_rms(x, fs, velocity_low_hz, c.velocity_high_hz) : 0.0;
   c.zone = velocity_zone(c.velocity_rms_mm_s, o.zones);
 
   // Envelope band.

@@ -36,6 +36,7 @@ py::dict analyze(const PyBearing& b, py::array_t<double, py::array::c_style | py
   d["kurtosis"] = c.acceleration.kurtosis;
   d["level_db"] = c.level_db;
   d["velocity_rms_mm_s"] = c.velocity_rms_mm_s;
+  d["velocity_band_hz"] = py::make_tuple(c.velocity_low_hz, c.velocity_high_hz);
   d["velocity_zone"] = velocity_zone_name(c.zone);
   d["envelope_band_hz"] = py::make_tuple(c.envelope_low_hz, c.envelope_high_hz);
   d["envelope_mean_m_s2"] = c.envelope_mean_m_s2;

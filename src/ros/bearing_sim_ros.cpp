@@ -561,7 +561,7 @@ void BearingSimRos::publish_health(const HealthReport& report) {
     add("crest factor", fmt(msg.crest_factor, 2));
     add("kurtosis", fmt(msg.kurtosis, 2));
     add("L (dB)", fmt(msg.level_db, 1));
-    add("velocity RMS 10-1000 Hz (mm/s)", fmt(msg.velocity_rms_mm_s, 4));
+    add("velocity RMS, ISO 20816-3 band (mm/s)", fmt(msg.velocity_rms_mm_s, 4));
     add("ISO 20816-3 zone", msg.velocity_zone);
     add("envelope band (Hz)", fmt(msg.envelope_low_hz, 0) + "-" + fmt(msg.envelope_high_hz, 0));
     for (const EnvelopeLine& l : msg.faults)

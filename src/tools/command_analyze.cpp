@@ -178,7 +178,7 @@ void run(const AnalyzeCliOptions& o) {
                                  {"kurtosis", c.acceleration.kurtosis},
                                  {"L_dB", c.level_db},
                                  {"velocity_rms_mm_s", c.velocity_rms_mm_s},
-                                 {"velocity_band_hz", {a.velocity_low_hz, a.velocity_high_hz}},
+                                 {"velocity_band_hz", {c.velocity_low_hz, c.velocity_high_hz}},
                                  {"zone", velocity_zone_name(c.zone)},
                                  {"zone_boundaries_mm_s", o.zones},
                                  {"envelope_band_hz", {c.envelope_low_hz, c.envelope_high_hz}},
@@ -205,7 +205,7 @@ void run(const AnalyzeCliOptions& o) {
   t.add_row({"crest factor", fixed(c.acceleration.crest_factor, 3), ""});
   t.add_row({"kurtosis (Gaussian 3)", fixed(c.acceleration.kurtosis, 3), ""});
   t.add_row({"L (JB/T 5314, a0 = 9.81e-3 m/s^2)", fixed(c.level_db, 2), "dB"});
-  t.add_row({"velocity RMS " + general(a.velocity_low_hz, 4) + "-" + general(a.velocity_high_hz, 4) + " Hz",
+  t.add_row({"velocity RMS " + general(c.velocity_low_hz, 4) + "-" + general(c.velocity_high_hz, 4) + " Hz",
              fixed(c.velocity_rms_mm_s, 3), "mm/s"});
   t.add_row({"ISO 20816-3 zone (A/B/C/D at " + general(o.zones[0], 3) + "/" + general(o.zones[1], 3) + "/" +
                  general(o.zones[2], 3) + " mm/s)",

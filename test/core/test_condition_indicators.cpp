@@ -59,6 +59,32 @@ TEST(ConditionIndicators, SineOfKnownVelocity) {
   EXPECT_EQ(d.diagnosis.level, HealthLevel::Error);
 }
 
+TEST(ConditionIndicators, VelocityBandFollowsTheMachineSpeed) {
+  // ISO 20816-3: 2-1000 Hz below 600 rpm, 10-1000 Hz above. A 5 Hz acceleration sine of
+  // 1 mm/s RMS velocity (a = v sqrt2 omega) counts on a 180 rpm machine (the CT gantry)
+  // and not on a 1380 rpm one (23 Hz): there only the 1/f^2-weighted leakage of the
+  // Hann window's main lobe, far below 5 %, is left.
+  EXPECT_DOUBLE_EQ(iso20816_velocity_low_hz(3.0), 2.0);
+  EXPECT_DOUBLE_EQ(iso20816_velocity_low_hz(-3.0), 2.0);
+  EXPECT_DOUBLE_EQ(iso20816_velocity_low_hz(10.0), 10.0);
+  const double fs = 2000.0, omega = 2.0 * kPi * 5.0, v_rms = 1e-3;
+  std::vector<double> x(40000);  // 20 s, 100 periods
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = v_rms * std::sqrt(2.0) * omega * std::sin(omega * i / fs);
+  BearingFrequencies slow = frequencies();
+  slow.relative_ring_hz = 3.0;
+  const ConditionIndicators c_slow = analyze_vibration(x, fs, slow);
+  EXPECT_DOUBLE_EQ(c_slow.velocity_low_hz, 2.0);
+  EXPECT_DOUBLE_EQ(c_slow.velocity_high_hz, 1000.0);
+  EXPECT_NEAR(c_slow.velocity_rms_mm_s, 1.0, 0.01);
+  const ConditionIndicators c_fast = analyze_vibration(x, fs, frequencies());
+  EXPECT_DOUBLE_EQ(c_fast.velocity_low_hz, 10.0);
+  EXPECT_LT(c_fast.velocity_rms_mm_s, 0.05);
+  // An explicit band wins.
+  AnalysisOptions o;
+  o.velocity_low_hz = 10.0;
+  EXPECT_LT(analyze_vibration(x, fs, slow, o).velocity_rms_mm_s, 0.05);
+}
+
 TEST(ConditionIndicators, GaussianNoiseIsOk) {
   std::mt19937_64 rng(9);
   std::normal_distribution<double> n(0.0, 0.5);

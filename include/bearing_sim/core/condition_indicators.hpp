@@ -47,8 +47,9 @@ struct AnalysisOptions {
   // 4 x the highest fault frequency (at least 500 Hz) up to 0.4 x the sample rate.
   double resonance_hz = 0.0;
   double envelope_band_width_hz = 2000.0;
-  // Velocity band of ISO 20816-3 for machines above 600 rpm.
-  double velocity_low_hz = 10.0;
+  // Velocity band; a low edge of 0 takes ISO 20816-3's for the machine's speed
+  // (iso20816_velocity_low_hz of the relative ring speed).
+  double velocity_low_hz = 0.0;
   double velocity_high_hz = 1000.0;
   VelocityZoneBoundaries zones;
   PeakSearchOptions peak_search;
@@ -85,6 +86,7 @@ struct ConditionIndicators {
   SignalStatistics acceleration;  // m/s^2: rms, peak, crest factor, kurtosis
   double level_db = 0.0;          // L = 20 lg(a_rms / 9.81e-3 m/s^2), JB/T 5314
   double velocity_rms_mm_s = 0.0; // in [velocity_low_hz, velocity_high_hz]
+  double velocity_low_hz = 0.0, velocity_high_hz = 0.0;  // the band used
   VelocityZone zone = VelocityZone::A;
   double envelope_low_hz = 0.0, envelope_high_hz = 0.0;
   double envelope_mean_m_s2 = 0.0;  // mean of the band envelope (the demodulated level)
@@ -97,6 +99,10 @@ struct ConditionIndicators {
 // the sample rate).
 ConditionIndicators analyze_vibration(const std::vector<double>& accel_m_s2, double sample_rate_hz,
                                       const BearingFrequencies& frequencies, const AnalysisOptions& options = {});
+
+// Low edge of ISO 20816-3's broadband velocity range: 2 Hz for machines below 600 rpm
+// (the standard's 120-600 rpm range; the CT gantry turns at up to ~240 rpm), 10 Hz above.
+double iso20816_velocity_low_hz(double shaft_speed_hz);
 
 // The fault frequency searched for a kind: BPFO, BPFI, 2 x ball spin, |cage|.
 double fault_frequency_hz(const BearingFrequencies& f, FaultKind kind);
