@@ -132,6 +132,10 @@ EquivalentLoad equivalent_dynamic_load(const BearingConfig& b, double fr, double
   return q;
 }
 
+double rating_life_million_rev(double rating_N, double load_N, double exponent) {
+  return load_N > 0.0 ? std::pow(rating_N / load_N, exponent) : kInf;
+}
+
 double life_hours(double life_million_rev, double speed_rad_s) {
   const double rev_per_hour = std::abs(speed_rad_s) / (2.0 * kPi) * 3600.0;
   if (rev_per_hour == 0.0) return kInf;
@@ -144,9 +148,7 @@ BasicRatingLife basic_rating_life(const BearingConfig& b, const Vector5& load, d
   BasicRatingLife r;
   r.dynamic_load_rating_N = basic_dynamic_load_rating_N(b, life);
   r.equivalent = equivalent_dynamic_load(b, std::hypot(load[0], load[1]), std::abs(load[2]));
-  r.life_million_rev = r.equivalent.load_N > 0.0
-                           ? std::pow(r.dynamic_load_rating_N / r.equivalent.load_N, life.life_exponent)
-                           : kInf;
+  r.life_million_rev = rating_life_million_rev(r.dynamic_load_rating_N, r.equivalent.load_N, life.life_exponent);
   r.life_hours = life_hours(r.life_million_rev, speed_rad_s);
   return r;
 }
@@ -208,18 +210,11 @@ ReferenceLife reference_life(const BearingModel& model, const std::vector<BallSt
   return r;
 }
 
-MinerDamage::MinerDamage(double rating_N, double exponent) : rating_N_(rating_N), exponent_(exponent) {
-  if (!(rating_N > 0.0) || !std::isfinite(rating_N) || !(exponent > 0.0))
-    throw InvalidInputError("Miner damage: the dynamic load rating and the life exponent must be > 0");
-}
-
-void MinerDamage::add(double load_N, double speed_rad_s, double dt_s) {
-  if (!(load_N >= 0.0) || !std::isfinite(load_N) || !std::isfinite(speed_rad_s) || !(dt_s >= 0.0) ||
-      !std::isfinite(dt_s))
-    throw InvalidInputError("Miner damage: load >= 0 N, finite speed and dt >= 0 s expected");
+void MinerDamage::add(double life_million_rev, double speed_rad_s, double dt_s) {
+  if (!(life_million_rev > 0.0) || !std::isfinite(speed_rad_s) || !(dt_s >= 0.0) || !std::isfinite(dt_s))
+    throw InvalidInputError("Miner damage: a life > 0, a finite speed and dt >= 0 s expected");
   const double revs = std::abs(speed_rad_s) / (2.0 * kPi) * dt_s;
-  // n_i / N_i with N_i = (C/P)^p 1e6: written as n_i (P/C)^p / 1e6 so that P = 0 is 0.
-  const double per_rev = std::pow(load_N / rating_N_, exponent_) * 1e-6;
+  const double per_rev = 1e-6 / life_million_rev;  // 0 for an infinite life
   damage_ += revs * per_rev;
   revolutions_ += revs;
   elapsed_s_ += dt_s;

@@ -35,8 +35,7 @@ HealthMonitor::HealthMonitor(BearingModel model, const Vector5& load, double rin
     : settings_(std::move(settings)),
       callback_(std::move(callback)),
       load_(load),
-      ring_speed_rad_s_(ring_speed_rad_s),
-      miner_(basic_dynamic_load_rating_N(model.config(), settings_.life), settings_.life.life_exponent) {
+      ring_speed_rad_s_(ring_speed_rad_s) {
   if (!(settings_.sample_rate_hz > 0.0) || !std::isfinite(settings_.sample_rate_hz))
     throw InvalidInputError("health: the sample rate must be > 0 Hz");
   if (!(settings_.window_s > 0.0) || !std::isfinite(settings_.window_s))
@@ -47,6 +46,22 @@ HealthMonitor::HealthMonitor(BearingModel model, const Vector5& load, double rin
   ring_.assign(window_samples_, 0.0);
   spalls_ = model.imperfections().spalls();
   model_ = std::make_shared<const BearingModel>(std::move(model));
+  try {
+    life_ = {load, equivalent_load_N(model_->config(), load),
+             reference_life(*model_, solve_static(*model_, load).balls, settings_.life).life_million_rev};
+  } catch (const LoadNotCarriedError&) {
+    // A load the static solution cannot take: ISO 281's L10 until an analysis succeeds.
+    life_ = {load, equivalent_load_N(model_->config(), load),
+             basic_rating_life(model_->config(), load, ring_speed_rad_s, settings_.life).life_million_rev};
+  }
+}
+
+double HealthMonitor::life_now(const Vector5& load) const {
+  if (load == life_.load) return life_.life_million_rev;
+  const double p_now = equivalent_load_N(model_->config(), load);
+  if (p_now > 0.0 && life_.equivalent_load_N > 0.0)
+    return life_.life_million_rev * std::pow(life_.equivalent_load_N / p_now, 3.0);
+  return life_.life_million_rev;
 }
 
 HealthMonitor::~HealthMonitor() { stop(); }
@@ -81,7 +96,7 @@ void HealthMonitor::push(const float* samples, std::size_t n) {
 void HealthMonitor::add_operation(const Vector5& load, double ring_speed_rad_s, double dt_s) {
   std::lock_guard<PriorityInheritanceMutex> lock(mutex_);
   // The load was validated (finite, within limits) before it reached the dynamics.
-  miner_.add(equivalent_load_N(model_->config(), load), ring_speed_rad_s, dt_s);
+  miner_.add(life_now(load), ring_speed_rad_s, dt_s);
   load_ = load;
   ring_speed_rad_s_ = ring_speed_rad_s;
 }
@@ -156,6 +171,8 @@ HealthReport HealthMonitor::analyse(Snapshot& s) {
       reference_life_million_rev_ = reference_life(model, st.balls, settings_.life).life_million_rev;
       reference_model_ = s.model;
       reference_load_ = s.load;
+      std::lock_guard<PriorityInheritanceMutex> lock(mutex_);
+      life_ = {s.load, equivalent_load_N(model.config(), s.load), reference_life_million_rev_};
     }
     r.reference_life_million_rev = reference_life_million_rev_;
     r.reference_life_hours = life_hours(reference_life_million_rev_, s.ring_speed_rad_s);

@@ -157,21 +157,28 @@ TEST(MinerDamage, TwoLevelHistory) {
   // L2 = (14000/4000)^3 = 42.875 Mrev = 42.875e6 / (3000*60) h = 238.19 h.
   const double l1_h = 343e6 / (1800.0 * 60.0), l2_h = 42.875e6 / (3000.0 * 60.0);
   const double d_expected = 100.0 / l1_h + 20.0 / l2_h;  // 0.031487 + 0.083965 = 0.115452
-  MinerDamage m(c);
+  MinerDamage m;
   const double w1 = 1800.0 * 2.0 * kPi / 60.0, w2 = -3000.0 * 2.0 * kPi / 60.0;  // sign ignored
-  for (int i = 0; i < 1000; ++i) m.add(2000.0, w1, 100.0 * 3600.0 / 1000.0);
-  for (int i = 0; i < 500; ++i) m.add(4000.0, w2, 20.0 * 3600.0 / 500.0);
+  const double life1 = rating_life_million_rev(c, 2000.0), life2 = rating_life_million_rev(c, 4000.0);
+  EXPECT_NEAR(life1, 343.0, 1e-9);
+  EXPECT_NEAR(life2, 42.875, 1e-9);
+  for (int i = 0; i < 1000; ++i) m.add(life1, w1, 100.0 * 3600.0 / 1000.0);
+  for (int i = 0; i < 500; ++i) m.add(life2, w2, 20.0 * 3600.0 / 500.0);
   EXPECT_NEAR(m.damage(), d_expected, 1e-9 * d_expected);
   EXPECT_NEAR(m.damage(), 0.115452, 1e-6);
   EXPECT_NEAR(m.elapsed_s(), 120.0 * 3600.0, 1e-6);
   // Remaining life at the current (level 2) rate: (1 - D) L2.
   EXPECT_NEAR(m.remaining_life_hours(), (1.0 - d_expected) * l2_h, 1e-9 * l2_h);
   // Standing still does no damage and leaves the rate at zero: infinite remaining life.
-  m.add(4000.0, 0.0, 3600.0);
+  m.add(life2, 0.0, 3600.0);
   EXPECT_NEAR(m.damage(), d_expected, 1e-9);
   EXPECT_TRUE(std::isinf(m.remaining_life_s()));
-  EXPECT_THROW(m.add(-1.0, w1, 1.0), InvalidInputError);
-  EXPECT_THROW(MinerDamage(0.0), InvalidInputError);
+  // No load, infinite life: no damage.
+  EXPECT_TRUE(std::isinf(rating_life_million_rev(c, 0.0)));
+  m.add(rating_life_million_rev(c, 0.0), w1, 3600.0);
+  EXPECT_NEAR(m.damage(), d_expected, 1e-9);
+  EXPECT_THROW(m.add(0.0, w1, 1.0), InvalidInputError);
+  EXPECT_THROW(m.add(life1, w1, -1.0), InvalidInputError);
 }
 
 }  // namespace

@@ -53,6 +53,9 @@ struct BasicRatingLife {
 BasicRatingLife basic_rating_life(const BearingConfig& bearing, const Vector5& load, double relative_speed_rad_s,
                                   const LifeConfig& life = {});
 
+// L10 = (C/P)^p million revolutions; infinity for P = 0.
+double rating_life_million_rev(double dynamic_load_rating_N, double equivalent_load_N, double life_exponent = 3.0);
+
 // Hours of a life in millions of revolutions at a speed (rad/s, sign ignored).
 double life_hours(double life_million_rev, double speed_rad_s);
 
@@ -82,14 +85,15 @@ ReferenceLife reference_life(const BearingModel& model, const std::vector<BallSt
                              const LifeConfig& life = {});
 
 // --- Palmgren-Miner damage --------------------------------------------------------------
-// D = sum n_i / N_i over intervals of constant equivalent load P_i and speed: n_i the
-// revolutions in the interval, N_i = (C/P_i)^p 1e6 revolutions (the L10 life at P_i).
+// D = sum n_i / N_i over intervals of constant load and speed: n_i the revolutions in the
+// interval, N_i the life at its load in revolutions (whichever life model gives it: the
+// node uses the reference life).
 class MinerDamage {
  public:
-  explicit MinerDamage(double dynamic_load_rating_N, double life_exponent = 3.0);
-  // An interval of dt_s at equivalent dynamic load P (N) and relative ring speed (rad/s,
-  // sign ignored). Throws InvalidInputError for negative or non-finite values.
-  void add(double equivalent_load_N, double speed_rad_s, double dt_s);
+  // An interval of dt_s at relative ring speed (rad/s, sign ignored) under a load whose life
+  // is life_million_rev (infinity: no damage). Throws InvalidInputError for a life <= 0,
+  // a negative dt or non-finite values.
+  void add(double life_million_rev, double speed_rad_s, double dt_s);
   double damage() const { return damage_; }
   double revolutions() const { return revolutions_; }
   double elapsed_s() const { return elapsed_s_; }
@@ -101,7 +105,6 @@ class MinerDamage {
   void reset();
 
  private:
-  double rating_N_, exponent_;
   double damage_ = 0.0, revolutions_ = 0.0, elapsed_s_ = 0.0, rate_per_s_ = 0.0;
 };
 

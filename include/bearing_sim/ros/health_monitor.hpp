@@ -126,6 +126,16 @@ class HealthMonitor {
   double ring_speed_rad_s_ = 0.0;
   std::vector<Spall> spalls_;
   MinerDamage miner_;
+  // The Miner sum's life model is the reference life (the one reported): its value at the
+  // load of the last analysis; another load until the next analysis scales it by ISO 281's
+  // (P_then / P_now)^3 (solve_static is too slow for the publisher's thread).
+  struct LifeAtLoad {
+    Vector5 load = Vector5::Constant(std::numeric_limits<double>::quiet_NaN());
+    double equivalent_load_N = 0.0;  // ISO 281 P at that load
+    double life_million_rev = std::numeric_limits<double>::infinity();
+  };
+  LifeAtLoad life_;
+  double life_now(const Vector5& load) const;  // mutex_ held
   std::shared_ptr<const BearingModel> model_;
   std::optional<double> requested_end_time_s_;
   bool stop_ = false;
