@@ -161,5 +161,17 @@ TEST(ContactKernel, ReportsTheCpuAndSimdTarget) {
   EXPECT_FALSE(cpu_model_name().empty());
 }
 
+// bench_simulate --simd_target=AVX2: an AVX2-only CPU's kernel on an AVX-512 machine.
+TEST(ContactKernel, LimitsTheSimdTarget) {
+  EXPECT_FALSE(limit_simd_target("no such target"));
+  const std::int64_t supported = hwy::SupportedTargets();
+  for (const std::int64_t target : detail::contact_kernel_compiled_targets()) {
+    if ((target & supported) == 0) continue;
+    EXPECT_TRUE(limit_simd_target(hwy::TargetName(target)));
+    EXPECT_EQ(simd_target_name(), hwy::TargetName(target));
+    hwy::DisableTargets(0);  // every target again, for the other tests
+  }
+}
+
 }  // namespace
 }  // namespace bearing_sim
