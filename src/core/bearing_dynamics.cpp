@@ -8,18 +8,26 @@
 
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
+#include "small_products.hpp"
 
 namespace bearing_sim {
 namespace {
 
-// m x for the integrators' small fixed-size matrices, summed column by column: a column is
-// contiguous (column-major), so each axpy vectorizes, where a coefficient-based product takes
-// a strided dot product per row (28 % of a small bearing's time in the Adams step).
+// m x and base + m x for the integrators' small fixed-size matrices: the SIMD kernel of
+// small_products.hpp (Eigen's products at these sizes cost several times the arithmetic).
 template <int Rows, int Cols>
-Eigen::Matrix<double, Rows, 1> times(const Eigen::Matrix<double, Rows, Cols>& m, const Eigen::Matrix<double, Cols, 1>& x) {
-  Eigen::Matrix<double, Rows, 1> sum = m.col(0) * x(0);
-  for (int j = 1; j < Cols; ++j) sum.noalias() += m.col(j) * x(j);
-  return sum;
+Eigen::Matrix<double, Rows, 1> times(const Eigen::Matrix<double, Rows, Cols>& m, const double* x) {
+  Eigen::Matrix<double, Rows, 1> out;
+  detail::multiply_add<Rows, Cols>(m.data(), x, nullptr, out.data());
+  return out;
+}
+
+template <int Rows, int Cols>
+Eigen::Matrix<double, Rows, 1> plus_times(const Eigen::Matrix<double, Rows, 1>& base,
+                                          const Eigen::Matrix<double, Rows, Cols>& m, const double* x) {
+  Eigen::Matrix<double, Rows, 1> out;
+  detail::multiply_add<Rows, Cols>(m.data(), x, base.data(), out.data());
+  return out;
 }
 
 }  // namespace
@@ -160,8 +168,8 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
         corrector += kBinomial[j][i] * am[j];
       }
       const double sign = i % 2 ? -1.0 : 1.0;
-      adams_predictor_[i] = sign * h * predictor.rightCols<5>();
-      adams_corrector_[i] = sign * h * corrector.rightCols<5>();
+      adams_predictor_.middleCols<5>(5 * i) = sign * h * predictor.rightCols<5>();
+      adams_corrector_.middleCols<5>(5 * i) = sign * h * corrector.rightCols<5>();
     }
   } else {
     Eigen::Matrix<double, 40, 40> x = Eigen::Matrix<double, 40, 40>::Zero();
@@ -205,7 +213,8 @@ void BearingDynamics::set_load(const Vector5& load) {
   current_.acceleration += (load - load_).cwiseProduct(inverse_mass_);
   // So do the Adams method's past remainders: as if the new load had always been there
   // (it holds over the whole next step).
-  for (int i = 0; i < adams_history_.size; ++i) adams_history_.r[i] += (load - load_).cwiseProduct(inverse_mass_);
+  for (int i = 0; i < adams_history_.size; ++i)
+    adams_history_.r.segment<5>(5 * i) += (load - load_).cwiseProduct(inverse_mass_);
   load_ = load;
   // The contact stiffness grows with the load (as F^(1/3)): check the step again when
   // the load has changed a lot since it was chosen.
@@ -322,7 +331,8 @@ double BearingDynamics::contact_margin_m(const Vector5& q, const Vector5& v, con
 
 bool BearingDynamics::integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
                                        const BallArrays& balls, AdamsHistory& history, Vector5* a_end) const {
-  if (adams() && history.size == 3) return integrate_sample_adams(q, v, phase, a_start, balls, history, a_end);
+  if (adams() && history.size == AdamsHistory::kLength)
+    return integrate_sample_adams(q, v, phase, a_start, balls, history, a_end);
   if (exponential())
     integrate_sample_exponential(q, v, phase, a_start, balls, adams() ? &history : nullptr);
   else
@@ -394,43 +404,43 @@ bool BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
   // y = (q - q_lin, v) as in ETDRK4. Per step: the remainder r at the start (the previous
   // step's end evaluation), the predictor y_p = e^{hL} y + P0 r + P1 r_-1 + P2 r_-2 + P3 r_-3,
   // the remainder r_p at y_p and the step's end, the corrector
-  // y_next = e^{hL} y + C0 r_p + C1 r + C2 r_-1 + C3 r_-2.
+  // y_next = e^{hL} y + C0 r_p + C1 r + C2 r_-1 + C3 r_-2. The remainders are stacked newest
+  // first in `stack` = (r_p, r, r_-1, r_-2, r_-3): the predictor's weights apply to its last
+  // four, the corrector's to its first four, and a step moves it down by one remainder.
   using Vector10 = Eigen::Matrix<double, 10, 1>;
   const double h = 1.0 / (options_.sample_rate_hz * substeps_);
   const CageTrig rot = half_step_rotation();
   const auto rotate = [&rot](const CageTrig& t) {
     return CageTrig{t.c * rot.c - t.s * rot.s, t.s * rot.c + t.c * rot.s};
   };
-  const std::array<Matrix10x5, 4>& p = adams_predictor_;
-  const std::array<Matrix10x5, 4>& c = adams_corrector_;
   const bool evaluate_end = options_.method == IntegrationMethod::ExponentialAdams;  // PECE, else PEC
   CageTrig trig{std::cos(phase.cage), std::sin(phase.cage)};
   Vector10 y;
   y << q - q_lin_, v;
-  Vector5 r_predicted = Vector5::Zero();  // of the last step's predicted end
+  Eigen::Matrix<double, 25, 1> stack;
+  stack.tail<15>() = history.r;
+  stack.segment<5>(5) = a_start - times(lin_accel_, y.data());
   for (int i = 0; i < substeps_; ++i) {
     const RollingPhase end = advanced(phase, h);
     const CageTrig trig_end = rotate(rotate(trig));  // the same rotations as ETDRK4's stages
-    const Vector5 r =
-        i == 0         ? Vector5(a_start - times(lin_accel_, y))
-        : evaluate_end ? Vector5(acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls, trig) - times(lin_accel_, y))
-                       : r_predicted;
-    const Vector5* past = history.r.data();
-    const Vector10 e_y = times(exp_full_, y);
-    const Vector10 y_p = e_y + times(p[0], r) + times(p[1], past[0]) + times(p[2], past[1]) + times(p[3], past[2]);
-    const Vector5 r_p = acceleration(q_lin_ + y_p.head<5>(), y_p.tail<5>(), end, balls, trig_end) - times(lin_accel_, y_p);
-    const Vector10 y_next = e_y + times(c[0], r_p) + times(c[1], r) + times(c[2], past[0]) + times(c[3], past[1]);
-    history.push(r);
-    r_predicted = r_p;
-    y = y_next;
+    if (i > 0 && evaluate_end)
+      stack.segment<5>(5) =
+          acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls, trig) - times(lin_accel_, y.data());
+    const Vector10 e_y = times(exp_full_, y.data());
+    const Vector10 y_p = plus_times(e_y, adams_predictor_, stack.data() + 5);
+    stack.head<5>() =
+        acceleration(q_lin_ + y_p.head<5>(), y_p.tail<5>(), end, balls, trig_end) - times(lin_accel_, y_p.data());
+    y = plus_times(e_y, adams_corrector_, stack.data());
+    stack.tail<20>() = stack.head<20>().eval();  // r_p is the next step's r (PEC)
     phase = end;
     trig = trig_end;
   }
+  history.r = stack.tail<15>();
   sample_end_trig_ = trig;
   q = q_lin_ + y.head<5>();
   v = y.tail<5>();
   // PEC: a_p + A (y_c - y_p) = r_p + A y_c (its remainder is then the predicted one again).
-  if (!evaluate_end) *a_end = r_predicted + times(lin_accel_, y);
+  if (!evaluate_end) *a_end = stack.segment<5>(5) + times(lin_accel_, y.data());
   return !evaluate_end;
 }
 

@@ -244,17 +244,9 @@ void Imperfections::add_spall(const Spall& spall) {
   SpallShape shape;
   // Without growth the size does not depend on time (grown_size is then min(size, limit)).
   shape.fixed = spall.width_growth_m_per_s == 0.0 && spall.depth_growth_m_per_s == 0.0;
-  if (shape.fixed) {
-    spall_size(spall, spall.created_at_s, &shape.angular_width, &shape.depth);
-    shape.reach = spall_reach(shape.angular_width);
-  }
+  if (shape.fixed) spall_size(spall, spall.created_at_s, &shape.angular_width, &shape.depth);
   spalls_.push_back(spall);
   spall_shapes_.push_back(shape);
-}
-
-int Imperfections::spall_reach(double angular_width) const {
-  const double pitch = kTwoPi / geometry_.balls_per_row;
-  return static_cast<int>(std::ceil((0.5 * angular_width + max_spacing_error_) / pitch)) + 1;
 }
 
 void Imperfections::spall_size(const Spall& s, double time_s, double* angular_width, double* depth) const {
@@ -305,11 +297,12 @@ void Imperfections::fill_ball_set(const std::vector<int>& balls, BallSet* set) c
 
 namespace {
 // out[b] += sum over H harmonics of c_h cos_hb - s_h sin_hb, in one pass over the balls.
-// Also built for AVX2 and picked at load time (the default build is for baseline x86-64);
-// "avx2" without "fma" keeps every clone's arithmetic, and so its results, identical.
+// Also built for AVX2 with FMA and picked at load time (the default build is for baseline
+// x86-64): fused multiply-adds halve the arithmetic of the CT bearing's waviness (its results
+// differ from the baseline clone's by rounding, as the contact kernel's do between targets).
 template <int H>
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
+__attribute__((target_clones("arch=haswell", "default")))
 #endif
 void add_harmonics(const double* coefficients, const double* __restrict terms, int n, double* __restrict out) {
   double c[2 * H];  // in registers, not reloaded per ball
@@ -389,12 +382,18 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, d
       const int z = geometry_.balls_per_row;
       const double* all_base = geometry_.base_azimuth.data();
       const double pitch = kTwoPi / z;
-      const int reach = shape.fixed ? shape.reach : spall_reach(angular_width);
+      // Ball j of a row sits within the spacing error of row_phase + j pitch: the spall's
+      // half width plus that error, in pitches, either side of its centre. Floor and ceil
+      // keep a ball of slack against rounding (two balls to look at for a narrow spall).
+      const double reach = (0.5 * angular_width + max_spacing_error_) / pitch;
       for (int row = 0; row < geometry_.rows; ++row) {
-        const double row_phase = all_base[row * z];
-        const long centre = std::lround(-(start + row_phase) / pitch);
-        const long first = 2 * reach + 1 < z ? centre - reach : 0;
-        const long last = 2 * reach + 1 < z ? centre + reach : z - 1;  // a spall wider than the row: every ball once
+        const double centre = -(start + all_base[row * z]) / pitch;
+        long first = static_cast<long>(std::floor(centre - reach));
+        long last = static_cast<long>(std::ceil(centre + reach));
+        if (last - first + 1 >= z) {  // a spall wider than the row: every ball once
+          first = 0;
+          last = z - 1;
+        }
         long first_in_row = first % z;  // one division, not two
         if (first_in_row < 0) first_in_row += z;
         int j = static_cast<int>(first_in_row);

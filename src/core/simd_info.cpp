@@ -2,11 +2,23 @@
 
 #include <fstream>
 
+#include <hwy/targets.h>
+
 #include "contact_kernel.hpp"
 
 namespace bearing_sim {
 
 std::string simd_target_name() { return detail::contact_kernel_target_name(); }
+
+bool limit_simd_target(const std::string& name) {
+  for (const std::int64_t target : detail::contact_kernel_compiled_targets()) {
+    if (name != hwy::TargetName(target) || (hwy::SupportedTargets() & target) == 0) continue;
+    // Highway's better targets have the lower bits.
+    hwy::DisableTargets(target - 1);
+    return true;
+  }
+  return false;
+}
 
 std::string cpu_model_name() {
   std::ifstream in("/proc/cpuinfo");

@@ -1,16 +1,19 @@
 // The SIMD contact kernel (Google Highway, one variant per SIMD target, picked at run time)
 // must give the plain scalar loop's forces, for every target compiled in that this CPU can
 // run: same formulas and correctly rounded square roots and divisions; only fused
-// multiply-adds and the order of the sums differ.
+// multiply-adds and the order of the sums differ. The same for the Adams step's small
+// matrix-vector products against Eigen's.
 #include <gtest/gtest.h>
 
 #include <hwy/targets.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <random>
 
 #include "../../src/core/contact_kernel.hpp"
+#include "../../src/core/small_products.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "bearing_sim/core/simd_info.hpp"
 #include "test_support.hpp"
@@ -155,10 +158,49 @@ TEST(ContactKernel, SimdAndScalarKernelsAgreeOnRandomBallsWithEdgeCases) {
   EXPECT_GT(pulled_negative, 0);
 }
 
+// Every size the Adams step uses, with and without the added vector, against Eigen's
+// product: rounding only (FMAs and the order of the sums), 1e-15 of the terms' magnitude.
+template <int Rows, int Cols>
+void expect_products_agree() {
+  const Eigen::Matrix<double, Rows, Cols> m = Eigen::Matrix<double, Rows, Cols>::Random();
+  const Eigen::Matrix<double, Cols, 1> x = Eigen::Matrix<double, Cols, 1>::Random() * 1e3;
+  const Eigen::Matrix<double, Rows, 1> base = Eigen::Matrix<double, Rows, 1>::Random() * 1e3;
+  Eigen::Matrix<double, Rows, 1> product, sum;
+  detail::multiply_add<Rows, Cols>(m.data(), x.data(), nullptr, product.data());
+  detail::multiply_add<Rows, Cols>(m.data(), x.data(), base.data(), sum.data());
+  const double tol = 1e-15 * Cols * (m.cwiseAbs() * x.cwiseAbs()).maxCoeff();
+  EXPECT_LT((product - m * x).cwiseAbs().maxCoeff(), tol) << Rows << "x" << Cols;
+  EXPECT_LT((sum - (base + m * x)).cwiseAbs().maxCoeff(), tol + 1e-15 * base.cwiseAbs().maxCoeff())
+      << Rows << "x" << Cols;
+}
+
+TEST(ContactKernel, SmallProductsAgreeWithEigen) {
+  std::srand(3);  // Eigen's Random()
+  for_each_target([&] {
+    for (int trial = 0; trial < 20; ++trial) {
+      expect_products_agree<10, 10>();
+      expect_products_agree<10, 20>();
+      expect_products_agree<5, 10>();
+    }
+  });
+}
+
 TEST(ContactKernel, ReportsTheCpuAndSimdTarget) {
   std::cout << "CPU: " << cpu_model_name() << ", SIMD target: " << simd_target_name() << "\n";
   EXPECT_FALSE(simd_target_name().empty());
   EXPECT_FALSE(cpu_model_name().empty());
+}
+
+// bench_simulate --simd_target=AVX2: an AVX2-only CPU's kernel on an AVX-512 machine.
+TEST(ContactKernel, LimitsTheSimdTarget) {
+  EXPECT_FALSE(limit_simd_target("no such target"));
+  const std::int64_t supported = hwy::SupportedTargets();
+  for (const std::int64_t target : detail::contact_kernel_compiled_targets()) {
+    if ((target & supported) == 0) continue;
+    EXPECT_TRUE(limit_simd_target(hwy::TargetName(target)));
+    EXPECT_EQ(simd_target_name(), hwy::TargetName(target));
+    hwy::DisableTargets(0);  // every target again, for the other tests
+  }
 }
 
 }  // namespace

@@ -133,14 +133,15 @@ class BearingDynamics {
   };
   // Remainders at the starts of the last internal steps (newest first) for the Adams
   // method, relative to the current linearization; `size` of them valid.
+  // Stacked (r_-1, r_-2, r_-3): the Adams step multiplies them with its weights in one product.
   struct AdamsHistory {
-    std::array<Vector5, 3> r{Vector5::Zero(), Vector5::Zero(), Vector5::Zero()};
+    static constexpr int kLength = 3;
+    Eigen::Matrix<double, 5 * kLength, 1> r = Eigen::Matrix<double, 5 * kLength, 1>::Zero();
     int size = 0;
     void push(const Vector5& newest) {
-      r[2] = r[1];
-      r[1] = r[0];
-      r[0] = newest;
-      size = size < 3 ? size + 1 : 3;
+      r.tail<5 * (kLength - 1)>() = r.head<5 * (kLength - 1)>().eval();
+      r.head<5>() = newest;
+      size = size < kLength ? size + 1 : kLength;
     }
   };
   Vector5 acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase, const BallArrays& balls,
@@ -207,8 +208,10 @@ class BearingDynamics {
   Matrix10x5 phi_half_ = Matrix10x5::Zero();  // (h/2) phi1(hL/2)
   Matrix10x5 w1_ = Matrix10x5::Zero(), w2_ = Matrix10x5::Zero(), w3_ = Matrix10x5::Zero();
   // Adams method: weights of the remainders at the step's start and of the history entries
-  // (predictor), and of the predicted end's remainder, the start's and the history (corrector).
-  std::array<Matrix10x5, 4> adams_predictor_{}, adams_corrector_{};
+  // (predictor), and of the predicted end's remainder, the start's and the history (corrector),
+  // side by side: each applies to four stacked remainders in one product.
+  using Matrix10x20 = Eigen::Matrix<double, 10, 20>;
+  Matrix10x20 adams_predictor_ = Matrix10x20::Zero(), adams_corrector_ = Matrix10x20::Zero();
   AdamsHistory adams_history_;
   // The cage turn of half an internal step and its cos and sin (recomputed when it changes),
   // and cos and sin of the cage angle at the end of the last integrated sample.

@@ -134,8 +134,6 @@ class Imperfections {
   void validate(const Spall& s) const;
   // Width and effective depth of a spall at time t.
   void spall_size(const Spall& s, double time_s, double* angular_width, double* depth) const;
-  // Balls of a row either side of the one nearest a race spall's centre that it can reach.
-  int spall_reach(double angular_width) const;
 
   ImperfectionSpec spec_;
   Geometry geometry_;
@@ -159,7 +157,6 @@ class Imperfections {
   struct SpallShape {
     bool fixed = false;
     double angular_width = 0.0, depth = 0.0;
-    int reach = 0;
   };
   std::vector<SpallShape> spall_shapes_;
   BallSet all_balls_;

@@ -7,6 +7,10 @@ namespace bearing_sim {
 
 // The Highway target the run-time dispatcher chose for the contact kernel ("AVX2", "AVX3", ...).
 std::string simd_target_name();
+// Keeps the dispatcher off every target better than `name` ("AVX2", "SSE4", ...), e.g. to
+// measure on an AVX-512 machine what an AVX2-only CPU would run. Call it before the first
+// force evaluation. False, changing nothing, when no compiled target of that name runs here.
+bool limit_simd_target(const std::string& name);
 // "model name" of the first processor in /proc/cpuinfo, or "unknown".
 std::string cpu_model_name();
 
