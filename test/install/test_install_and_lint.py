@@ -9,7 +9,8 @@
     * the install space holds the library, headers, nodes, tools, scripts and every file of
       launch/, config/, rviz/ and cfg/, and the programs load the installed core library;
     * `rosrun bearing_sim bearing_tool frequencies` answers the closed-form kinematic
-      frequencies of the installed CT gantry bearing file;
+      frequencies of the installed CT gantry bearing file, and so does the installed Python
+      module (`import bearing_sim`, the pybind11 core beside the generated messages);
     * `roslaunch bearing_sim ct_gantry.launch` streams vibration: chunks whose stamps are
       their sample index over the sample rate, finite accelerations that are not all zero,
       published by a process that runs the installed code.
@@ -150,26 +151,47 @@ class InstallSpace(unittest.TestCase):
             resolved = line.split('=>')[-1].split('(')[0].strip()
             self.assertTrue(os.path.exists(resolved) and os.path.samefile(resolved, core), f'{p}: {line or r.stdout}')
 
-    def test_bearing_tool_frequencies_match_the_closed_form(self):
+    def closed_form_frequencies(self, f_o):
+        """Rolling without slip, outer ring at f_o, inner fixed (docs/model.md, kinematic
+        frequencies): gamma = d cos(alpha) / d_m, cage f_o (1 + gamma) / 2, and each race
+        sees Z balls per row pass at its speed relative to the cage."""
         import yaml  # python3-yaml, a dependency of rospy
-        bearing_file = os.path.join(self.prefix, 'share', 'bearing_sim', 'config', 'bearings', 'ct_gantry_lyc.yaml')
-        r = self.in_install_space(['rosrun', 'bearing_sim', 'bearing_tool', 'frequencies', '--bearing', bearing_file,
-                                   '--outer-rpm', '180', '--inner-rpm', '0', '--json'], timeout=120)
-        self.assertEqual(r.returncode, 0, r.stderr)
-        result = json.loads(r.stdout)
-        with open(bearing_file) as f:
+        with open(self.ct_bearing_file()) as f:
             b = yaml.safe_load(f)
-        # Rolling without slip, outer ring at f_o, inner fixed (docs/model.md, kinematic
-        # frequencies): gamma = d cos(alpha) / d_m, cage f_o (1 + gamma) / 2, and each race
-        # sees Z balls per row pass at its speed relative to the cage.
-        f_o = 180.0 / 60.0
         gamma = b['ball_diameter_mm'] * math.cos(math.radians(b['contact_angle_deg'])) / b['pitch_diameter_mm']
         z = b['balls_per_row']
-        expected = {'relative_ring_hz': f_o, 'cage_hz': f_o * (1 + gamma) / 2,
-                    'ball_pass_outer_race_hz': z * f_o * (1 - gamma) / 2,
-                    'ball_pass_inner_race_hz': z * f_o * (1 + gamma) / 2}
-        for key, value in expected.items():
+        return {'relative_ring_hz': f_o, 'cage_hz': f_o * (1 + gamma) / 2,
+                'ball_pass_outer_race_hz': z * f_o * (1 - gamma) / 2,
+                'ball_pass_inner_race_hz': z * f_o * (1 + gamma) / 2}
+
+    def ct_bearing_file(self):
+        return os.path.join(self.prefix, 'share', 'bearing_sim', 'config', 'bearings', 'ct_gantry_lyc.yaml')
+
+    def test_bearing_tool_frequencies_match_the_closed_form(self):
+        r = self.in_install_space(['rosrun', 'bearing_sim', 'bearing_tool', 'frequencies', '--bearing',
+                                   self.ct_bearing_file(), '--outer-rpm', '180', '--inner-rpm', '0', '--json'],
+                                  timeout=120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        result = json.loads(r.stdout)
+        for key, value in self.closed_form_frequencies(180.0 / 60.0).items():
             self.assertAlmostEqual(result[key], value, delta=1e-9 * value, msg=key)
+
+    def test_python_module_imports_from_the_install_space(self):
+        # The pybind11 module bearing_sim._core beside the generated messages, both from the
+        # install space; the CT bearing's outer ring at 180 rpm gives the closed form.
+        script = ('import json, math, sys, bearing_sim, bearing_sim._core\n'
+                  'from bearing_sim.msg import VibrationChunk\n'
+                  'f = bearing_sim.frequencies(sys.argv[1], 2 * math.pi * 3.0)\n'
+                  'print(json.dumps({"package": bearing_sim.__file__, "core": bearing_sim._core.__file__,'
+                  ' "msg": sys.modules[VibrationChunk.__module__].__file__, "frequencies": f}))\n')
+        r = self.in_install_space(['python3', '-c', script, self.ct_bearing_file()], timeout=120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        result = json.loads(r.stdout.strip().splitlines()[-1])
+        installed = os.path.realpath(self.prefix) + os.sep
+        for key in ('package', 'core', 'msg'):
+            self.assertTrue(os.path.realpath(result[key]).startswith(installed), f'{key}: {result[key]}')
+        for key, value in self.closed_form_frequencies(3.0).items():
+            self.assertAlmostEqual(result['frequencies'][key], value, delta=1e-9 * value, msg=key)
 
     def test_roslaunch_ct_gantry_streams_vibration(self):
         with socket.socket() as s:  # a free port for this test's own ROS master
