@@ -66,7 +66,7 @@ class ToolInputTest : public ::testing::Test {
 TEST_F(ToolInputTest, FilesThatAreNoRegularFilesAreRefusedNamingThem) {
   // /dev/zero used to be read until memory ran out; a directory gave "empty file" or
   // "basic_filebuf::underflow" with exit 1.
-  for (const std::string& path : {std::string("/dev/zero"), dir_, dir_ + "/missing.yaml"}) {
+  for (const std::string& path : {std::string("/dev/zero"), std::string("/dev/urandom"), dir_, dir_ + "/missing.yaml"}) {
     expect_refused("static --bearing '" + path + "'", {path});
     expect_refused("frequencies --bearing '" + path + "' --outer-rpm 10", {path});
     expect_refused("sweep --definition '" + path + "' --csv '" + dir_ + "/out.csv'", {path});
@@ -136,6 +136,15 @@ TEST_F(ToolInputTest, RunsOfYearsNeedTheConfirmationFlagAndNothingStarts) {
   expect_refused("generate '" + kScan + "' --out '" + out + "' --duration-s 1e9 --quiet",
                  {"generate", "--allow-long-run"});
   EXPECT_FALSE(std::filesystem::exists(out)) << "nothing may be written for a refused run";
+}
+
+TEST_F(ToolInputTest, AnOutputRateOrASampleCountBeyondAnyRunIsRefusedNamingTheOptions) {
+  const std::string sim = "simulate --bearing '" + kCt + "' --force 6800,0,0 --outer-rpm 180";
+  // 1 GHz: a second of run is 1e9 samples (the node and a scenario stop at 1 MHz too).
+  expect_refused(sim + " --rate 1e9", {"--rate", "1e9", "1000000"});
+  // 1e10 samples at the default 10 kHz: beyond the 1e9 a run holds.
+  expect_refused(sim + " --duration 1e6", {"--duration", "--rate", "1e+10 samples", "at most 1e9"});
+  expect_refused(sim + " --duration 1e-4", {"--duration", "--rate", "at least 4"});
 }
 
 TEST_F(ToolInputTest, AResultThatIsNotFiniteIsNeverPrinted) {
