@@ -120,6 +120,13 @@ TEST_F(ToolInputTest, ABearingValueThatStallsTheIntegratorIsRefusedNamingTheKeyA
   expect_refused("simulate --bearing '" + ct_with("contact_damping_Ns_per_m", "1e10") +
                      "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.01",
                  {"overdamped", "contact_damping_Ns_per_m", "implausibly large"});
+  // A dynamic sweep over such a bearing: refused before any case runs, naming the case.
+  const std::string sweep = write("stall_sweep.yaml", "name: stall\nbearing: " + ct_with("contact_damping_Ns_per_m", "1e10") +
+                                                          "\noperating_point: {force_N: [6800, 0, 0], speed_rpm: 180, "
+                                                          "duration_s: 0.01}\nparameter: clearance_um\nvalues: [0, 1]\n");
+  expect_refused("sweep --definition '" + sweep + "' --csv '" + dir_ + "/stall.csv' --quiet",
+                 {sweep, "case 1 (clearance_um = 0", "overdamped", "contact_damping_Ns_per_m"});
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/stall.csv")) << "nothing may be written for a refused sweep";
   // The shipped file runs.
   EXPECT_EQ(run("simulate --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.01")
                 .exit_code,
