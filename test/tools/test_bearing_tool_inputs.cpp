@@ -145,13 +145,15 @@ TEST_F(ToolInputTest, RunsOfYearsNeedTheConfirmationFlagAndNothingStarts) {
   EXPECT_FALSE(std::filesystem::exists(out)) << "nothing may be written for a refused run";
 }
 
-TEST_F(ToolInputTest, AnOutputRateOrASampleCountBeyondAnyRunIsRefusedNamingTheOptions) {
+TEST_F(ToolInputTest, ARateSampleCountOrStepCountBeyondAnyRunIsRefusedNamingTheOptions) {
   const std::string sim = "simulate --bearing '" + kCt + "' --force 6800,0,0 --outer-rpm 180";
   // 1 GHz: a second of run is 1e9 samples (the node and a scenario stop at 1 MHz too).
   expect_refused(sim + " --rate 1e9", {"--rate", "1e9", "1000000"});
   // 1e10 samples at the default 10 kHz: beyond the 1e9 a run holds.
   expect_refused(sim + " --duration 1e6", {"--duration", "--rate", "1e+10 samples", "at most 1e9"});
   expect_refused(sim + " --duration 1e-4", {"--duration", "--rate", "at least 4"});
+  // 1e9 steps per sample, even of a short run (the node stops at 1000 too).
+  expect_refused(sim + " --duration 0.01 --substeps 1000000000", {"--substeps", "1000"});
 }
 
 TEST_F(ToolInputTest, AResultThatIsNotFiniteIsNeverPrinted) {
