@@ -204,9 +204,9 @@ void register_simulate_command(CLI::App& app) {
                     "Outer ring speed, rpm (must be 0 unless the file has rotating_ring: outer)");
   add_number_option(cmd, "--inner-rpm", &o->inner_rpm, "RPM",
                     "Inner ring speed, rpm (must be 0 unless the file has rotating_ring: inner)");
-  add_number_option(cmd, "--duration", &o->duration_s, "S", "Simulated time, s")->check(CLI::PositiveNumber);
+  add_number_option(cmd, "--duration", &o->duration_s, "S", "Simulated time, s")->check(positive_number());
   add_number_option(cmd, "--rate", &o->rate_hz, "HZ", "Output sample rate, Hz (not the integration step), at most 1e6")
-      ->check(CLI::PositiveNumber & CLI::Range(0.0, kMaxSampleRateHz));
+      ->check(positive_number() & CLI::Range(0.0, kMaxSampleRateHz));
   cmd->add_option("--integrator", o->integrator,
                   "Integrator (docs/model.md, section 10): adams_pec (1 force evaluation per step), adams_pece (2), "
                   "etdrk4 (4) or rk4 (4, smaller steps)")

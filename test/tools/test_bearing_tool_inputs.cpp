@@ -97,6 +97,10 @@ TEST_F(ToolInputTest, EmptyVectorFieldsNameTheOptionNotTheNextArgument) {
     EXPECT_FALSE(contains(r.err, "'--json'")) << r.err;
     EXPECT_TRUE(r.out.empty());
   }
+  // A number too small for a double is a number (0 here), not an error of the parser (exit 1).
+  EXPECT_EQ(run("static" + b + " --force 6800,1e-400,0 --json").exit_code, 0);
+  // Out of range: the option, the value and the rule, not 300 digits of the largest double.
+  expect_refused("simulate" + b + " --outer-rpm 180 --duration 0", {"--duration", "'0' must be > 0"});
   // The comma-separated form still works: 6800 N radial on the CT bearing is carried.
   EXPECT_EQ(run("static" + b + " --force 6800,0,0 --moment 0,2100 --json").exit_code, 0);
 }
