@@ -27,7 +27,7 @@ source "$build/devel/setup.bash"
 set -u
 # Leaks, memory errors and undefined behaviour all end the program with a non-zero status.
 export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:exitcode=86"
-export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=87"  # not 1: a run that fails on purpose exits 1
 passed=0
 failed=0
 mkdir -p "$build/sanitize_logs"

@@ -244,14 +244,14 @@ void register_analyze_command(CLI::App& app) {
       ->type_name("NAME")
       ->capture_default_str();
   add_number_option(cmd, "--rate", &o->rate_hz, "HZ", "Sample rate, Hz (0: from the time column)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   add_number_option(cmd, "--window-s", &o->window_s, "S", "Analyse the last S seconds (0: the whole file)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   add_number_option(cmd, "--resonance-hz", &o->resonance_hz, "HZ",
                     "Centre of the envelope band, Hz (0: from 4x the highest fault frequency to 0.4x the rate)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   add_number_option(cmd, "--band-width-hz", &o->band_width_hz, "HZ", "Envelope band width around --resonance-hz, Hz")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   add_vector_option(cmd, "--zones", &o->zones, {"AB", "BC", "CD"},
                     "Velocity zone boundaries, mm/s (default ISO 20816-3 group 2, rigid foundation)");
   add_number_option(cmd, "--snr-db", &o->snr_db, "DB", "Envelope SNR at a fault frequency for a suspected defect");

@@ -226,20 +226,20 @@ void register_generate_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "Seed of every random source (default: each scenario's seed)")
       ->type_name("N")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   add_number_option(cmd, "--duration-s", &o->duration_s, "S", "Simulated time (default: each scenario's duration_s)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->check(CLI::Range(0.0, 1e12));  // beyond, the sample count leaves the integers
   cmd->add_option("--threads", o->threads, "Scenarios run at once (default: hardware concurrency)")
       ->type_name("N")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   add_number_option(cmd, "--label-rate", &o->label_rate_hz, "HZ", "Rate of the scenario_state labels")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   add_number_option(cmd, "--ball-loads-rate", &o->ball_loads_rate_hz, "HZ", "Rate of ball_loads in the bag")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   add_number_option(cmd, "--health-rate", &o->health_rate_hz, "HZ",
                     "Rate of the health reports in the bag (condition indicators of the last 2 s; 0: none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_flag("--quiet", o->quiet, "No progress lines on stderr");
   cmd->add_flag("--allow-long-run", o->allow_long_run,
                 "Start a run estimated (from a short probe) to take over an hour of wall time");

@@ -20,6 +20,9 @@
 namespace bearing_sim::tool {
 namespace {
 
+// As the node's and a scenario's sample_rate_hz: above, one second of run is hours of work.
+constexpr double kMaxSampleRateHz = 1e6;
+
 struct SimulateOptions {
   std::string bearing;
   std::vector<double> force{0.0, 0.0, 0.0};
@@ -83,7 +86,17 @@ double rotating_ring_speed_rad_s(const BearingModel& model, const SimulateOption
   return rpm_to_rad_s(outer ? o.outer_rpm : o.inner_rpm);
 }
 
+// The number of samples, checked here to name the options (the core refuses the same runs).
+double checked_sample_count(const SimulateOptions& o) {
+  const double samples = std::round(o.duration_s * o.rate_hz);
+  const std::string run = "--duration " + general(o.duration_s, 6) + " s at --rate " + general(o.rate_hz, 6) + " Hz";
+  if (samples < 4.0) throw InputError(run + ": " + general(samples, 6) + " samples; a run holds at least 4");
+  if (samples > 1e9) throw InputError(run + ": " + general(samples, 4) + " samples; a run holds at most 1e9");
+  return samples;
+}
+
 void run(const SimulateOptions& o) {
+  const double samples = checked_sample_count(o);
   const BearingModel model = load_model(o.bearing);
   const Vector5 load = make_load(o.force, o.moment);
   SimulationRequest request;
@@ -98,10 +111,8 @@ void run(const SimulateOptions& o) {
   const StaticSolution equilibrium = solve_static(model, load);
   if (model.config().has_dynamics()) {
     if (o.substeps == 0) check_integrator_work(model, load, o.rate_hz, o.bearing, request.method);
-    // Runs the core refuses (under 4 or over 1e9 samples) are refused there; short ones cannot
-    // take a minute.
-    const double samples = std::round(o.duration_s * o.rate_hz);
-    if (samples > 1000.0 && samples <= 1e9) {
+    // Short runs cannot take a minute.
+    if (samples > 1000.0) {
       const double per_sample =
           measure_seconds_per_sample(model, load, request.ring_speed_rad_s, o.rate_hz, o.substeps, request.method);
       check_job_size(samples, samples * per_sample, o.allow_long_run, "simulate", "--allow-long-run");
@@ -193,18 +204,19 @@ void register_simulate_command(CLI::App& app) {
                     "Outer ring speed, rpm (must be 0 unless the file has rotating_ring: outer)");
   add_number_option(cmd, "--inner-rpm", &o->inner_rpm, "RPM",
                     "Inner ring speed, rpm (must be 0 unless the file has rotating_ring: inner)");
-  add_number_option(cmd, "--duration", &o->duration_s, "S", "Simulated time, s")->check(CLI::PositiveNumber);
-  add_number_option(cmd, "--rate", &o->rate_hz, "HZ", "Output sample rate, Hz (not the integration step)")
-      ->check(CLI::PositiveNumber);
+  add_number_option(cmd, "--duration", &o->duration_s, "S", "Simulated time, s")->check(positive_number());
+  add_number_option(cmd, "--rate", &o->rate_hz, "HZ", "Output sample rate, Hz (not the integration step), at most 1e6")
+      ->check(positive_number() & CLI::Range(0.0, kMaxSampleRateHz));
   cmd->add_option("--integrator", o->integrator,
                   "Integrator (docs/model.md, section 10): adams_pec (1 force evaluation per step), adams_pece (2), "
                   "etdrk4 (4) or rk4 (4, smaller steps)")
       ->type_name("NAME")
       ->check(CLI::IsMember(integration_method_names()))
       ->capture_default_str();
-  cmd->add_option("--substeps", o->substeps, "Internal integrator steps per sample (0: automatic)")
+  // At most the node's 1000: a short run of 1e9 steps per sample went on for hours unannounced.
+  cmd->add_option("--substeps", o->substeps, "Internal integrator steps per sample, at most 1000 (0: automatic)")
       ->type_name("N")
-      ->check(CLI::NonNegativeNumber)
+      ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   cmd->add_option("--csv", o->csv,
                   "Write every sample to this CSV file: time, displacements (5) and accelerations (5), "

@@ -1,11 +1,11 @@
 #include "tool_common.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "bearing_sim/core/bearing_config.hpp"
@@ -62,22 +62,42 @@ void require_finite_result(const nlohmann::json& result, const std::string& comm
                                "the model computes in double precision; nothing was printed");
 }
 
-const CLI::Validator& finite_number() {
-  static const CLI::Validator validator(
-      [](std::string& text) -> std::string {
-        // strtod, not stod: a number too small for a double (5e-324, 1e-400) is still a
-        // number (denormal or 0, refused or carried on by the checks of its option);
-        // stod throws on it as if it were text.
-        const char* begin = text.c_str();
-        char* end = nullptr;
-        errno = 0;
-        const double value = std::strtod(begin, &end);
-        if (end == begin || *end != '\0') return "'" + text + "' is not a number";
-        if (!std::isfinite(value) || (errno == ERANGE && std::abs(value) == HUGE_VAL))
-          return "'" + text + "' is not a finite number";
-        return std::string();
+namespace {
+// The number the whole of `text` spells, else nullopt. strtod, not stod: a number too small
+// for a double (5e-324, 1e-400) is still a number (denormal or 0, refused or carried on by the
+// checks of its option); stod throws on it as if it were text.
+std::optional<double> parse_number(const std::string& text) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  const double value = std::strtod(begin, &end);
+  if (end == begin || *end != '\0') return std::nullopt;
+  return value;
+}
+
+// A validator of a number that `ok` accepts; `rule` says what it must be ("> 0").
+CLI::Validator number_that(bool (*ok)(double), const std::string& rule) {
+  return CLI::Validator(
+      [ok, rule](std::string& text) -> std::string {
+        const std::optional<double> value = parse_number(text);
+        if (!value) return "'" + text + "' is not a number";
+        return ok(*value) ? std::string() : "'" + text + "' must be " + rule;
       },
       "");
+}
+}  // namespace
+
+const CLI::Validator& finite_number() {
+  static const CLI::Validator validator = number_that([](double v) { return std::isfinite(v); }, "a finite number");
+  return validator;
+}
+
+const CLI::Validator& positive_number() {
+  static const CLI::Validator validator = number_that([](double v) { return v > 0.0; }, "> 0");
+  return validator;
+}
+
+const CLI::Validator& non_negative_number() {
+  static const CLI::Validator validator = number_that([](double v) { return v >= 0.0; }, ">= 0");
   return validator;
 }
 
@@ -124,7 +144,7 @@ CLI::Option* add_vector_option(CLI::App* command, const std::string& name, std::
             for (std::string field : fields) {
               const std::string problem = finite_number()(field);
               if (!problem.empty()) throw CLI::ValidationError(name, problem + " (in '" + text + "')");
-              parsed.push_back(std::stod(field));
+              parsed.push_back(*parse_number(field));
             }
             *values = parsed;
           },

@@ -60,12 +60,16 @@ CLI::Option* add_vector_option(CLI::App* command, const std::string& name, std::
 void add_load_options(CLI::App* command, std::vector<double>* force, std::vector<double>* moment);
 
 // A single finite number, shown in --help as `type_name` (e.g. "RPM") with its default.
-// Chain ->check(...) for a range (e.g. CLI::PositiveNumber).
+// Chain ->check(...) for a range (e.g. positive_number()).
 CLI::Option* add_number_option(CLI::App* command, const std::string& name, double* value,
                                const std::string& type_name, const std::string& description);
 
 // Validator: a finite number (rejects nan, inf and non-numbers).
 const CLI::Validator& finite_number();
+// Validators: a number > 0, a number >= 0 (CLI11's PositiveNumber and NonNegativeNumber say
+// "Value 0 not in range 0.000000 to 1797693134862315708...", 300 digits of the largest double).
+const CLI::Validator& positive_number();
+const CLI::Validator& non_negative_number();
 
 // Loads and validates the bearing file (throws ConfigError naming file and key).
 BearingModel load_model(const std::string& path);

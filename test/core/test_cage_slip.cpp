@@ -41,7 +41,7 @@ TEST(CageSlip, SlipLowersTheOuterRaceBallPassLineByTheSlip) {
   const std::string spall = "defects: [{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 30}]\n";
   const BearingModel model = bearing_6205(spall + "imperfections: {cage_slip_percent: 3.0}\n");
   const double bpfo = bearing_frequencies(model, kSpeedRadS).ball_pass_outer_race_hz;
-  const SpectralPeak& peak = fault(analyze(model), FaultKind::OuterRace).envelope_peak;
+  const SpectralPeak peak = fault(analyze(model), FaultKind::OuterRace).envelope_peak;  // a copy: the analysis is a temporary
   // Outer race fixed: BPFO = Z f_c, and the cage turns 3% slower. One bin is 1.25 Hz
   // (0.8 s); the interpolated peak is good to a fraction of it.
   EXPECT_NEAR(peak.frequency_hz, 0.97 * bpfo, 0.6);

@@ -10,7 +10,7 @@ import pytest
 import yaml
 
 from bearing_sim.campaign import Campaign, CampaignError
-from conftest import SOURCE, small_campaign
+from conftest import BEARINGS, SOURCE, small_campaign
 
 
 # Not a file: its directory is where the shipped campaigns find ../bearings.
@@ -147,3 +147,27 @@ def test_bad_scenario_template_is_refused_before_running(campaign_file, tmp_path
         r = subprocess.run([sys.executable, str(script), str(campaign_file(small_campaign(), 'ok.yaml')),
                             '--out', str(tmp_path / 'out2')] + args, capture_output=True, text=True, timeout=60)
         assert r.returncode == 2 and message in r.stderr, r.stderr
+
+
+def test_a_key_written_twice_is_refused_naming_file_key_and_lines(campaign_file, tmp_path):
+    # PyYAML keeps the last occurrence silently; a campaign file is read as the core reads its files.
+    text = yaml.safe_dump(small_campaign(), sort_keys=False).replace('count: 20\n', 'count: 20\ncount: 2\n', 1)
+    path = campaign_file(text, 'twice.yaml')
+    with pytest.raises(CampaignError) as e:
+        Campaign.load(str(path))
+    assert str(path) in str(e.value) and "key 'count' appears twice (lines 2 and 3)" in str(e.value)
+    # A bearing file derived with {file: ..., set: ...} is parsed here before the core sees it.
+    bearing = tmp_path / 'twice_bearing.yaml'
+    bearing.write_text((BEARINGS / 'deep_groove_6205.yaml').read_text() + 'balls_per_row: 10\n')
+    doc = small_campaign()
+    doc['scenario']['bearing_file'] = {'file': str(bearing), 'set': {'imperfections.roughness_rms_um': 0.1}}
+    with pytest.raises(CampaignError) as e:
+        campaign(doc).definition(0)
+    assert str(bearing) in str(e.value) and "key 'balls_per_row' appears twice" in str(e.value)
+
+
+@pytest.mark.parametrize('path', ['/dev/zero', '/tmp', '/nonexistent/campaign.yaml'])
+def test_a_campaign_path_that_is_no_regular_file_is_refused_naming_it(path):
+    with pytest.raises(CampaignError) as e:
+        Campaign.load(path)
+    assert path in str(e.value)

@@ -3,7 +3,9 @@
 // accepted and read as written (values compared with yaml-cpp's reading of the same file),
 // every parameter a node reads is documented in its file, and each kind of bad value stops the
 // node with a message naming the node's namespace, the key and the value.
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <limits>
@@ -15,6 +17,8 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/yaml_check.hpp"
 #include "bearing_sim/ros/lcm_bridge_parameters.hpp"
 #include "bearing_sim/ros/parameter_reader.hpp"
 #include "bearing_sim/ros/sim_node_parameters.hpp"
@@ -247,6 +251,31 @@ TEST(LcmBridgeParameters, BadValuesAreNamed) {
   v["bridge_helth"] = true;
   EXPECT_NE(error_of([&] { read_lcm(v); }).find("/bearing/lcm_bridge/bridge_helth = true: unknown to this node"),
             std::string::npos);
+}
+
+// roslaunch loads the parameter files with PyYAML, which keeps the last of a key written twice
+// without a word (the node then sees one value): every shipped file is checked as the
+// package's own YAML files are read, and that check names a duplicate.
+TEST(ParameterFiles, NoKeyIsWrittenTwiceInAShippedFileAndADuplicateIsNamed) {
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kSource + "/config/nodes")) {
+    EXPECT_NO_THROW(bearing_sim::check_yaml_file(entry.path().string(), "parameter file")) << entry.path();
+    ++files;
+  }
+  EXPECT_EQ(files, 3);
+  const std::string path = testing::TempDir() + "/bearing_sim_node_twice.yaml";
+  const std::string text = read_text(kSource + "/config/nodes/bearing_sim_node.yaml");
+  std::ofstream(path) << text << "sample_rate_hz: 20000.0\n";
+  const std::string last_line = std::to_string(std::count(text.begin(), text.end(), '\n') + 1);
+  try {
+    bearing_sim::check_yaml_file(path, "parameter file");
+    ADD_FAILURE() << "a key written twice was accepted";
+  } catch (const bearing_sim::ConfigError& e) {
+    const std::string message = e.what();
+    for (const std::string& word : {path, std::string("'sample_rate_hz' appears twice"), "lines 15 and " + last_line})
+      EXPECT_NE(message.find(word), std::string::npos) << word << " not in: " << message;
+  }
+  std::filesystem::remove(path);
 }
 
 }  // namespace

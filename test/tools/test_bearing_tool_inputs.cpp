@@ -66,7 +66,7 @@ class ToolInputTest : public ::testing::Test {
 TEST_F(ToolInputTest, FilesThatAreNoRegularFilesAreRefusedNamingThem) {
   // /dev/zero used to be read until memory ran out; a directory gave "empty file" or
   // "basic_filebuf::underflow" with exit 1.
-  for (const std::string& path : {std::string("/dev/zero"), dir_, dir_ + "/missing.yaml"}) {
+  for (const std::string& path : {std::string("/dev/zero"), std::string("/dev/urandom"), dir_, dir_ + "/missing.yaml"}) {
     expect_refused("static --bearing '" + path + "'", {path});
     expect_refused("frequencies --bearing '" + path + "' --outer-rpm 10", {path});
     expect_refused("sweep --definition '" + path + "' --csv '" + dir_ + "/out.csv'", {path});
@@ -97,6 +97,10 @@ TEST_F(ToolInputTest, EmptyVectorFieldsNameTheOptionNotTheNextArgument) {
     EXPECT_FALSE(contains(r.err, "'--json'")) << r.err;
     EXPECT_TRUE(r.out.empty());
   }
+  // A number too small for a double is a number (0 here), not an error of the parser (exit 1).
+  EXPECT_EQ(run("static" + b + " --force 6800,1e-400,0 --json").exit_code, 0);
+  // Out of range: the option, the value and the rule, not 300 digits of the largest double.
+  expect_refused("simulate" + b + " --outer-rpm 180 --duration 0", {"--duration", "'0' must be > 0"});
   // The comma-separated form still works: 6800 N radial on the CT bearing is carried.
   EXPECT_EQ(run("static" + b + " --force 6800,0,0 --moment 0,2100 --json").exit_code, 0);
 }
@@ -120,6 +124,13 @@ TEST_F(ToolInputTest, ABearingValueThatStallsTheIntegratorIsRefusedNamingTheKeyA
   expect_refused("simulate --bearing '" + ct_with("contact_damping_Ns_per_m", "1e10") +
                      "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.01",
                  {"overdamped", "contact_damping_Ns_per_m", "implausibly large"});
+  // A dynamic sweep over such a bearing: refused before any case runs, naming the case.
+  const std::string sweep = write("stall_sweep.yaml", "name: stall\nbearing: " + ct_with("contact_damping_Ns_per_m", "1e10") +
+                                                          "\noperating_point: {force_N: [6800, 0, 0], speed_rpm: 180, "
+                                                          "duration_s: 0.01}\nparameter: clearance_um\nvalues: [0, 1]\n");
+  expect_refused("sweep --definition '" + sweep + "' --csv '" + dir_ + "/stall.csv' --quiet",
+                 {sweep, "case 1 (clearance_um = 0", "overdamped", "contact_damping_Ns_per_m"});
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/stall.csv")) << "nothing may be written for a refused sweep";
   // The shipped file runs.
   EXPECT_EQ(run("simulate --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.01")
                 .exit_code,
@@ -136,6 +147,17 @@ TEST_F(ToolInputTest, RunsOfYearsNeedTheConfirmationFlagAndNothingStarts) {
   expect_refused("generate '" + kScan + "' --out '" + out + "' --duration-s 1e9 --quiet",
                  {"generate", "--allow-long-run"});
   EXPECT_FALSE(std::filesystem::exists(out)) << "nothing may be written for a refused run";
+}
+
+TEST_F(ToolInputTest, ARateSampleCountOrStepCountBeyondAnyRunIsRefusedNamingTheOptions) {
+  const std::string sim = "simulate --bearing '" + kCt + "' --force 6800,0,0 --outer-rpm 180";
+  // 1 GHz: a second of run is 1e9 samples (the node and a scenario stop at 1 MHz too).
+  expect_refused(sim + " --rate 1e9", {"--rate", "1e9", "1000000"});
+  // 1e10 samples at the default 10 kHz: beyond the 1e9 a run holds.
+  expect_refused(sim + " --duration 1e6", {"--duration", "--rate", "1e+10 samples", "at most 1e9"});
+  expect_refused(sim + " --duration 1e-4", {"--duration", "--rate", "at least 4"});
+  // 1e9 steps per sample, even of a short run (the node stops at 1000 too).
+  expect_refused(sim + " --duration 0.01 --substeps 1000000000", {"--substeps", "1000"});
 }
 
 TEST_F(ToolInputTest, AResultThatIsNotFiniteIsNeverPrinted) {

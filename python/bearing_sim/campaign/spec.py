@@ -8,6 +8,7 @@ import re
 
 import yaml
 
+from . import strict_yaml
 from .distributions import Distribution, unit_draw
 from .errors import CampaignError
 
@@ -35,10 +36,7 @@ class Campaign:
         self.path = os.path.abspath(path)
         self.text = text
         self.directory = os.path.dirname(self.path)
-        try:
-            doc = yaml.safe_load(text)
-        except yaml.YAMLError as e:
-            raise CampaignError(f'{path}: not valid YAML: {e}') from None
+        doc = strict_yaml.load(text, path)
         if not isinstance(doc, dict):
             raise CampaignError(f'{path}: expected a mapping with the keys {sorted(_TOP_KEYS)}')
         unknown = sorted(set(doc) - _TOP_KEYS)
@@ -83,11 +81,7 @@ class Campaign:
 
     @classmethod
     def load(cls, path):
-        try:
-            with open(path, encoding='utf-8') as f:
-                return cls(f.read(), path)
-        except OSError as e:
-            raise CampaignError(f'{path}: cannot read the campaign file: {e.strerror}') from None
+        return cls(strict_yaml.read_text(path, 'campaign file'), path)
 
     def _required(self, doc, key, kind):
         if key not in doc:
@@ -166,8 +160,7 @@ class Campaign:
             raise CampaignError(f"{self.path}: key 'scenario.{key}': expected a file name or "
                                 f'{{file: NAME, set: {{dotted.key: value}}}}, got keys {sorted(spec)}')
         path = self.resolve(spec['file'], folder, key + '.file')
-        with open(path, encoding='utf-8') as f:
-            doc = yaml.safe_load(f)
+        doc = strict_yaml.load(strict_yaml.read_text(path, folder[:-1] + ' file'), path)
         for dotted, value in (spec.get('set') or {}).items():
             node, parts = doc, str(dotted).split('.')
             for part in parts[:-1]:
