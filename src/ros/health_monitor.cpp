@@ -46,14 +46,18 @@ HealthMonitor::HealthMonitor(BearingModel model, const Vector5& load, double rin
   ring_.assign(window_samples_, 0.0);
   spalls_ = model.imperfections().spalls();
   model_ = std::make_shared<const BearingModel>(std::move(model));
+  double life_million_rev = 0.0;
   try {
-    life_ = {load, equivalent_load_N(model_->config(), load),
-             reference_life(*model_, solve_static(*model_, load).balls, settings_.life).life_million_rev};
+    life_million_rev = reference_life(*model_, solve_static(*model_, load).balls, settings_.life).life_million_rev;
+    // Also the worker's cache: its first analysis at this load does not solve it again.
+    reference_model_ = model_;
+    reference_load_ = load;
+    reference_life_million_rev_ = life_million_rev;
   } catch (const LoadNotCarriedError&) {
     // A load the static solution cannot take: ISO 281's L10 until an analysis succeeds.
-    life_ = {load, equivalent_load_N(model_->config(), load),
-             basic_rating_life(model_->config(), load, ring_speed_rad_s, settings_.life).life_million_rev};
+    life_million_rev = basic_rating_life(model_->config(), load, ring_speed_rad_s, settings_.life).life_million_rev;
   }
+  life_ = {load, equivalent_load_N(model_->config(), load), life_million_rev};
 }
 
 double HealthMonitor::life_now(const Vector5& load) const {
