@@ -227,11 +227,10 @@ TEST_F(ScenarioPlayerTest, HealthSpeedAndLoadAreTheScenariosInTheHolds) {
 }
 
 TEST_F(ScenarioPlayerTest, InjectedSpallInHealthAfterItsEventGrownByItsLaw) {
-  // How late the inject and the clear reach the node depends on the machine; what does not:
-  // none, then the spall, then none again; the spall injected at or after its event on the
-  // node's clock (its age is the node's own) and grown by the scenario's law; neither change
-  // in health before its event less the time health may read the node's state after its
-  // window (kMaxLag_s).
+  // How late the inject and the clear reach the node, and how long after its window health
+  // reads the node's defects, depend on the machine; what does not: none, then the spall,
+  // then none again; the spall injected at or after its event on the node's clock (its age
+  // is the node's own, whenever health reads it) and grown by the scenario's law.
   const Scenario& sc = *scenario_;
   const ScenarioDefectEvent& spall_event = sc.defect_events().at(0);
   enum class Seen { Before, Spall, Cleared } seen = Seen::Before;
@@ -239,15 +238,11 @@ TEST_F(ScenarioPlayerTest, InjectedSpallInHealthAfterItsEventGrownByItsLaw) {
   for (const BearingHealth& h : health_) {
     const double t = scenario_time(h.header.stamp);
     if (h.defects.empty()) {
-      if (seen == Seen::Spall) {
-        seen = Seen::Cleared;
-        EXPECT_GE(t, 6.5 * kScale - kMaxLag_s) << "cleared before its event: t = " << t;
-      }
+      if (seen == Seen::Spall) seen = Seen::Cleared;
       ++without;
       continue;
     }
     EXPECT_NE(seen, Seen::Cleared) << "the spall is back after the clear: t = " << t;
-    if (seen == Seen::Before) EXPECT_GE(t, 2.0 * kScale - kMaxLag_s) << "spall before its event: t = " << t;
     seen = Seen::Spall;
     ASSERT_EQ(h.defects.size(), 1u) << "t = " << t;
     const DefectState& d = h.defects[0];
