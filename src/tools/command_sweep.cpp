@@ -53,7 +53,7 @@ nlohmann::json result_json(const SweepResult& r) {
 // A dynamic case whose bearing values give the ring a mode no bearing has would stall the
 // integrator for days: the sweep is refused before any case runs, naming the case and the key
 // (as simulate and generate do). A case that fails otherwise fails when run, with its reason.
-void check_integrator_work(const SweepDefinition& def, const std::vector<SweepCase>& cases) {
+void check_every_case_integrator_work(const SweepDefinition& def, const std::vector<SweepCase>& cases) {
   if (!def.dynamic) return;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const SweepCase& c = cases[i];
@@ -67,7 +67,7 @@ void check_integrator_work(const SweepDefinition& def, const std::vector<SweepCa
                               c.parameter + " = " + general(c.value, 6) + ", imperfections " + c.imperfection_set_name +
                               "), bearing " + def.bearing_path;
     try {
-      tool::check_integrator_work(*model, c.operating_point.load, c.operating_point.sample_rate_hz, where);
+      check_integrator_work(*model, c.operating_point.load, c.operating_point.sample_rate_hz, where);
     } catch (const ConfigError&) {
       throw;
     } catch (const std::exception&) {  // no equilibrium: the case fails when run
@@ -78,7 +78,7 @@ void check_integrator_work(const SweepDefinition& def, const std::vector<SweepCa
 void run(const SweepOptions& o) {
   const SweepDefinition def = load_sweep_definition(o.definition);
   const std::vector<SweepCase> cases = sweep_cases(def);
-  check_integrator_work(def, cases);
+  check_every_case_integrator_work(def, cases);
   const std::size_t total = cases.size();
   std::ofstream csv(o.csv);
   if (!csv) throw InputError("--csv: cannot open '" + o.csv + "' for writing: " + std::strerror(errno));
