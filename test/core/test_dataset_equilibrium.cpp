@@ -1,8 +1,8 @@
 // The public datasets' scenarios (config/scenarios) are usable, not only their frequencies:
 // each loads with its bearing file, and the bearing has a static equilibrium under the
-// scenario's load (quasi-static solve, docs/model.md section 6) at any cage angle, with the
-// load zone where the scenario puts its outer-race faults. Where a static load rating is
-// published, the contact pressure agrees with ISO 76's reading of it.
+// scenario's load (the quasi-static solve) at any cage angle, with the load zone where the
+// scenario puts its outer-race faults. Where a static load rating is published, the contact
+// pressure agrees with ISO 76's reading of it.
 #include <gtest/gtest.h>
 
 #include <cmath>
