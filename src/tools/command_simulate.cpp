@@ -15,6 +15,7 @@
 #include "bearing_sim/core/simulation_run.hpp"
 #include "commands.hpp"
 #include "job_size.hpp"
+#include "simulated_sensor.hpp"
 #include "tool_common.hpp"
 
 namespace bearing_sim::tool {
@@ -34,6 +35,8 @@ struct SimulateOptions {
   int substeps = 0;
   std::string integrator = integration_method_name(kDefaultIntegrationMethod);
   std::string csv;
+  std::string sensor;
+  std::string sensor_csv;
   bool json = false;
   bool allow_long_run = false;
 };
@@ -119,12 +122,23 @@ void run(const SimulateOptions& o) {
     }
   }
 
+  if (!o.sensor_csv.empty() && o.sensor.empty()) throw InputError("--sensor-csv needs --sensor FILE");
+  std::unique_ptr<SimulatedSensor> sensor;
+  // The sensor's statistics over the summary's window: the second half of the samples.
+  if (!o.sensor.empty())
+    sensor = std::make_unique<SimulatedSensor>(o.sensor, o.rate_hz, static_cast<std::size_t>(samples) / 2,
+                                               o.sensor_csv);
   std::unique_ptr<CsvWriter> csv;
   if (!o.csv.empty()) csv = std::make_unique<CsvWriter>(o.csv);
   std::function<void(const DynamicSample&)> on_sample;
-  if (csv) on_sample = [&csv](const DynamicSample& s) { csv->write(s); };
+  if (csv || sensor)
+    on_sample = [&csv, &sensor](const DynamicSample& s) {
+      if (csv) csv->write(s);
+      if (sensor) sensor->push(s);
+    };
   const SimulationSummary s = run_simulation(model, request, on_sample);
   if (csv) csv->close();
+  if (sensor) sensor->finish();
 
   const BearingFrequencies f = bearing_frequencies(model, request.ring_speed_rad_s);
   const nlohmann::json result = {{"bearing", bearing_json(model, o.bearing)},
@@ -148,7 +162,9 @@ void run(const SimulateOptions& o) {
           // The realtime factor depends on these: the CPU and the kernel's SIMD target.
                                  {"cpu", cpu_model_name()},
                                  {"simd_target", simd_target_name()},
-                                 {"csv", o.csv.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.csv)}};
+                                 {"csv", o.csv.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.csv)},
+                                 // null: the ideal ring acceleration only, which no real sensor measures.
+                                 {"sensor", sensor ? sensor->to_json() : nlohmann::json(nullptr)}};
   // L is -inf for a ring at rest (written as null); the realtime factor of a tiny run may be inf.
   require_finite_result(result, "simulate", {"L_dB", "realtime_factor"});
   if (o.json) {
@@ -180,6 +196,21 @@ void run(const SimulateOptions& o) {
   v.add_row({"a_rms z", scientific(s.a_rms_z, 4), "m/s^2"});
   v.add_row({"L (x, JB/T 5314, a0 = 9.81e-3 m/s^2)", fixed(s.level_db, 2), "dB"});
   v.print(out);
+
+  if (sensor) {
+    out << "\nSensor '" << o.sensor << "' (" << general(sensor->output_rate_hz(), 6)
+        << " Hz, second half of the run, mean removed)\n";
+    Table t({"axis", "rms", "crest factor", "kurtosis", "unit"}, {true, false, false, false, true});
+    static const char* const axes[3] = {"x", "y", "z"};
+    for (int a = 0; a < 3; ++a) {
+      const StreamedStatistics& st = sensor->statistics()[a];
+      t.add_row({axes[a], scientific(st.rms(), 4), fixed(st.crest_factor(), 2), fixed(st.kurtosis(), 2), sensor->unit()});
+    }
+    t.print(out);
+  } else {
+    out << "\nNo sensor (--sensor FILE): the ideal ring acceleration above has no noise, no transfer path and\n"
+           "no anti-alias filter, so it is no healthy reference for a condition-monitoring analysis.\n";
+  }
 
   out << "\nDisplacement (second half of the run)\n";
   static const char* const names[5] = {"x", "y", "z", "theta_x", "theta_y"};
@@ -221,6 +252,13 @@ void register_simulate_command(CLI::App& app) {
   cmd->add_option("--csv", o->csv,
                   "Write every sample to this CSV file: time, displacements (5) and accelerations (5), "
                   "header line with units")
+      ->type_name("FILE");
+  cmd->add_option("--sensor", o->sensor,
+                  "Pass the samples through this virtual accelerometer (a sensor file, docs/sensor.md: transfer "
+                  "path, anti-alias filter, noise, ADC) and report its output's RMS, crest factor and kurtosis")
+      ->type_name("FILE");
+  cmd->add_option("--sensor-csv", o->sensor_csv,
+                  "With --sensor: write every sensor sample to this CSV file (time, x, y, z in the sensor's unit)")
       ->type_name("FILE");
   cmd->add_flag("--allow-long-run", o->allow_long_run,
                 "Start a run estimated (from a short probe) to take over an hour of wall time");

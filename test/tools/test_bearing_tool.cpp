@@ -17,6 +17,7 @@
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/bearing_model.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
+#include "bearing_sim/core/virtual_accelerometer.hpp"
 #include "tool_runner.hpp"
 
 namespace {
@@ -432,6 +433,57 @@ TEST_F(ToolTest, SimulateCsvHasOneRowPerSampleAndMeanIsTheStaticDisplacement) {
   EXPECT_GE(j["substeps"].get<int>(), 1);
   EXPECT_NEAR(j["internal_step_s"].get<double>(), 1.0 / (rate * j["substeps"].get<int>()), 1e-15);
   EXPECT_GT(j["realtime_factor"].get<double>(), 0.0);
+}
+
+// --sensor: the healthy CT bearing's ring vibrates far below the housing accelerometer's noise
+// floor, so its output on x is the sensor noise through the anti-alias filter. Noise of
+// one-sided density D through an order-n Butterworth low-pass at f_c has the RMS
+// D sqrt(f_c (pi / 2n) / sin(pi / 2n)) (its equivalent noise bandwidth): 9.33e-4 m/s^2 for the
+// shipped file. The ring's own x acceleration (a_rms_x, ~8e-5 m/s^2) adds in quadrature
+// (+0.4 %), and the RMS of 0.5 s of noise 4 kHz wide scatters by about 1/sqrt(2 B T) = 1.1 %:
+// 5 % holds both. Gaussian noise has kurtosis 3 (its estimate from 5000 correlated samples
+// scatters by ~0.1).
+TEST_F(ToolTest, SimulateThroughASensorGivesItsNoiseFloorAndWritesItsSamples) {
+  const std::string sensor_file = std::string(BEARING_SIM_SOURCE_DIR) + "/config/sensors/ct_gantry_housing_accelerometer.yaml";
+  const std::string csv = dir_ + "/sensor.csv";
+  const json j = run_json("simulate --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 " +
+                          "--duration 1 --sensor '" + sensor_file + "' --sensor-csv '" + csv + "'");
+  ASSERT_TRUE(j["sensor"].is_object()) << j.dump();
+  const bearing_sim::AccelerometerConfig config = bearing_sim::load_accelerometer_config(sensor_file);
+  const double pi = 3.141592653589793, n = config.anti_alias_order;
+  const double bandwidth = config.anti_alias_cutoff_fraction * config.output_rate_hz * (pi / (2 * n)) / std::sin(pi / (2 * n));
+  const double noise_rms = config.noise_density_m_s2_per_sqrt_hz * std::sqrt(bandwidth);
+  EXPECT_NEAR(j["sensor"]["rms"][0].get<double>(), noise_rms, 0.05 * noise_rms);
+  EXPECT_NEAR(j["sensor"]["kurtosis"][0].get<double>(), 3.0, 0.3);
+  EXPECT_EQ(j["sensor"]["unit"], "m_s2");
+  EXPECT_EQ(j["sensor"]["clipped_samples"].get<int>(), 0);
+
+  // One CSV row per sensor sample (same rate as the run here); the second half's RMS of x
+  // recomputed from the file equals the summary's (to the 11 digits written).
+  std::string header;
+  const auto rows = parse_csv(csv, &header);
+  EXPECT_EQ(header, "time_s,x_m_s2,y_m_s2,z_m_s2");
+  ASSERT_EQ(rows.size(), 10000u);
+  EXPECT_EQ(j["sensor"]["samples"].get<std::size_t>(), rows.size());
+  double mean = 0, ss = 0;
+  const std::size_t half = rows.size() / 2;
+  for (std::size_t i = half; i < rows.size(); ++i) mean += rows[i][1];
+  mean /= static_cast<double>(rows.size() - half);
+  for (std::size_t i = half; i < rows.size(); ++i) ss += (rows[i][1] - mean) * (rows[i][1] - mean);
+  const double rms = std::sqrt(ss / static_cast<double>(rows.size() - half));
+  EXPECT_NEAR(rms, j["sensor"]["rms"][0].get<double>(), 1e-8 * rms);
+
+  // Without --sensor the JSON says so (null), and --sensor-csv alone is refused.
+  const json ideal = run_json("simulate --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.01");
+  EXPECT_TRUE(ideal["sensor"].is_null());
+  const RunResult alone = run("simulate --bearing '" + kCt + "' --outer-rpm 10 --duration 0.01 --sensor-csv '" + csv + "'");
+  EXPECT_EQ(alone.exit_code, 2);
+  EXPECT_NE(alone.err.find("--sensor"), std::string::npos) << alone.err;
+  // A sensor that cannot run at the run's rate (its 10 kHz output does not divide 7 kHz).
+  const RunResult rate = run("simulate --bearing '" + kCt + "' --outer-rpm 10 --duration 0.01 --rate 7000 --sensor '" +
+                             sensor_file + "'");
+  EXPECT_EQ(rate.exit_code, 2);
+  EXPECT_NE(rate.err.find("--sensor"), std::string::npos) << rate.err;
 }
 
 TEST_F(ToolTest, SimulateExplicitSubstepsAreUsed) {

@@ -1,0 +1,103 @@
+#include "simulated_sensor.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/virtual_accelerometer.hpp"
+#include "tool_common.hpp"
+
+namespace bearing_sim::tool {
+
+void StreamedStatistics::add(double x) {
+  // Pebay (2008), one-pass update of the central moment sums M2..M4.
+  const double n1 = static_cast<double>(n_);
+  ++n_;
+  const double n = static_cast<double>(n_);
+  const double delta = x - mean_, delta_n = delta / n, delta_n2 = delta_n * delta_n;
+  const double term = delta * delta_n * n1;
+  mean_ += delta_n;
+  m4_ += term * delta_n2 * (n * n - 3.0 * n + 3.0) + 6.0 * delta_n2 * m2_ - 4.0 * delta_n * m3_;
+  m3_ += term * delta_n * (n - 2.0) - 3.0 * delta_n * m2_;
+  m2_ += term;
+  min_ = n_ == 1 ? x : std::min(min_, x);
+  max_ = n_ == 1 ? x : std::max(max_, x);
+}
+
+double StreamedStatistics::rms() const { return n_ ? std::sqrt(m2_ / static_cast<double>(n_)) : 0.0; }
+
+double StreamedStatistics::peak() const { return n_ ? std::max(max_ - mean_, mean_ - min_) : 0.0; }
+
+double StreamedStatistics::crest_factor() const {
+  const double r = rms();
+  return r > 0.0 ? peak() / r : 0.0;
+}
+
+double StreamedStatistics::kurtosis() const {
+  return m2_ > 0.0 ? static_cast<double>(n_) * m4_ / (m2_ * m2_) : 0.0;
+}
+
+SimulatedSensor::SimulatedSensor(const std::string& sensor_file, double rate_hz, std::size_t window_start,
+                                 const std::string& csv)
+    : file_(sensor_file), csv_path_(csv), window_start_(window_start) {
+  const AccelerometerConfig config = load_accelerometer_config(sensor_file);
+  try {
+    sensor_ = std::make_unique<ros_node::TriaxialSensor>(config, rate_hz);
+  } catch (const InvalidInputError& e) {
+    throw InputError("--sensor '" + sensor_file + "' at --rate " + general(rate_hz, 6) + " Hz: " + e.what());
+  }
+  unit_ = config.output_unit == SensorOutputUnit::Voltage_V ? "V" : "m_s2";
+  if (!csv_path_.empty()) {
+    csv_ = std::fopen(csv_path_.c_str(), "w");
+    if (!csv_) throw InputError("--sensor-csv: cannot open '" + csv_path_ + "' for writing: " + std::strerror(errno));
+    std::fprintf(csv_, "time_s,x_%s,y_%s,z_%s\n", unit_.c_str(), unit_.c_str(), unit_.c_str());
+  }
+}
+
+SimulatedSensor::~SimulatedSensor() {
+  if (csv_) std::fclose(csv_);
+}
+
+void SimulatedSensor::push(const DynamicSample& sample) {
+  Eigen::Vector3d measured;
+  const std::size_t input = inputs_++;
+  if (!sensor_->push(sample, &measured)) return;
+  ++samples_;
+  // A sensor sample is stamped with the dynamics sample that completed it.
+  if (input >= window_start_)
+    for (int axis = 0; axis < 3; ++axis) stats_[axis].add(measured[axis]);
+  if (csv_) std::fprintf(csv_, "%.12g,%.10e,%.10e,%.10e\n", sample.time_s, measured[0], measured[1], measured[2]);
+}
+
+void SimulatedSensor::finish() {
+  if (!csv_) return;
+  const bool failed = std::ferror(csv_) != 0;
+  const bool close_failed = std::fclose(csv_) != 0;
+  csv_ = nullptr;
+  if (failed || close_failed) throw std::runtime_error("--sensor-csv: error writing '" + csv_path_ + "'");
+}
+
+nlohmann::json SimulatedSensor::to_json() const {
+  nlohmann::json rms = nlohmann::json::array(), crest = nlohmann::json::array(), kurt = nlohmann::json::array();
+  for (const StreamedStatistics& s : stats_) {
+    rms.push_back(s.rms());
+    crest.push_back(s.crest_factor());
+    kurt.push_back(s.kurtosis());
+  }
+  return {{"name", sensor_->config().name},
+          {"file", file_},
+          {"unit", unit_},
+          {"output_rate_hz", sensor_->output_rate_hz()},
+          {"samples", samples_},
+          {"window_samples", stats_[0].samples()},
+          {"rms", rms},
+          {"crest_factor", crest},
+          {"kurtosis", kurt},
+          {"clipped_samples", sensor_->clipped_sample_count()},
+          {"csv", csv_path_.empty() ? nlohmann::json(nullptr) : nlohmann::json(csv_path_)}};
+}
+
+}  // namespace bearing_sim::tool

@@ -1,0 +1,64 @@
+#pragma once
+// bearing_tool simulate --sensor: the run's samples through a virtual triaxial accelerometer
+// (the node's TriaxialSensor, docs/sensor.md), with streamed statistics of its output over
+// the summary's window and an optional CSV of its samples. Nothing is stored per sample,
+// so a long run costs no memory.
+#include <array>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "bearing_sim/core/bearing_dynamics.hpp"
+#include "bearing_sim/ros/triaxial_sensor.hpp"
+
+namespace bearing_sim::tool {
+
+// Mean, RMS, peak, crest factor and kurtosis of one signal, one sample at a time (the
+// central moments updated as in Pebay 2008, numerically safe for a large mean such as a
+// voltage output's bias).
+class StreamedStatistics {
+ public:
+  void add(double x);
+  std::size_t samples() const { return n_; }
+  double mean() const { return mean_; }
+  double rms() const;            // about the mean
+  double peak() const;           // largest |x - mean|
+  double crest_factor() const;   // peak / rms
+  double kurtosis() const;       // m4 / m2^2 (3 for Gaussian noise)
+
+ private:
+  std::size_t n_ = 0;
+  double mean_ = 0.0, m2_ = 0.0, m3_ = 0.0, m4_ = 0.0;
+  double min_ = 0.0, max_ = 0.0;
+};
+
+class SimulatedSensor {
+ public:
+  // sensor_file: the accelerometer file (`sensor:` mapping); rate_hz: the run's sample rate;
+  // window_start: the index of the run's sample from which the statistics count (the
+  // summary's window); csv: empty for none.
+  SimulatedSensor(const std::string& sensor_file, double rate_hz, std::size_t window_start, const std::string& csv);
+  ~SimulatedSensor();
+  SimulatedSensor(const SimulatedSensor&) = delete;
+  SimulatedSensor& operator=(const SimulatedSensor&) = delete;
+
+  void push(const DynamicSample& sample);
+  // Closes the CSV (throws if writing it failed).
+  void finish();
+  nlohmann::json to_json() const;
+  const std::string& unit() const { return unit_; }
+  const std::array<StreamedStatistics, 3>& statistics() const { return stats_; }
+  double output_rate_hz() const { return sensor_->output_rate_hz(); }
+
+ private:
+  std::string file_, csv_path_, unit_;
+  std::unique_ptr<ros_node::TriaxialSensor> sensor_;
+  std::size_t window_start_, inputs_ = 0;
+  std::array<StreamedStatistics, 3> stats_;
+  std::FILE* csv_ = nullptr;
+  std::size_t samples_ = 0;
+};
+
+}  // namespace bearing_sim::tool
