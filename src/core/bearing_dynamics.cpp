@@ -162,15 +162,15 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
                                         Matrix10(phi4 - phi2 / 6.0)};
     static constexpr double kBinomial[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
     for (int i = 0; i < 4; ++i) {
-      Matrix10 predictor = Matrix10::Zero(), corrector = Matrix10::Zero();
-      for (int j = i; j < 4; ++j) {
-        predictor += kBinomial[j][i] * ab[j];
-        corrector += kBinomial[j][i] * am[j];
-      }
+      Matrix10 predictor = Matrix10::Zero();
+      for (int j = i; j < 4; ++j) predictor += kBinomial[j][i] * ab[j];
       const double sign = i % 2 ? -1.0 : 1.0;
       adams_predictor_.middleCols<5>(5 * i) = sign * h * predictor.rightCols<5>();
-      adams_corrector_.middleCols<5>(5 * i) = sign * h * corrector.rightCols<5>();
     }
+    // The corrector's weight of r_{n+1}: sum of the AM4 weights (every nabla^j holds r_{n+1}
+    // once). The corrector's cubic is the predictor's plus (nabla^4 r_{n+1}) times the cubic
+    // that is 1 at t_{n+1} and 0 at t_n, t_{n-1}, t_{n-2}, so y_c = y_p + C0 nabla^4 r_{n+1}.
+    adams_corrector_ = h * (am[0] + am[1] + am[2] + am[3]).rightCols<5>();
   } else {
     Eigen::Matrix<double, 40, 40> x = Eigen::Matrix<double, 40, 40>::Zero();
     x.block<10, 10>(0, 0) = h * balanced;
@@ -404,9 +404,9 @@ bool BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
   // y = (q - q_lin, v) as in ETDRK4. Per step: the remainder r at the start (the previous
   // step's end evaluation), the predictor y_p = e^{hL} y + P0 r + P1 r_-1 + P2 r_-2 + P3 r_-3,
   // the remainder r_p at y_p and the step's end, the corrector
-  // y_next = e^{hL} y + C0 r_p + C1 r + C2 r_-1 + C3 r_-2. The remainders are stacked newest
-  // first in `stack` = (r_p, r, r_-1, r_-2, r_-3): the predictor's weights apply to its last
-  // four, the corrector's to its first four, and a step moves it down by one remainder.
+  // y_next = e^{hL} y + C0 r_p + C1 r + C2 r_-1 + C3 r_-2 = y_p + C0 nabla^4 r_p. The
+  // remainders are stacked newest first in `stack` = (r_p, r, r_-1, r_-2, r_-3): the
+  // predictor's weights apply to its last four, and a step moves it down by one remainder.
   using Vector10 = Eigen::Matrix<double, 10, 1>;
   const double h = 1.0 / (options_.sample_rate_hz * substeps_);
   const CageTrig rot = half_step_rotation();
@@ -430,7 +430,9 @@ bool BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
     const Vector10 y_p = plus_times(e_y, adams_predictor_, stack.data() + 5);
     stack.head<5>() =
         acceleration(q_lin_ + y_p.head<5>(), y_p.tail<5>(), end, balls, trig_end) - times(lin_accel_, y_p.data());
-    y = plus_times(e_y, adams_corrector_, stack.data());
+    const Vector5 fourth_difference = stack.segment<5>(0) - 4.0 * stack.segment<5>(5) + 6.0 * stack.segment<5>(10) -
+                                      4.0 * stack.segment<5>(15) + stack.segment<5>(20);
+    y = plus_times(y_p, adams_corrector_, fourth_difference.data());
     stack.tail<20>() = stack.head<20>().eval();  // r_p is the next step's r (PEC)
     phase = end;
     trig = trig_end;

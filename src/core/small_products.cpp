@@ -54,6 +54,9 @@ void MultiplyAdd10x20(const double* m, const double* x, const double* base, doub
 void MultiplyAdd5x10(const double* m, const double* x, const double* base, double* out) {
   MultiplyAddFixed<5, 10>(m, x, base, out);
 }
+void MultiplyAdd10x5(const double* m, const double* x, const double* base, double* out) {
+  MultiplyAddFixed<10, 5>(m, x, base, out);
+}
 
 }  // namespace HWY_NAMESPACE
 }  // namespace bearing_sim::detail
@@ -64,6 +67,7 @@ namespace bearing_sim::detail {
 HWY_EXPORT(MultiplyAdd10x10);
 HWY_EXPORT(MultiplyAdd10x20);
 HWY_EXPORT(MultiplyAdd5x10);
+HWY_EXPORT(MultiplyAdd10x5);
 
 template <>
 void multiply_add<10, 10>(const double* m, const double* x, const double* base, double* out) {
@@ -72,6 +76,10 @@ void multiply_add<10, 10>(const double* m, const double* x, const double* base, 
 template <>
 void multiply_add<10, 20>(const double* m, const double* x, const double* base, double* out) {
   HWY_DYNAMIC_DISPATCH(MultiplyAdd10x20)(m, x, base, out);
+}
+template <>
+void multiply_add<10, 5>(const double* m, const double* x, const double* base, double* out) {
+  HWY_DYNAMIC_DISPATCH(MultiplyAdd10x5)(m, x, base, out);
 }
 template <>
 void multiply_add<5, 10>(const double* m, const double* x, const double* base, double* out) {

@@ -180,6 +180,7 @@ TEST(ContactKernel, SmallProductsAgreeWithEigen) {
     for (int trial = 0; trial < 20; ++trial) {
       expect_products_agree<10, 10>();
       expect_products_agree<10, 20>();
+      expect_products_agree<10, 5>();
       expect_products_agree<5, 10>();
     }
   });
