@@ -35,4 +35,14 @@ double operating_clearance_m(const BearingConfig& c) {
   return g0;
 }
 
+BearingModel with_ring_temperature_difference(const BearingModel& model, double dT) {
+  BearingConfig config = model.config();
+  config.ring_temperature_difference_K = dT;
+  BearingModel changed(config);
+  changed.set_deflection_offsets(model.deflection_offsets());
+  changed.clear_spalls();
+  for (const Spall& s : model.imperfections().spalls()) changed.add_spall(s);
+  return changed;
+}
+
 }  // namespace bearing_sim

@@ -2,6 +2,7 @@
 // Clearance at a temperature difference between the rings (docs/model.md section 3.7): the
 // warmer ring expands more, which closes the clearance (inner ring warmer) or opens it.
 #include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/bearing_model.hpp"
 
 namespace bearing_sim {
 
@@ -19,5 +20,9 @@ double thermal_clearance_change_m(const BearingConfig& config, double ring_tempe
 // Throws InvalidInputError, naming the temperature difference and the clearance, when the
 // result leaves the model's range |g0| < 5 % of the ball diameter (the bearing file's rule).
 double operating_clearance_m(const BearingConfig& config);
+
+// The running bearing at another ring temperature difference: its config, ball offsets and
+// spalls (with their creation times) kept, for BearingDynamics::set_model. Throws as above.
+BearingModel with_ring_temperature_difference(const BearingModel& model, double ring_temperature_difference_K);
 
 }  // namespace bearing_sim
