@@ -5,7 +5,9 @@
 #include <set>
 #include <sstream>
 
+#include "bearing_sim/core/bearing_model.hpp"
 #include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/modal_damping.hpp"
 #include "yaml_reader.hpp"
 
 namespace bearing_sim {
@@ -13,6 +15,62 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 using detail::Reader;
+
+// A list of exactly n finite numbers under `key`, if present.
+void read_numbers(const Reader& r, const YAML::Node& map, const std::string& key, std::size_t n, double* out) {
+  const YAML::Node node = map[key];
+  if (!node) return;
+  if (!node.IsSequence() || node.size() != n) r.fail(key, "expected a list of " + std::to_string(n) + " numbers");
+  for (std::size_t i = 0; i < n; ++i) {
+    double v = 0.0;
+    try {
+      if (!node[i].IsScalar()) throw YAML::Exception(YAML::Mark(), "");
+      v = node[i].as<double>();
+    } catch (const YAML::Exception&) {
+      r.fail(key, "expected a list of " + std::to_string(n) + " numbers");
+    }
+    if (!std::isfinite(v)) r.fail(key, "must be finite, got '" + node[i].Scalar() + "'");
+    out[i] = v;
+  }
+}
+
+// damping: either c_n per contact or the modal ratio of the radial mode (docs/model.md 7.3).
+void read_damping(const Reader& dr, const YAML::Node& map, BearingConfig* c) {
+  dr.check_keys({"contact_damping_Ns_per_m", "modal_damping_ratio", "reference_force_N", "reference_moment_Nm"});
+  const bool per_contact = dr.has("contact_damping_Ns_per_m"), modal = dr.has("modal_damping_ratio");
+  if (per_contact == modal)
+    dr.fail(per_contact ? "modal_damping_ratio" : "contact_damping_Ns_per_m",
+            "give exactly one of damping.contact_damping_Ns_per_m (per contact) and damping.modal_damping_ratio "
+            "(of the radial mode)");
+  if (per_contact) {
+    dr.require(!dr.has("reference_force_N") && !dr.has("reference_moment_Nm"), "reference_force_N",
+               "belongs to damping.modal_damping_ratio, not to a per-contact damping");
+    c->contact_damping_Ns_per_m = dr.number("contact_damping_Ns_per_m", 0.0);
+    dr.require(c->contact_damping_Ns_per_m >= 0.0, "contact_damping_Ns_per_m", "must be >= 0");
+    return;
+  }
+  c->modal_damping_ratio = dr.number("modal_damping_ratio", 0.0);
+  // 0.3 is far above any bearing's (lubricated steel contacts: 0.01-0.05); 0 means no damping.
+  dr.require(c->modal_damping_ratio >= 0.0 && c->modal_damping_ratio <= 0.3, "modal_damping_ratio",
+             "must be in [0, 0.3] (a fraction of critical damping; bearings have 0.01-0.05)");
+  read_numbers(dr, map, "reference_force_N", 3, c->damping_reference_load.data());
+  read_numbers(dr, map, "reference_moment_Nm", 2, c->damping_reference_load.data() + 3);
+  dr.require(c->has_dynamics(), "modal_damping_ratio", "needs rotating_mass_kg (the ratio is of a mode of the ring)");
+}
+
+// c_n from the ratio at the reference load, once, when the file is read: c_n is then a fixed
+// property of the contacts, and the ratio follows the load as a real bearing's does.
+void resolve_modal_damping(const Reader& dr, BearingConfig* c) {
+  Vector5 load;
+  for (int i = 0; i < 5; ++i) load[i] = c->damping_reference_load[i];
+  try {
+    const BearingModel model(*c);
+    c->contact_damping_Ns_per_m = contact_damping_for_ratio(model, load, c->modal_damping_ratio);
+  } catch (const std::exception& e) {  // LoadNotCarriedError, InvalidInputError, ConfigError
+    dr.fail("modal_damping_ratio", std::string("cannot be met at the reference load (damping.reference_force_N, "
+                                               "damping.reference_moment_Nm; zero if absent): ") + e.what());
+  }
+}
 
 }  // namespace
 
@@ -114,16 +172,13 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
     c.tilt_inertia_kg_m2 = c.rotating_mass_kg * (3.0 * (ro * ro + ri * ri) + c.width_m * c.width_m) / 12.0;
   }
 
-  if (const YAML::Node dmp = r.map("damping")) {
-    Reader dr(dmp, source, "damping.");
-    dr.check_keys({"contact_damping_Ns_per_m"});
-    c.contact_damping_Ns_per_m = dr.number("contact_damping_Ns_per_m", 0.0);
-    dr.require(c.contact_damping_Ns_per_m >= 0.0, "contact_damping_Ns_per_m", "must be >= 0");
-  }
+  const YAML::Node dmp = r.map("damping");
+  if (dmp) read_damping(Reader(dmp, source, "damping."), dmp, &c);
   c.imperfections = parse_imperfections(root["imperfections"], root["defects"], source);
   if (c.imperfections.ball_spacing_jitter_m > 0.1 * kPi * c.pitch_diameter_m / c.balls_per_row)
     throw ConfigError(source + ": key 'imperfections.ball_spacing_jitter_mm': must be below a tenth of the ball "
                                "pitch, or balls would overlap");
+  if (c.modal_damping_ratio > 0.0) resolve_modal_damping(Reader(dmp, source, "damping."), &c);
   return c;
 }
 

@@ -39,7 +39,7 @@ BearingDynamics::BearingDynamics(BearingModel model, const Vector5& load, double
     throw InvalidInputError("sample rate must be a positive number of Hz");
   if (options_.substeps < 0) throw InvalidInputError("substeps must be >= 0 (0: automatic)");
   inverse_mass_ = model_.mass_diagonal().cwiseInverse();
-  displacement_limit_m_ = 0.25 * model_.config().ball_diameter_m + std::abs(model_.config().clearance_m);
+  displacement_limit_m_ = 0.25 * model_.config().ball_diameter_m + std::abs(model_.clearance_m());
   set_load(load);
   set_ring_speed(ring_speed_rad_s);
   substeps_ = options_.substeps > 0 ? options_.substeps
@@ -255,7 +255,7 @@ void BearingDynamics::set_model(BearingModel model) {
   const Vector5 inverse_mass = model.mass_diagonal().cwiseInverse();
   model_ = std::move(model);
   inverse_mass_ = inverse_mass;
-  displacement_limit_m_ = 0.25 * model_.config().ball_diameter_m + std::abs(model_.config().clearance_m);
+  displacement_limit_m_ = 0.25 * model_.config().ball_diameter_m + std::abs(model_.clearance_m());
   update_cage_speed();
   update_substeps();  // clearance and damping change the fastest mode
   linearized_substeps_ = 0;  // and the linearized contacts: again before the next sample

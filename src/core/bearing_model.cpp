@@ -8,6 +8,7 @@
 #include <random>
 
 #include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/thermal_clearance.hpp"
 #include "contact_kernel.hpp"
 
 namespace bearing_sim {
@@ -25,6 +26,7 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
   outer_contact_ = outer_race_contact(d, c.pitch_diameter_m, a0, c.outer_groove_curvature, E, nu);
   contact_stiffness_ = series_stiffness(inner_contact_.stiffness_N_per_m15, outer_contact_.stiffness_N_per_m15);
   groove_centre_distance_ = (c.inner_groove_curvature + c.outer_groove_curvature - 1.0) * d;
+  clearance_m_ = operating_clearance_m(c);
   cos_a0_ = std::cos(a0);
   groove_centre_radius_ = c.pitch_diameter_m / 2.0 - (c.outer_groove_curvature - 0.5) * d * cos_a0_;
   moving_sign_ = c.rotating_ring == RotatingRing::Outer ? 1.0 : -1.0;
@@ -278,7 +280,7 @@ Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, cons
                                       groove_centre_radius_,
                                       cos_a0_,
                                       groove_centre_distance_,
-                                      config_.clearance_m,
+                                      clearance_m_,
                                       moving_sign_,
                                       contact_stiffness_,
                                       config_.contact_damping_Ns_per_m,
@@ -303,7 +305,7 @@ Vector5 BearingModel::contact_force_and_stiffness(const Vector5& q, const Rollin
                                                   Matrix5* damping) const {
   const double cc = std::cos(phase.cage), sc = std::sin(phase.cage);
   const double* off = offsets_at(phase, balls_);
-  const double A = groove_centre_distance_, g0 = config_.clearance_m, sign = moving_sign_;
+  const double A = groove_centre_distance_, g0 = clearance_m_, sign = moving_sign_;
   const double kn = contact_stiffness_;
   Vector5 f = Vector5::Zero();
   if (stiffness) stiffness->setZero();
@@ -343,7 +345,7 @@ void BearingModel::deflections(const Vector5& q, const RollingPhase& phase, cons
                                std::vector<double>* out, bool include_spalls) const {
   const double cc = std::cos(phase.cage), sc = std::sin(phase.cage);
   const double rho = groove_centre_radius_, ca = cos_a0_, A = groove_centre_distance_;
-  const double g0 = config_.clearance_m, sign = moving_sign_;
+  const double g0 = clearance_m_, sign = moving_sign_;
   const double* qp = q.data();
   const double* cb = balls.cos_base.data();
   const double* sb = balls.sin_base.data();
@@ -409,7 +411,7 @@ std::vector<BallState> BearingModel::ball_states(const Vector5& q, const Rolling
     const double phi = phase.cage + base_azimuth_[b];
     const Kinematics k = kinematics(std::cos(phi), std::sin(phi), balls_.groove_centre_z[b], balls_.normal_z[b],
                                     off[b], groove_centre_radius_, cos_a0_, groove_centre_distance_,
-                                    config_.clearance_m, moving_sign_, q.data());
+                                    clearance_m_, moving_sign_, q.data());
     BallState& s = balls[b];
     s.row = balls_.row[b];
     s.index_in_row = b % config_.balls_per_row;

@@ -34,7 +34,7 @@ StaticSolution solve_static(const BearingModel& model, const Vector5& load, cons
   const Vector5 s = scales(model);
   const double d = model.config().ball_diameter_m;
   // Beyond this the balls would have left the grooves: the load is not carried.
-  const double displacement_limit = 0.25 * d + std::abs(model.config().clearance_m);
+  const double displacement_limit = 0.25 * d + std::abs(model.clearance_m());
   const double load_scale = (load.array() / s.array()).matrix().norm();
   // Finite components whose magnitude overflows (1e300 N) would turn every step into NaN.
   if (!std::isfinite(load_scale))
@@ -50,7 +50,7 @@ StaticSolution solve_static(const BearingModel& model, const Vector5& load, cons
     const double per_ball = load_scale / (0.2 * model.ball_count());
     const double deflection = std::cbrt(std::pow(per_ball / model.contact_stiffness(), 2.0));
     const Vector5 direction = (load.array() / s.array()).matrix() / load_scale;
-    q = ((deflection + std::max(0.0, model.config().clearance_m)) * direction).cwiseQuotient(s);
+    q = ((deflection + std::max(0.0, model.clearance_m())) * direction).cwiseQuotient(s);
   }
 
   Matrix5 k;

@@ -9,6 +9,7 @@
 
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/thermal_clearance.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
 #include "yaml_reader.hpp"
 
@@ -117,7 +118,7 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
   sc.source_ = source;
   detail::Reader r(root, source, "");
   r.check_keys({"name", "description", "duration_s", "seed", "sample_rate_hz", "bearing_file", "sensor_file", "phases",
-                "speed", "load", "defects"});
+                "speed", "load", "ring_temperature_difference", "defects"});
   sc.name_ = r.text("name", "");
   r.require(!sc.name_.empty(), "name", "is required and must not be empty");
   sc.description_ = r.text("description", "");
@@ -266,6 +267,46 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
       sc.unbalance_.radius_m = u.number("radius_m", 0.0, true);
       u.require(sc.unbalance_.radius_m > 0.0, "radius_m", "must be > 0");
       sc.unbalance_.phase_rad = u.number("phase_deg", 0.0) * kPi / 180.0;
+    }
+  }
+
+  // Ring temperature difference: a time line like the load's; every value it takes (its
+  // extremes are at the segment ends) must leave the bearing a clearance the model allows.
+  if (const YAML::Node node = r.map("ring_temperature_difference")) {
+    sc.has_temperature_ = true;
+    detail::Reader tr(node, source, "ring_temperature_difference.");
+    tr.check_keys({"initial_K", "segments"});
+    const auto check = [&](const detail::Reader& at, const std::string& key, double dT) {
+      BearingConfig hot = bearing_config;
+      hot.ring_temperature_difference_K = dT;
+      try {
+        operating_clearance_m(hot);
+      } catch (const InvalidInputError& e) {
+        at.fail(key, std::string("not possible with the bearing: ") + e.what());
+      }
+    };
+    sc.initial_temperature_K_ = tr.number("initial_K", 0.0);
+    check(tr, "initial_K", sc.initial_temperature_K_);
+    double current = sc.initial_temperature_K_, previous_end = 0.0;
+    if (const YAML::Node segments = node["segments"]) {
+      if (!segments.IsSequence()) tr.fail("segments", "expected a list of {type, start_s, ...}");
+      for (std::size_t k = 0; k < segments.size(); ++k) {
+        const std::string key = "ring_temperature_difference.segments[" + std::to_string(k) + "]";
+        if (!segments[k].IsMap()) r.fail(key, "expected a mapping");
+        detail::Reader g(segments[k], source, key + ".");
+        const std::string type = g.text("type", "");
+        if (type == "step") g.check_keys({"type", "start_s", "difference_K"});
+        else if (type == "ramp") g.check_keys({"type", "start_s", "end_s", "difference_K"});
+        else g.fail("type", "must be step or ramp, got '" + type + "'");
+        TemperaturePiece p;
+        read_interval(g, type == "ramp", sc.duration_s_, previous_end, &p.start_s, &p.end_s);
+        p.from_K = current;
+        p.to_K = g.number("difference_K", 0.0, true);
+        check(g, "difference_K", p.to_K);
+        current = p.to_K;
+        previous_end = p.end_s;
+        sc.temperature_.push_back(p);
+      }
     }
   }
 
@@ -441,7 +482,23 @@ ScenarioInputs Scenario::inputs_at(double t) const {
   in.ring_angle_rad = piece_angle(p, t);
   in.load = load_at(t);
   in.phase = phase_at(t);
+  in.ring_temperature_difference_K = ring_temperature_difference_at(t);
   return in;
+}
+
+// --- ring temperature difference ---------------------------------------------------
+
+double Scenario::ring_temperature_difference_at(double t) const {
+  speed_piece(t);  // checks t
+  auto it = std::upper_bound(temperature_.begin(), temperature_.end(), t,
+                             [](double time, const TemperaturePiece& p) { return time < p.start_s; });
+  if (it == temperature_.begin()) return initial_temperature_K_;
+  const TemperaturePiece& p = *std::prev(it);
+  if (t >= p.end_s) return p.to_K;
+  // Whole steps of kTemperatureStepK from the ramp's start, never past its end value.
+  const double exact = (p.to_K - p.from_K) * ((t - p.start_s) / (p.end_s - p.start_s));
+  const double steps = std::floor(std::abs(exact) / kTemperatureStepK);
+  return p.from_K + std::copysign(steps * kTemperatureStepK, exact);
 }
 
 // --- defects -------------------------------------------------------------------------

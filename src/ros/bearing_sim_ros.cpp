@@ -184,6 +184,8 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
   inject_srv_ = nh_.advertiseService("inject_defect", &BearingSimRos::on_inject_defect, this);
   clear_srv_ = nh_.advertiseService("clear_defects", &BearingSimRos::on_clear_defects, this);
   speed_sub_ = nh_.subscribe("speed", 10, &BearingSimRos::on_speed, this);
+  ring_temperature_sub_ =
+      nh_.subscribe("ring_temperature_difference_K", 10, &BearingSimRos::on_ring_temperature, this);
   ROS_INFO("bearing_sim_node: '%s', %d balls, %.0f Hz dynamics, %d %s substeps per sample, %s; "
            "vibration: %s at %.0f Hz",
            model.config().name.c_str(), model.ball_count(), sample_rate_hz_, substeps_,
@@ -351,29 +353,12 @@ void BearingSimRos::on_reconfigure(BearingSimConfig& config, std::uint32_t /*lev
   const double clearance_m = config.clearance_um * 1e-6;
   std::optional<BearingModel> new_model;
   if (clearance_m != old.clearance_m || config.contact_damping_Ns_per_m != old.contact_damping_Ns_per_m) {
-    try {
-      BearingConfig changed = old;
-      changed.clearance_m = clearance_m;
-      changed.contact_damping_Ns_per_m = config.contact_damping_Ns_per_m;
-      BearingModel model(changed);
-      model.set_deflection_offsets(validation_model_->deflection_offsets());
-      // The spalls present now, not only those of the file (the sim thread re-times them).
-      model.clear_spalls();
-      for (const Spall& sp : validation_model_->imperfections().spalls()) model.add_spall(sp);
-      InputCheck check = check_load(accepted_load_, limits_, &model);
-      if (check.accepted) {
-        const InputCheck work = check_integrator_work(model, accepted_load_);  // would stall the step
-        if (!work.accepted) check = work;
-      }
-      if (check.accepted) {
-        accepted_max_pressure_Pa_ = check.max_contact_pressure_Pa;
-        new_model = std::move(model);
-      } else {
-        reject_input("clearance " + std::to_string(config.clearance_um) + " um: " + check.reason);
-      }
-    } catch (const std::exception& e) {  // a model the core refuses: no exception leaves the callback
-      reject_input("clearance_um/contact_damping_Ns_per_m refused: " + std::string(e.what()));
-    }
+    BearingConfig changed = old;
+    changed.clearance_m = clearance_m;
+    changed.contact_damping_Ns_per_m = config.contact_damping_Ns_per_m;
+    new_model = validated_model(changed, "clearance " + std::to_string(config.clearance_um) +
+                                             " um, contact damping " +
+                                             std::to_string(config.contact_damping_Ns_per_m) + " N*s/m");
     if (!new_model) {
       config.clearance_um = old.clearance_m * 1e6;
       config.contact_damping_Ns_per_m = old.contact_damping_Ns_per_m;
@@ -395,6 +380,49 @@ void BearingSimRos::on_reconfigure(BearingSimConfig& config, std::uint32_t /*lev
   publish_model_state();
 }
 
+std::optional<BearingModel> BearingSimRos::validated_model(const BearingConfig& changed, const std::string& what) {
+  try {
+    BearingModel model(changed);  // throws for a clearance the ring temperatures take out of range
+    model.set_deflection_offsets(validation_model_->deflection_offsets());
+    // The spalls present now, not only those of the file (the sim thread re-times them).
+    model.clear_spalls();
+    for (const Spall& sp : validation_model_->imperfections().spalls()) model.add_spall(sp);
+    InputCheck check = check_load(accepted_load_, limits_, &model);
+    if (check.accepted) {
+      const InputCheck work = check_integrator_work(model, accepted_load_);  // would stall the step
+      if (!work.accepted) check = work;
+    }
+    if (!check.accepted) {
+      reject_input(what + ": " + check.reason);
+      return std::nullopt;
+    }
+    accepted_max_pressure_Pa_ = check.max_contact_pressure_Pa;
+    return model;
+  } catch (const std::exception& e) {  // a model the core refuses: no exception leaves the callback
+    reject_input(what + " refused: " + e.what());
+    return std::nullopt;
+  }
+}
+
+void BearingSimRos::on_ring_temperature(const std_msgs::Float64::ConstPtr& msg) {
+  const double dT = msg->data;
+  const std::string what = "ring_temperature_difference_K " + std::to_string(dT);
+  if (!std::isfinite(dT)) return reject_input(what + " refused: not a finite number");
+  const BearingConfig& old = validation_model_->config();
+  if (dT == old.ring_temperature_difference_K) return;
+  BearingConfig changed = old;
+  changed.ring_temperature_difference_K = dT;
+  std::optional<BearingModel> model = validated_model(changed, what);
+  if (!model) return;
+  *validation_model_ = *model;
+  {
+    std::lock_guard<PriorityInheritanceMutex> lock(pending_mutex_);
+    pending_.model = std::move(model);
+  }
+  pending_flag_ = true;
+  publish_model_state();
+}
+
 void BearingSimRos::publish_model_state() {
   ModelState s;
   const BearingConfig& c = validation_model_->config();
@@ -402,6 +430,8 @@ void BearingSimRos::publish_model_state() {
   s.load = accepted_load_;
   s.ring_speed_rad_s = accepted_speed_rad_s_;
   s.clearance_m = c.clearance_m;
+  s.ring_temperature_difference_K = c.ring_temperature_difference_K;
+  s.operating_clearance_m = validation_model_->clearance_m();
   s.contact_damping_Ns_per_m = c.contact_damping_Ns_per_m;
   s.substeps = substeps_;
   s.varying_compliance_hz = bearing_frequencies(*validation_model_, accepted_speed_rad_s_).varying_compliance_hz;

@@ -139,6 +139,8 @@ void NodeDiagnostics::model_task(diagnostic_updater::DiagnosticStatusWrapper& st
   std::lock_guard<std::mutex> lock(mutex_);
   status.add("bearing", model_.bearing_name);
   status.addf("clearance (um)", "%.4g", model_.clearance_m * 1e6);
+  status.addf("ring temperature difference (K)", "%.4g", model_.ring_temperature_difference_K);
+  status.addf("operating clearance (um)", "%.4g", model_.operating_clearance_m * 1e6);
   status.addf("contact damping (N*s/m)", "%.6g", model_.contact_damping_Ns_per_m);
   status.add("integrator substeps per sample", model_.substeps);
   status.addf("varying-compliance frequency (Hz)", "%.4f", model_.varying_compliance_hz);

@@ -64,6 +64,8 @@ ScenarioPlayer::ScenarioPlayer(ros::NodeHandle nh, ros::NodeHandle pnh)
 
   speed_pub_ = nh_.advertise<std_msgs::Float64>("speed", 10);
   load_pub_ = nh_.advertise<geometry_msgs::WrenchStamped>("load", 10);
+  if (scenario_.has_ring_temperature_difference())
+    ring_temperature_pub_ = nh_.advertise<std_msgs::Float64>("ring_temperature_difference_K", 10, true);
   state_pub_ = nh_.advertise<ScenarioState>("scenario_state", 100);
   ROS_INFO("scenario_player: '%s' (%s), %.1f s, %zu defect event(s), bearing '%s'%s", scenario_.name().c_str(),
            scenario_file_.c_str(), scenario_.duration_s(), scenario_.defect_events().size(), bearing_name_.c_str(),
@@ -183,6 +185,12 @@ void ScenarioPlayer::execute(const TimelineCommand& c) {
       m.wrench.torque.x = c.load[3];
       m.wrench.torque.y = c.load[4];
       load_pub_.publish(m);
+      break;
+    }
+    case Kind::RingTemperature: {
+      std_msgs::Float64 m;
+      m.data = c.ring_temperature_difference_K;
+      ring_temperature_pub_.publish(m);
       break;
     }
     case Kind::State:

@@ -96,6 +96,14 @@ void ScenarioTimeline::emit_due(double t, bool end_of_pass, std::vector<Timeline
       out->push_back(std::move(c));
       last_load_ = in.load;
     }
+    // Each change is a new model in the node (ramps come as 0.1 K steps): only on change.
+    if (scenario_.has_ring_temperature_difference() &&
+        (!have_sent_inputs_ || in.ring_temperature_difference_K != last_ring_temperature_K_)) {
+      TimelineCommand c = command(Kind::RingTemperature, t);
+      c.ring_temperature_difference_K = in.ring_temperature_difference_K;
+      out->push_back(std::move(c));
+      last_ring_temperature_K_ = in.ring_temperature_difference_K;
+    }
   }
   have_sent_inputs_ = true;
   if (end_of_pass || event_fired || cell(t, settings_.state_rate_hz) >= next_state_cell_) {

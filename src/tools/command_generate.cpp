@@ -35,6 +35,8 @@ struct GenerateOptions {
   std::vector<std::string> formats{"bag"};
   long long seed = -1;      // -1: each scenario's own
   double duration_s = 0.0;  // 0: each scenario's own
+  double ring_temperature_difference_K = 0.0;
+  bool ring_temperature_given = false;  // else each scenario's time line
   unsigned threads = 0;     // 0: hardware concurrency
   double label_rate_hz = 10.0;
   double ball_loads_rate_hz = 10.0;
@@ -117,6 +119,7 @@ void run(const GenerateOptions& o) {
   GenerateSettings settings;
   if (o.seed >= 0) settings.seed = static_cast<std::uint64_t>(o.seed);
   if (o.duration_s > 0.0) settings.duration_s = o.duration_s;
+  if (o.ring_temperature_given) settings.ring_temperature_difference_K = o.ring_temperature_difference_K;
   settings.label_rate_hz = o.label_rate_hz;
   settings.ball_loads_rate_hz = o.ball_loads_rate_hz;
   settings.health_rate_hz = o.health_rate_hz;
@@ -230,6 +233,10 @@ void register_generate_command(CLI::App& app) {
   add_number_option(cmd, "--duration-s", &o->duration_s, "S", "Simulated time (default: each scenario's duration_s)")
       ->check(positive_number())
       ->check(CLI::Range(0.0, 1e12));  // beyond, the sample count leaves the integers
+  CLI::Option* temperature = add_ring_temperature_option(
+      cmd, &o->ring_temperature_difference_K,
+      "Inner minus outer ring temperature, K, held for the whole run instead of each scenario's "
+      "ring_temperature_difference time line (docs/model.md 3.7)");
   cmd->add_option("--threads", o->threads, "Scenarios run at once (default: hardware concurrency)")
       ->type_name("N")
       ->check(positive_number());
@@ -243,7 +250,10 @@ void register_generate_command(CLI::App& app) {
   cmd->add_flag("--quiet", o->quiet, "No progress lines on stderr");
   cmd->add_flag("--allow-long-run", o->allow_long_run,
                 "Start a run estimated (from a short probe) to take over an hour of wall time");
-  cmd->callback([o] { run(*o); });
+  cmd->callback([o, temperature] {
+    o->ring_temperature_given = temperature->count() > 0;
+    run(*o);
+  });
 }
 
 }  // namespace bearing_sim::tool

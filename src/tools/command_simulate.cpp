@@ -25,6 +25,7 @@ namespace {
 constexpr double kMaxSampleRateHz = 1e6;
 
 struct SimulateOptions {
+  double ring_temperature_difference_K = 0.0;
   std::string bearing;
   std::vector<double> force{0.0, 0.0, 0.0};
   std::vector<double> moment{0.0, 0.0};
@@ -100,7 +101,7 @@ double checked_sample_count(const SimulateOptions& o) {
 
 void run(const SimulateOptions& o) {
   const double samples = checked_sample_count(o);
-  const BearingModel model = load_model(o.bearing);
+  const BearingModel model = load_model(o.bearing, o.ring_temperature_difference_K);
   const Vector5 load = make_load(o.force, o.moment);
   SimulationRequest request;
   request.load = load;
@@ -231,6 +232,8 @@ void register_simulate_command(CLI::App& app) {
       "vibration level L, mean displacement; optional CSV of every sample");
   add_bearing_option(cmd, &o->bearing);
   add_load_options(cmd, &o->force, &o->moment);
+  add_ring_temperature_option(cmd, &o->ring_temperature_difference_K,
+                              "Inner minus outer ring temperature, K: changes the clearance (docs/model.md 3.7)");
   add_number_option(cmd, "--outer-rpm", &o->outer_rpm, "RPM",
                     "Outer ring speed, rpm (must be 0 unless the file has rotating_ring: outer)");
   add_number_option(cmd, "--inner-rpm", &o->inner_rpm, "RPM",

@@ -12,6 +12,7 @@ namespace bearing_sim::tool {
 namespace {
 
 struct StaticOptions {
+  double ring_temperature_difference_K = 0.0;
   std::string bearing;
   std::vector<double> force{0.0, 0.0, 0.0};
   std::vector<double> moment{0.0, 0.0};
@@ -121,7 +122,7 @@ void print_tables(const StaticOptions& o, const BearingModel& model, const Vecto
 }
 
 void run(const StaticOptions& o) {
-  const BearingModel model = load_model(o.bearing);
+  const BearingModel model = load_model(o.bearing, o.ring_temperature_difference_K);
   const Vector5 load = make_load(o.force, o.moment);
   const StaticSolution sol = solve_static(model, load, deg_to_rad(o.cage_angle_deg));
   const nlohmann::json result = solution_json(o, model, load, sol);
@@ -143,6 +144,8 @@ void register_static_command(CLI::App& app) {
       "(and the 6x6 Bushing matrix), ball loads, contact angles and Hertz pressures");
   add_bearing_option(cmd, &o->bearing);
   add_load_options(cmd, &o->force, &o->moment);
+  add_ring_temperature_option(cmd, &o->ring_temperature_difference_K,
+                              "Inner minus outer ring temperature, K: changes the clearance (docs/model.md 3.7)");
   add_number_option(cmd, "--cage-angle-deg", &o->cage_angle_deg, "DEG",
                     "Cage angle: azimuth of the first ball of row 1, deg");
   add_json_flag(cmd, &o->json);

@@ -8,6 +8,7 @@
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/thermal_clearance.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
 #include "bearing_sim/ros/message_conversion.hpp"
 #include "bearing_sim/ros/sample_pipeline.hpp"
@@ -51,6 +52,8 @@ ScenarioSimulation::ScenarioSimulation(Scenario scenario, const std::string& sce
   if (!(duration > 0.0) || !std::isfinite(duration)) throw InvalidInputError("duration must be > 0 s");
   BearingConfig config = load_bearing_config(scenario_.bearing_file());
   config.imperfections.seed = seed;  // roughness, ball sizes and cage slip from the run's seed
+  config.ring_temperature_difference_K =
+      settings_.ring_temperature_difference_K.value_or(scenario_.ring_temperature_difference_at(0.0));
   model_ = std::make_unique<BearingModel>(config);
   const double rate = scenario_.sample_rate_hz();
 
@@ -221,6 +224,15 @@ RunStats ScenarioSimulation::run(const std::vector<DatasetSink*>& sinks, const s
       if (speed != dynamics.ring_speed_rad_s()) dynamics.set_ring_speed(speed);
       const Vector5 load = scenario_.load_at(t_mid);
       if (load != dynamics.load()) dynamics.set_load(load);
+      // The ring temperature difference: a new model on each change (ramps come in steps).
+      if (!settings_.ring_temperature_difference_K) {
+        const double dT = scenario_.ring_temperature_difference_at(t_mid);
+        if (dT != dynamics.model().config().ring_temperature_difference_K) {
+          BearingModel hot = with_ring_temperature_difference(dynamics.model(), dT);
+          if (health) health->set_model(hot);
+          dynamics.set_model(std::move(hot));
+        }
+      }
     }
     pipeline.step(sink);
   }

@@ -160,13 +160,20 @@ CLI::Option* add_number_option(CLI::App* command, const std::string& name, doubl
       ->capture_default_str();
 }
 
-BearingModel load_model(const std::string& path) {
-  const BearingConfig config = load_bearing_config(path);
+BearingModel load_model(const std::string& path, double ring_temperature_difference_K) {
+  BearingConfig config = load_bearing_config(path);
+  config.ring_temperature_difference_K = ring_temperature_difference_K;
   try {
     return BearingModel(config);
   } catch (const ConfigError& e) {  // a defect that does not fit: the model names the bearing, not the file
     throw ConfigError(path + ": " + e.what());
+  } catch (const InvalidInputError& e) {  // the clearance at that temperature difference
+    throw InputError("--ring-temperature-difference-K with " + path + ": " + e.what());
   }
+}
+
+CLI::Option* add_ring_temperature_option(CLI::App* command, double* value, const std::string& description) {
+  return add_number_option(command, "--ring-temperature-difference-K", value, "K", description);
 }
 
 Vector5 make_load(const std::vector<double>& force, const std::vector<double>& moment) {
@@ -198,7 +205,10 @@ nlohmann::json bearing_json(const BearingModel& model, const std::string& path) 
           {"rows", c.rows},
           {"balls_per_row", c.balls_per_row},
           {"contact_angle_deg", rad_to_deg(c.contact_angle_rad)},
-          {"rotating_ring", rotating_ring_name(model)}};
+          {"rotating_ring", rotating_ring_name(model)},
+          {"ring_temperature_difference_K", c.ring_temperature_difference_K},
+          {"operating_clearance_um", model.clearance_m() * 1e6},
+          {"contact_damping_Ns_per_m", c.contact_damping_Ns_per_m}};
 }
 
 void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << '\n'; }

@@ -71,8 +71,12 @@ const CLI::Validator& finite_number();
 const CLI::Validator& positive_number();
 const CLI::Validator& non_negative_number();
 
-// Loads and validates the bearing file (throws ConfigError naming file and key).
-BearingModel load_model(const std::string& path);
+// Loads and validates the bearing file (throws ConfigError naming file and key), at a ring
+// temperature difference (InputError naming --ring-temperature-difference-K when out of range).
+BearingModel load_model(const std::string& path, double ring_temperature_difference_K = 0.0);
+
+// --ring-temperature-difference-K: inner minus outer ring temperature, K (docs/model.md 3.7).
+CLI::Option* add_ring_temperature_option(CLI::App* command, double* value, const std::string& description);
 
 // (Fx, Fy, Fz, Mx, My) from --force and --moment.
 Vector5 make_load(const std::vector<double>& force, const std::vector<double>& moment);

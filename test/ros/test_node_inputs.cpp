@@ -16,12 +16,13 @@ namespace {
 constexpr double kRate = 10000.0;
 
 struct Inputs {
-  ros::Publisher load, speed;
+  ros::Publisher load, speed, ring_temperature;
 };
 Inputs& inputs() {
   static ros::NodeHandle nh;
   static Inputs in{nh.advertise<geometry_msgs::WrenchStamped>("load", 10, true),
-                   nh.advertise<std_msgs::Float64>("speed", 10, true)};
+                   nh.advertise<std_msgs::Float64>("speed", 10, true),
+                   nh.advertise<std_msgs::Float64>("ring_temperature_difference_K", 10, true)};
   return in;
 }
 
@@ -66,6 +67,12 @@ bool reconfigure(const std::string& name, double value, bool is_int = false,
   const bool ok = ros::service::call("bearing_sim_node/set_parameters", srv);
   if (applied) *applied = srv.response.config;
   return ok;
+}
+
+std_msgs::Float64 kelvin(double dT) {
+  std_msgs::Float64 m;
+  m.data = dT;
+  return m;
 }
 
 double applied_value(const dynamic_reconfigure::Config& c, const std::string& name) {
@@ -261,6 +268,42 @@ TEST_F(NodeInputs, BadReconfigureValuesAndDefectGrowthsAreRefused) {
   const std::string last = Recorder::value(in, "last rejection");
   EXPECT_NE(last.find("ball_loads_rate_hz"), std::string::npos) << last;
   EXPECT_NE(last.find("[0.1, 200]"), std::string::npos) << last;
+}
+
+// The rotor (outer ring) 4 K warmer than the inner ring opens the CT bearing's clearance by
+// alpha 4 K (dm/2) cos a0 = 20.9 um: the equilibrium moves as a cold bearing with that
+// clearance, which the 0.5 % check tells apart from the start (as clearance_um 20 does above).
+// NaN, inf and an interference beyond the model are refused, naming the input, and the last
+// good value stays.
+TEST_F(NodeInputs, RingTemperatureDifferenceReachesTheModelAndBadValuesAreRefused) {
+  bearing_sim::BearingModel model = ct_model();
+  auto config = model.config();
+  config.ring_temperature_difference_K = -4.0;
+  const bearing_sim::BearingModel warm_rotor(config);
+  ASSERT_NEAR(warm_rotor.clearance_m(), 20.9e-6, 0.1e-6);
+  diagnostic_msgs::DiagnosticStatus in;
+  const int rejected_before = inputs_diagnostic(1, &in);
+  const std::uint64_t sent = recorder().next_index();
+  inputs().ring_temperature.publish(kelvin(-4.0));
+  settle(sent, 1.0);
+  expect_mean_at_static(ct_load(), sent + 5000, sent + 10000, "outer ring 4 K warmer", warm_rotor);
+
+  for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 120.0}) {
+    inputs().ring_temperature.publish(kelvin(bad));
+    ros::WallDuration(0.05).sleep();
+  }
+  const std::uint64_t after = recorder().next_index();
+  settle(after, 1.0);
+  expect_mean_at_static(ct_load(), after, after + 10000, "after bad temperature differences", warm_rotor);
+  EXPECT_EQ(inputs_diagnostic(2, &in) - rejected_before, 3);
+  const std::string last = Recorder::value(in, "last rejection");
+  EXPECT_NE(last.find("ring_temperature_difference_K"), std::string::npos) << last;
+  EXPECT_NE(last.find("interference"), std::string::npos) << last;
+
+  inputs().ring_temperature.publish(kelvin(0.0));  // back to equal ring temperatures
+  const std::uint64_t back = recorder().next_index();
+  settle(back, 1.0);
+  expect_mean_at_static(ct_load(), back + 5000, back + 10000, "equal ring temperatures again", model);
 }
 
 // DivergenceIsReportedAsErrorAndResetNeverNaN: test_node_divergence.cpp (a light ring with a

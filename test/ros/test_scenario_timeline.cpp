@@ -277,3 +277,27 @@ int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
 }
+
+// The ring temperature difference goes out on the load grid, only when its staircase steps,
+// with the scenario's value at the time sent; a scenario without the key sends none.
+TEST(ScenarioTimeline, RingTemperatureGoesOutOnEachStepOnly) {
+  const Scenario s = Scenario::from_string(
+      scenario_text() +
+          "ring_temperature_difference:\n"
+          "  segments: [{type: ramp, start_s: 1, end_s: 3, difference_K: -1}]\n",
+      "/tmp/timeline_test.yaml");
+  ScenarioTimeline tl(s, TimelineSettings{});
+  const std::vector<Sent> sent = of_kind(play(tl, 0.001, 6.0), Kind::RingTemperature);
+  // 0 K at the start, then 10 steps of 0.1 K down to -1 K.
+  ASSERT_EQ(sent.size(), 11u);
+  EXPECT_EQ(sent.front().command.ring_temperature_difference_K, 0.0);
+  EXPECT_EQ(sent.back().command.ring_temperature_difference_K, -1.0);
+  for (std::size_t i = 0; i < sent.size(); ++i) {
+    const TimelineCommand& c = sent[i].command;
+    EXPECT_EQ(c.ring_temperature_difference_K, s.ring_temperature_difference_at(c.scenario_time_s));
+    if (i > 0) EXPECT_NEAR(c.ring_temperature_difference_K, sent[i - 1].command.ring_temperature_difference_K - 0.1, 1e-12);
+  }
+  const Scenario plain = make_scenario();  // the timeline keeps a reference
+  ScenarioTimeline without(plain, TimelineSettings{});
+  EXPECT_TRUE(of_kind(play(without, 0.001, 6.0), Kind::RingTemperature).empty());
+}

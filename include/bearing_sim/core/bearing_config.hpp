@@ -1,5 +1,6 @@
 #pragma once
 // The bearing file (docs/bearing_file.md), in SI units once loaded.
+#include <array>
 #include <string>
 
 #include <yaml-cpp/yaml.h>
@@ -29,7 +30,11 @@ struct BearingConfig {
   double contact_angle_rad = 0.0;
   double inner_groove_curvature = 0.0;
   double outer_groove_curvature = 0.0;
-  double clearance_m = 0.0;  // g0 per ball along the contact line; < 0 is preload
+  // g0 per ball along the contact line at equal ring temperatures (the file's clearance_um);
+  // < 0 is preload. The model uses operating_clearance_m (thermal_clearance.hpp).
+  double clearance_m = 0.0;
+  // Inner minus outer ring temperature, K: an operating input, not a key of the bearing file.
+  double ring_temperature_difference_K = 0.0;
   // Envelope; when absent, derived from the ball and pitch diameters (see defaults in the .cpp).
   double outer_diameter_m = 0.0;
   double inner_diameter_m = 0.0;
@@ -39,7 +44,11 @@ struct BearingConfig {
   double rotating_mass_kg = 0.0;     // 0: not given (static analysis only)
   double tilt_inertia_kg_m2 = 0.0;   // after loading: given or derived from the envelope
   bool tilt_inertia_given = false;
+  // c_n per loaded contact: given, or solved from modal_damping_ratio at the reference load.
   double contact_damping_Ns_per_m = 0.0;
+  // > 0 when the file gave the damping as the ratio of the radial mode (docs/model.md 7.3).
+  double modal_damping_ratio = 0.0;
+  std::array<double, 5> damping_reference_load{};  // Fx, Fy, Fz (N), Mx, My (N*m)
   // Extension of the bearing file: `imperfections:` and `defects:` (docs/bearing_file.md).
   ImperfectionSpec imperfections;
 

@@ -56,6 +56,7 @@ struct BallArrays {
 
 class BearingModel {
  public:
+  // Throws InvalidInputError when the ring temperature difference takes the clearance out of range.
   explicit BearingModel(BearingConfig config);
 
   const BearingConfig& config() const { return config_; }
@@ -64,6 +65,8 @@ class BearingModel {
   int rows() const { return config_.rows; }
 
   double groove_centre_distance_m() const { return groove_centre_distance_; }  // A
+  // g0 in use: the file's clearance changed by the ring temperature difference (section 3.7).
+  double clearance_m() const { return clearance_m_; }
   double contact_stiffness() const { return contact_stiffness_; }             // Kn, N/m^1.5
   const HertzContact& inner_contact() const { return inner_contact_; }
   const HertzContact& outer_contact() const { return outer_contact_; }
@@ -147,6 +150,7 @@ class BearingModel {
   HertzContact inner_contact_, outer_contact_;
   double contact_stiffness_ = 0.0;
   double groove_centre_distance_ = 0.0;
+  double clearance_m_ = 0.0;
   double groove_centre_radius_ = 0.0;  // radial coordinate of the outer-groove centre
   double cos_a0_ = 1.0;
   double moving_sign_ = 1.0;

@@ -18,6 +18,7 @@ struct ScenarioInputs {
   double ring_speed_rad_s = 0.0;
   double ring_angle_rad = 0.0;  // integral of the speed from t = 0 (not wrapped)
   std::string phase;            // name of the phase the time lies in ("" if none)
+  double ring_temperature_difference_K = 0.0;  // inner minus outer ring
 };
 
 struct ScenarioDefectEvent {
@@ -73,6 +74,12 @@ class Scenario {
   Vector5 unbalance_load(double speed_rad_s, double acceleration_rad_s2, double ring_angle_rad) const;
   std::string phase_at(double time_s) const;
 
+  // Inner minus outer ring temperature (K) at a time: steps and ramps, a ramp applied as a
+  // staircase of kTemperatureStepK (each step is a new model, docs/scenarios.md).
+  double ring_temperature_difference_at(double time_s) const;
+  bool has_ring_temperature_difference() const { return has_temperature_; }
+  static constexpr double kTemperatureStepK = 0.1;
+
   // Defect events in time order.
   const std::vector<ScenarioDefectEvent>& defect_events() const { return defect_events_; }
   // The spalls present at a time (events at or before it), in the order they appeared.
@@ -112,6 +119,13 @@ class Scenario {
   std::vector<SpeedPiece> speed_;  // contiguous from t = 0 to infinity
   Vector5 initial_load_ = Vector5::Zero();
   std::vector<LoadPiece> load_;  // sorted, not overlapping
+  struct TemperaturePiece {
+    double start_s = 0.0, end_s = 0.0;  // a step has end_s == start_s
+    double from_K = 0.0, to_K = 0.0;
+  };
+  bool has_temperature_ = false;
+  double initial_temperature_K_ = 0.0;
+  std::vector<TemperaturePiece> temperature_;  // sorted, not overlapping
   Unbalance unbalance_;
   std::vector<ScenarioDefectEvent> defect_events_;
 };

@@ -69,6 +69,11 @@ class BearingSimRos : private PipelineSink {
   void on_load(const geometry_msgs::WrenchStamped::ConstPtr& msg);
   void on_speed(const std_msgs::Float64::ConstPtr& msg);
   void on_reconfigure(BearingSimConfig& config, std::uint32_t level);
+  void on_ring_temperature(const std_msgs::Float64::ConstPtr& msg);
+  // The running bearing with `changed` settings (clearance, damping, ring temperature), its ball
+  // offsets and present spalls kept, if the accepted load is still carried and the integrator
+  // can follow it; else nullopt, the reason given to reject_input after `what`.
+  std::optional<BearingModel> validated_model(const BearingConfig& changed, const std::string& what);
   bool on_inject_defect(InjectDefect::Request& req, InjectDefect::Response& res);
   bool on_clear_defects(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   void reject_input(const std::string& reason);
@@ -145,7 +150,7 @@ class BearingSimRos : private PipelineSink {
   // the health worker).
   std::uint32_t vibration_seq_ = 0, ideal_seq_ = 0, level_seq_ = 0, ball_loads_seq_ = 0, health_seq_ = 0;
   ros::ServiceServer inject_srv_, clear_srv_;
-  ros::Subscriber load_sub_, speed_sub_;
+  ros::Subscriber load_sub_, speed_sub_, ring_temperature_sub_;
   std::unique_ptr<NodeDiagnostics> diagnostics_;
   ros::WallTimer diagnostics_timer_;
   boost::recursive_mutex reconfigure_mutex_;

@@ -27,7 +27,9 @@ struct ModelState {
   std::string bearing_name;
   Vector5 load = Vector5::Zero();
   double ring_speed_rad_s = 0.0;
-  double clearance_m = 0.0;
+  double clearance_m = 0.0;            // at equal ring temperatures (file / clearance_um)
+  double ring_temperature_difference_K = 0.0;
+  double operating_clearance_m = 0.0;  // what the model uses
   double contact_damping_Ns_per_m = 0.0;
   int substeps = 0;
   double varying_compliance_hz = 0.0;

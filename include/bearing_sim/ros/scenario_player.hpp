@@ -53,6 +53,7 @@ class ScenarioPlayer {
   ros::Time start_;
 
   ros::Publisher speed_pub_, load_pub_, state_pub_;
+  ros::Publisher ring_temperature_pub_;  // only for a scenario with ring_temperature_difference
   ros::ServiceClient inject_client_, clear_client_;
   ros::Subscriber clock_sub_;
   ros::WallTimer timer_;

@@ -26,6 +26,8 @@ struct TimelineCommand {
     DefectEvent,   // `event` is due: a spall appears, or a clear
     Speed,         // `speed_rad_s` = the scenario's at `scenario_time_s`
     Load,          // `load` = the scenario's at `scenario_time_s` (unbalance included)
+    // `ring_temperature_difference_K` changed (on the load grid; only for a scenario with the key)
+    RingTemperature,
     State,         // publish the labels at `scenario_time_s`
     End            // the scenario is over (not looping): the node keeps the last inputs
   };
@@ -35,6 +37,7 @@ struct TimelineCommand {
   ScenarioDefectEvent event;
   double speed_rad_s = 0.0;
   Vector5 load = Vector5::Zero();
+  double ring_temperature_difference_K = 0.0;
 };
 
 class ScenarioTimeline {
@@ -67,6 +70,7 @@ class ScenarioTimeline {
   bool have_sent_inputs_ = false;
   double last_speed_rad_s_ = 0.0;
   Vector5 last_load_ = Vector5::Zero();
+  double last_ring_temperature_K_ = 0.0;
 };
 
 // A parameter of bearing_sim_node for a run of this scenario, as text for roslaunch
