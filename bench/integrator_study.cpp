@@ -80,14 +80,14 @@ std::vector<Case> cases() {
 class System {
  public:
   System(const BearingModel& model, const Vector5& load, double ring_speed) : model_(model), load_(load) {
-    inverse_mass_ = model.mass_diagonal().cwiseInverse();
+    inverse_mass_ = model.mass_matrix().inverse();
     model.ring_speeds(ring_speed, &inner_, &outer_);
     cage_ = model.cage_speed_rad_s(inner_, outer_);
     spin_ = model.ball_spin_speed_rad_s(inner_, outer_);
   }
   Vector5 acceleration(const Vector5& q, const Vector5& v, const RollingPhase& p) const {
     ++evaluations;
-    return (load_ + model_.contact_force(q, v, p)).cwiseProduct(inverse_mass_);
+    return inverse_mass_ * (load_ + model_.contact_force(q, v, p));
   }
   RollingPhase advanced(const RollingPhase& p, double dt) const {
     const double slip = cage_ * (1.0 - model_.config().imperfections.cage_slip);
@@ -96,12 +96,13 @@ class System {
   }
   const BearingModel& model() const { return model_; }
   const Vector5& load() const { return load_; }
-  const Vector5& inverse_mass() const { return inverse_mass_; }
+  const Matrix5& inverse_mass() const { return inverse_mass_; }
   mutable long long evaluations = 0;
 
  private:
   const BearingModel& model_;
-  Vector5 load_, inverse_mass_;
+  Vector5 load_;
+  Matrix5 inverse_mass_;
   double inner_ = 0, outer_ = 0, cage_ = 0, spin_ = 0;
 };
 
@@ -187,13 +188,13 @@ Linearisation linearise(const BearingModel& model, const Vector5& load) {
   const StaticSolution st = solve_static(model, load);
   Matrix5 k, c;
   model.contact_force_and_stiffness(st.displacement, RollingPhase{}, &k, &c);
-  const Vector5 inv_m = model.mass_diagonal().cwiseInverse();
+  const Matrix5 inv_m = model.mass_matrix().inverse();
   Linearisation lin;
   lin.q_eq = st.displacement;
   lin.L.setZero();
   lin.L.topRightCorner<5, 5>().setIdentity();
-  lin.L.bottomLeftCorner<5, 5>() = -(inv_m.asDiagonal() * k);
-  lin.L.bottomRightCorner<5, 5>() = -(inv_m.asDiagonal() * c);
+  lin.L.bottomLeftCorner<5, 5>() = -(inv_m * k);
+  lin.L.bottomRightCorner<5, 5>() = -(inv_m * c);
   return lin;
 }
 

@@ -60,6 +60,23 @@ void read_damping(const Reader& dr, const YAML::Node& map, BearingConfig* c) {
 
 // c_n from the ratio at the reference load, once, when the file is read: c_n is then a fixed
 // property of the contacts, and the ratio follows the load as a real bearing's does.
+// carried_body: {mass_kg, centre_of_gravity_axial_mm, transverse_inertia_kg_m2, polar_inertia_kg_m2}.
+void read_carried_body(const Reader& br, BearingConfig* c) {
+  br.check_keys({"mass_kg", "centre_of_gravity_axial_mm", "transverse_inertia_kg_m2", "polar_inertia_kg_m2"});
+  CarriedBody& b = c->carried_body;
+  b.mass_kg = br.number("mass_kg", 0.0);
+  br.require(br.has("mass_kg") && b.mass_kg > 0.0, "mass_kg", "must be given and > 0");
+  br.require(c->has_dynamics(), "mass_kg", "needs rotating_mass_kg (the body moves with the rotating ring)");
+  b.centre_of_gravity_axial_m = br.number("centre_of_gravity_axial_mm", 0.0) * 1e-3;
+  br.require(std::abs(b.centre_of_gravity_axial_m) <= 100.0 * c->pitch_diameter_m, "centre_of_gravity_axial_mm",
+             "must be within 100 pitch diameters of the bearing centre");
+  b.transverse_inertia_kg_m2 = br.number("transverse_inertia_kg_m2", 0.0);
+  br.require(br.has("transverse_inertia_kg_m2") && b.transverse_inertia_kg_m2 > 0.0, "transverse_inertia_kg_m2",
+             "must be given and > 0 (about the centre of gravity)");
+  b.polar_inertia_kg_m2 = br.number("polar_inertia_kg_m2", 0.0);
+  br.require(b.polar_inertia_kg_m2 >= 0.0, "polar_inertia_kg_m2", "must be >= 0");
+}
+
 void resolve_modal_damping(const Reader& dr, BearingConfig* c) {
   Vector5 load;
   for (int i = 0; i < 5; ++i) load[i] = c->damping_reference_load[i];
@@ -81,7 +98,7 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
                 "pitch_diameter_mm", "row_spacing_mm", "row_phase_deg", "contact_angle_deg",
                 "inner_groove_curvature", "outer_groove_curvature", "clearance_um",
                 "outer_diameter_mm", "inner_diameter_mm", "width_mm", "rotating_ring", "material",
-                "rotating_mass_kg", "tilt_inertia_kg_m2", "damping", "imperfections", "defects"});
+                "rotating_mass_kg", "tilt_inertia_kg_m2", "carried_body", "damping", "imperfections", "defects"});
 
   BearingConfig c;
   c.name = r.text("name", "unnamed bearing");
@@ -172,6 +189,7 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
     c.tilt_inertia_kg_m2 = c.rotating_mass_kg * (3.0 * (ro * ro + ri * ri) + c.width_m * c.width_m) / 12.0;
   }
 
+  if (const YAML::Node body = r.map("carried_body")) read_carried_body(Reader(body, source, "carried_body."), &c);
   const YAML::Node dmp = r.map("damping");
   if (dmp) read_damping(Reader(dmp, source, "damping."), dmp, &c);
   c.imperfections = parse_imperfections(root["imperfections"], root["defects"], source);

@@ -38,7 +38,7 @@ BearingDynamics::BearingDynamics(BearingModel model, const Vector5& load, double
   if (!(options_.sample_rate_hz > 0.0) || !std::isfinite(options_.sample_rate_hz))
     throw InvalidInputError("sample rate must be a positive number of Hz");
   if (options_.substeps < 0) throw InvalidInputError("substeps must be >= 0 (0: automatic)");
-  inverse_mass_ = model_.mass_diagonal().cwiseInverse();
+  inverse_mass_ = model_.mass_matrix().inverse();
   displacement_limit_m_ = 0.25 * model_.config().ball_diameter_m + std::abs(model_.clearance_m());
   set_load(load);
   set_ring_speed(ring_speed_rad_s);
@@ -51,9 +51,9 @@ BearingDynamics::BearingDynamics(BearingModel model, const Vector5& load, double
 
 Vector5 BearingDynamics::natural_frequencies_rad_s(const BearingModel& model, const Vector5& load) {
   const StaticSolution s = solve_static(model, load);
-  const Vector5 inv_sqrt_m = model.mass_diagonal().cwiseSqrt().cwiseInverse();
-  const Matrix5 a = inv_sqrt_m.asDiagonal() * s.stiffness * inv_sqrt_m.asDiagonal();
-  return Eigen::SelfAdjointEigenSolver<Matrix5>(a).eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix5> eigen(0.5 * (s.stiffness + s.stiffness.transpose()),
+                                                                model.mass_matrix(), Eigen::EigenvaluesOnly);
+  return eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
 }
 
 double BearingDynamics::fastest_rate_rad_s(const BearingModel& model, const Vector5& load) {
@@ -63,11 +63,11 @@ double BearingDynamics::fastest_rate_rad_s(const BearingModel& model, const Vect
   const StaticSolution s = solve_static(model, load);
   Matrix5 damping;
   model.contact_force_and_stiffness(s.displacement, RollingPhase{}, nullptr, &damping);
-  const Vector5 inv_m = model.mass_diagonal().cwiseInverse();
+  const Matrix5 inv_m = model.mass_matrix().inverse();
   Eigen::Matrix<double, 10, 10> a = Eigen::Matrix<double, 10, 10>::Zero();
   a.topRightCorner<5, 5>().setIdentity();
-  a.bottomLeftCorner<5, 5>() = -(inv_m.asDiagonal() * s.stiffness);
-  a.bottomRightCorner<5, 5>() = -(inv_m.asDiagonal() * damping);
+  a.bottomLeftCorner<5, 5>() = -(inv_m * s.stiffness);
+  a.bottomRightCorner<5, 5>() = -(inv_m * damping);
   return Eigen::EigenSolver<Eigen::Matrix<double, 10, 10>>(a, false).eigenvalues().cwiseAbs().maxCoeff();
 }
 
@@ -112,8 +112,8 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
   model_.contact_force_and_stiffness(q, phase, &stiffness, &damping);
   q_lin_ = q;
   load_lin_ = load_;
-  lin_accel_.leftCols<5>() = -(inverse_mass_.asDiagonal() * stiffness);
-  lin_accel_.rightCols<5>() = -(inverse_mass_.asDiagonal() * damping);
+  lin_accel_.leftCols<5>() = -(inverse_mass_ * stiffness);
+  lin_accel_.rightCols<5>() = -(inverse_mass_ * damping);
   // The exponential of [hL I 0 0; 0 0 I 0; 0 0 0 I; 0 0 0 0] holds e^{hL} and
   // phi_1..phi_3(hL) in its first block row (phi_k(z) = (e^z - sum_{j<k} z^j/j!) / z^k);
   // of [hL I; 0 0], e^{hL} and phi_1(hL). In SI units L is far from normal (|M^-1 K| ~ 1e8
@@ -210,11 +210,12 @@ void BearingDynamics::set_load(const Vector5& load) {
   // by the change over the mass, and stays the first RK4 stage of the next sample. The ball
   // split stays too (inputs may change every sample, e.g. a rotating unbalance): a ball that
   // the new load brings into contact is caught by the check after the sample.
-  current_.acceleration += (load - load_).cwiseProduct(inverse_mass_);
+  const Vector5 load_change_acceleration = inverse_mass_ * (load - load_);
+  current_.acceleration += load_change_acceleration;
   // So do the Adams method's past remainders: as if the new load had always been there
   // (it holds over the whole next step).
   for (int i = 0; i < adams_history_.size; ++i)
-    adams_history_.r.segment<5>(5 * i) += (load - load_).cwiseProduct(inverse_mass_);
+    adams_history_.r.segment<5>(5 * i) += load_change_acceleration;
   load_ = load;
   // The contact stiffness grows with the load (as F^(1/3)): check the step again when
   // the load has changed a lot since it was chosen.
@@ -252,7 +253,7 @@ void BearingDynamics::update_cage_speed() {
 }
 
 void BearingDynamics::set_model(BearingModel model) {
-  const Vector5 inverse_mass = model.mass_diagonal().cwiseInverse();
+  const Matrix5 inverse_mass = model.mass_matrix().inverse();
   model_ = std::move(model);
   inverse_mass_ = inverse_mass;
   displacement_limit_m_ = 0.25 * model_.config().ball_diameter_m + std::abs(model_.clearance_m());
@@ -292,12 +293,12 @@ void BearingDynamics::reset_to_equilibrium() {
 
 Vector5 BearingDynamics::acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
                                       const BallArrays& balls) const {
-  return (load_ + model_.contact_force(q, q_dot, phase, balls)).cwiseProduct(inverse_mass_);
+  return inverse_mass_ * (load_ + model_.contact_force(q, q_dot, phase, balls));
 }
 
 Vector5 BearingDynamics::acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
                                       const BallArrays& balls, const CageTrig& trig) const {
-  return (load_ + model_.contact_force(q, q_dot, phase, balls, trig.c, trig.s)).cwiseProduct(inverse_mass_);
+  return inverse_mass_ * (load_ + model_.contact_force(q, q_dot, phase, balls, trig.c, trig.s));
 }
 
 double BearingDynamics::slipping_cage_speed() const {

@@ -167,12 +167,28 @@ int BearingModel::row_contact_sign(int row) const {
   return config_.arrangement == Arrangement::BackToBack ? -side : side;
 }
 
-Vector5 BearingModel::mass_diagonal() const {
+Matrix5 BearingModel::mass_matrix() const {
   if (!config_.has_dynamics())
     throw InvalidInputError(config_.name + ": rotating_mass_kg is required for dynamics");
-  Vector5 m;
-  m << config_.rotating_mass_kg, config_.rotating_mass_kg, config_.rotating_mass_kg, config_.tilt_inertia_kg_m2,
+  Vector5 ring;
+  ring << config_.rotating_mass_kg, config_.rotating_mass_kg, config_.rotating_mass_kg, config_.tilt_inertia_kg_m2,
       config_.tilt_inertia_kg_m2;
+  Matrix5 m = ring.asDiagonal();
+  const CarriedBody& b = config_.carried_body;
+  if (b.present()) {
+    // Its centre of gravity (0, 0, z) moves by u + theta x (0, 0, z) = (x + z theta_y, y - z theta_x, z):
+    // kinetic energy m/2 |that rate|^2 + J/2 (theta_x'^2 + theta_y'^2).
+    const double mb = b.mass_kg, z = b.centre_of_gravity_axial_m, j = b.transverse_inertia_kg_m2;
+    m(0, 0) += mb;
+    m(1, 1) += mb;
+    m(2, 2) += mb;
+    m(3, 3) += j + mb * z * z;
+    m(4, 4) += j + mb * z * z;
+    m(0, 4) += mb * z;
+    m(4, 0) += mb * z;
+    m(1, 3) -= mb * z;
+    m(3, 1) -= mb * z;
+  }
   return m;
 }
 

@@ -24,9 +24,8 @@ RadialMode radial_mode(const BearingModel& model, const Vector5& load) {
   Matrix5 g;
   unit_model.contact_force_and_stiffness(s.displacement, RollingPhase{}, nullptr, &g);
 
-  const Vector5 m = model.mass_diagonal();
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix5> eigen(0.5 * (s.stiffness + s.stiffness.transpose()),
-                                                                Matrix5(m.asDiagonal()));
+  const Matrix5 m = model.mass_matrix();
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix5> eigen(0.5 * (s.stiffness + s.stiffness.transpose()), m);
   Eigen::Vector2d radial(load[0], load[1]);
   radial = radial.norm() > 0.0 ? Eigen::Vector2d(radial.normalized()) : Eigen::Vector2d(1.0, 0.0);
   const double lambda_max = eigen.eigenvalues().cwiseAbs().maxCoeff();
@@ -35,9 +34,9 @@ RadialMode radial_mode(const BearingModel& model, const Vector5& load) {
     const double lambda = eigen.eigenvalues()[i];
     if (!(lambda > 1e-9 * lambda_max)) continue;  // no stiffness in this shape
     Vector5 phi = eigen.eigenvectors().col(i);
-    phi /= std::sqrt(phi.dot(m.cwiseProduct(phi)));
+    phi /= std::sqrt(phi.dot(m * phi));
     const double along = radial.x() * phi[0] + radial.y() * phi[1];
-    const double share = m[0] * along * along;
+    const double share = m(0, 0) * along * along;  // translation's share, of a mass-normalized shape
     if (share > best.radial_share) {
       best.radial_share = share;
       best.omega_rad_s = std::sqrt(lambda);

@@ -437,7 +437,7 @@ SweepResult run_sweep_case(const SweepCase& c, bool dynamic) {
     r.statics = solve_static(model, c.operating_point.load);
     if (c.config.has_dynamics()) {
       const Matrix5 k = 0.5 * (r.statics.stiffness + r.statics.stiffness.transpose());
-      const Matrix5 m = model.mass_diagonal().asDiagonal();
+      const Matrix5 m = model.mass_matrix();
       Eigen::GeneralizedSelfAdjointEigenSolver<Matrix5> eig(k, m, Eigen::EigenvaluesOnly);
       if (eig.info() == Eigen::Success)
         for (int i = 0; i < 5; ++i) r.ring_modes_hz[i] = std::sqrt(std::max(eig.eigenvalues()[i], 0.0)) / (2.0 * kPi);

@@ -87,7 +87,7 @@ void bind_bearing(py::module_& m) {
                                return b.model->config().rotating_ring == RotatingRing::Outer ? "outer" : "inner";
                              })
       .def_property_readonly("has_dynamics", [](const PyBearing& b) { return b.model->config().has_dynamics(); })
-      .def_property_readonly("mass_diagonal", [](const PyBearing& b) { return to_numpy(b.model->mass_diagonal()); })
+      .def_property_readonly("mass_matrix", [](const PyBearing& b) { return to_numpy(b.model->mass_matrix()); })
       .def(
           "static",
           [](const PyBearing& b, const std::vector<double>& force, const std::vector<double>& moment,

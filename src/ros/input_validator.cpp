@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include "bearing_sim/core/bearing_dynamics.hpp"
@@ -72,9 +73,11 @@ InputCheck check_integrator_work(const BearingModel& model, const Vector5& load,
   const StaticSolution s = solve_static(model, load);
   Matrix5 damping;
   model.contact_force_and_stiffness(s.displacement, RollingPhase{}, nullptr, &damping);
-  const Vector5 inv_sqrt_m = model.mass_diagonal().cwiseSqrt().cwiseInverse();
-  const Matrix5 a = inv_sqrt_m.asDiagonal() * s.stiffness * inv_sqrt_m.asDiagonal();
-  const Matrix5 d = inv_sqrt_m.asDiagonal() * damping * inv_sqrt_m.asDiagonal();
+  // M = L L^T: L^-1 K L^-T and L^-1 C L^-T (M^-1/2 K M^-1/2 for a diagonal M).
+  const Matrix5 l_inv =
+      Eigen::LLT<Matrix5>(model.mass_matrix()).matrixL().solve(Matrix5::Identity());
+  const Matrix5 a = l_inv * s.stiffness * l_inv.transpose();
+  const Matrix5 d = l_inv * damping * l_inv.transpose();
   const Eigen::SelfAdjointEigenSolver<Matrix5> eigen(0.5 * (a + a.transpose()));
   const double omega_max = std::sqrt(std::max(0.0, eigen.eigenvalues()[4]));
   const double damping_rate = Eigen::SelfAdjointEigenSolver<Matrix5>(0.5 * (d + d.transpose()), Eigen::EigenvaluesOnly)
@@ -91,7 +94,9 @@ InputCheck check_integrator_work(const BearingModel& model, const Vector5& load,
         << ") is implausibly large for this bearing";
   } else {
     Eigen::Index dof = 0;
-    eigen.eigenvectors().col(4).cwiseAbs().maxCoeff(&dof);
+    // The mode's shape in the ring's coordinates, each DOF weighted by its own inertia.
+    const Vector5 shape = l_inv.transpose() * eigen.eigenvectors().col(4);
+    shape.cwiseProduct(model.mass_matrix().diagonal().cwiseSqrt()).cwiseAbs().maxCoeff(&dof);
     const std::string mode = dof >= 3 ? "tilt" : dof == 2 ? "axial" : "radial";
     why << mode << " mode at " << frequency_text(omega_max / kTwoPi) << ": ";
     if (dof >= 3)

@@ -255,7 +255,7 @@ std::string check_bearing(const std::string& text, const std::string& source) {
   for (double v : numbers)
     if (!std::isfinite(v)) return "a non-finite number in the loaded bearing";
   const BearingModel model(c);
-  if (c.has_dynamics() && !(model.mass_diagonal().allFinite() && model.mass_diagonal().minCoeff() > 0.0))
+  if (c.has_dynamics() && !(model.mass_matrix().allFinite() && model.mass_matrix().diagonal().minCoeff() > 0.0))
     return "mass matrix not finite and positive";
   const BearingFrequencies f = bearing_frequencies(model, 10.0);
   if (!std::isfinite(f.cage_hz) || !std::isfinite(f.varying_compliance_hz) || !std::isfinite(f.ball_spin_hz))

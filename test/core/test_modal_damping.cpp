@@ -27,11 +27,11 @@ double eigenvalue_damping_ratio(const BearingModel& model, const Vector5& load, 
   const StaticSolution s = solve_static(model, load);
   Matrix5 c;
   model.contact_force_and_stiffness(s.displacement, RollingPhase{}, nullptr, &c);
-  const Vector5 inv_m = model.mass_diagonal().cwiseInverse();
+  const Matrix5 inv_m = model.mass_matrix().inverse();
   Eigen::Matrix<double, 10, 10> a = Eigen::Matrix<double, 10, 10>::Zero();
   a.topRightCorner<5, 5>().setIdentity();
-  a.bottomLeftCorner<5, 5>() = -(inv_m.asDiagonal() * s.stiffness);
-  a.bottomRightCorner<5, 5>() = -(inv_m.asDiagonal() * c);
+  a.bottomLeftCorner<5, 5>() = -(inv_m * s.stiffness);
+  a.bottomRightCorner<5, 5>() = -(inv_m * c);
   const Eigen::EigenSolver<Eigen::Matrix<double, 10, 10>> eigen(a, false);
   std::complex<double> best(0.0, 0.0);
   for (int i = 0; i < 10; ++i) {

@@ -18,6 +18,18 @@ struct Material {
   double density_kg_m3 = 7850.0;
 };
 
+// A rigid body that moves with the rotating ring (the CT gantry's rotor: tube, detector,
+// slip ring), symmetric about the bearing axis: its centre of gravity on the axis at
+// centre_of_gravity_axial_m from the bearing centre. A radial offset of the centre of gravity
+// is an unbalance, given as a rotating load (scenarios), not here.
+struct CarriedBody {
+  double mass_kg = 0.0;                    // 0: none
+  double centre_of_gravity_axial_m = 0.0;  // z of the centre of gravity, bearing frame
+  double transverse_inertia_kg_m2 = 0.0;   // about an axis through the centre of gravity, normal to the bearing axis
+  double polar_inertia_kg_m2 = 0.0;        // about the bearing axis (reported; the model has no spin DOF)
+  bool present() const { return mass_kg > 0.0; }
+};
+
 struct BearingConfig {
   std::string name;
   int rows = 1;
@@ -42,6 +54,7 @@ struct BearingConfig {
   RotatingRing rotating_ring = RotatingRing::Outer;
   Material material;
   double rotating_mass_kg = 0.0;     // 0: not given (static analysis only)
+  CarriedBody carried_body;          // moves with the rotating ring; adds to its mass matrix
   double tilt_inertia_kg_m2 = 0.0;   // after loading: given or derived from the envelope
   bool tilt_inertia_given = false;
   // c_n per loaded contact: given, or solved from modal_damping_ratio at the reference load.

@@ -179,7 +179,7 @@ class BearingDynamics {
   BearingModel model_;
   DynamicsOptions options_;
   Vector5 load_ = Vector5::Zero();
-  Vector5 inverse_mass_ = Vector5::Zero();
+  Matrix5 inverse_mass_ = Matrix5::Zero();  // of BearingModel::mass_matrix (full with a carried body)
   double ring_speed_ = 0.0;
   double cage_speed_ = 0.0, inner_speed_ = 0.0, outer_speed_ = 0.0, spin_speed_ = 0.0;
   RollingPhase phase_;

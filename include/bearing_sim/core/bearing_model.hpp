@@ -79,7 +79,11 @@ class BearingModel {
   double moving_sign() const { return moving_sign_; }
 
   // Mass matrix diag(m, m, m, J, J) of the moving ring.
-  Vector5 mass_diagonal() const;
+  // Mass matrix of the moving ring in q = (x, y, z, theta_x, theta_y) about the bearing
+  // centre: the ring's mass and tilt inertia, plus the carried body's rigid-body mass matrix
+  // with its centre of gravity's axial offset coupling x with theta_y and y with theta_x
+  // (docs/model.md 7.1). Throws InvalidInputError without rotating_mass_kg.
+  Matrix5 mass_matrix() const;
 
   // Constant extra contact deflection per ball (ball diameter variation by default).
   void set_deflection_offsets(const std::vector<double>& offsets_m);
