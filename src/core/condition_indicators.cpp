@@ -16,6 +16,60 @@ std::string fmt(double v, int decimals) {
   s << v;
   return s.str();
 }
+
+bool line_found(const SpectralPeak& p, double threshold_db) {
+  return p.searched && p.local_maximum && p.snr_db >= threshold_db;
+}
+
+}  // namespace
+
+double modulation_frequency_hz(const BearingFrequencies& f, FaultKind kind);
+
+namespace {
+// Harmonics 1..kHarmonics and, where modulation is predicted, the sidebands of the
+// fundamental; the decision (docs/health.md, "Evidence").
+constexpr int kHarmonics = 3;
+
+void collect_evidence(const Spectrum& envelope, const BearingFrequencies& freq, const AnalysisOptions& o,
+                      FaultIndicator* f) {
+  const DiagnosisThresholds& t = o.thresholds;
+  EvidenceLine first;
+  first.peak = f->envelope_peak;
+  first.found = line_found(first.peak, t.fault_snr_db);
+  f->harmonics.push_back(first);
+  // Higher harmonics at n x the fundamental as found (as expected if it was not found).
+  const double base_hz = first.found ? first.peak.frequency_hz : first.peak.expected_hz;
+  for (int n = 2; n <= kHarmonics; ++n) {
+    EvidenceLine h;
+    h.order = n;
+    h.peak = find_peak(envelope, n * base_hz, o.peak_search, o.envelope_floor_m_s2);
+    h.found = line_found(h.peak, t.evidence_snr_db);
+    f->harmonics.push_back(h);
+  }
+  f->harmonics_found = 0;
+  for (const EvidenceLine& h : f->harmonics) {
+    if (!h.found) break;
+    ++f->harmonics_found;
+  }
+  // Sidebands: only when the modulation is resolvable, i.e. the sideband's search window
+  // (+-1 bin at least) lies outside the carrier's excluded main lobe (+-noise_exclude_bins).
+  const double df = envelope.resolution_hz;
+  const double fm = modulation_frequency_hz(freq, f->kind);
+  const double min_fm = (o.peak_search.noise_exclude_bins + 2) * df;
+  if (df > 0.0 && fm >= min_fm && base_hz - fm > min_fm) {
+    f->sidebands_required = true;
+    f->modulation_hz = fm;
+    for (double sign : {-1.0, 1.0}) {
+      EvidenceLine sb;
+      sb.offset_hz = sign * fm;
+      sb.peak = find_peak(envelope, base_hz + sign * fm, o.peak_search, o.envelope_floor_m_s2);
+      sb.found = line_found(sb.peak, t.evidence_snr_db);
+      f->sidebands_found += sb.found ? 1 : 0;
+      f->sidebands.push_back(sb);
+    }
+  }
+  f->suspected = first.found && f->harmonics_found >= 2 && (!f->sidebands_required || f->sidebands_found >= 1);
+}
 }  // namespace
 
 const char* velocity_zone_name(VelocityZone zone) {
@@ -74,6 +128,16 @@ double fault_frequency_hz(const BearingFrequencies& f, FaultKind kind) {
   return 0.0;
 }
 
+double modulation_frequency_hz(const BearingFrequencies& f, FaultKind kind) {
+  switch (kind) {
+    case FaultKind::OuterRace: return f.outer_ring_hz;
+    case FaultKind::InnerRace: return f.inner_ring_hz;
+    case FaultKind::Ball: return std::abs(f.cage_hz);
+    case FaultKind::Cage: return 0.0;
+  }
+  return 0.0;
+}
+
 Diagnosis diagnose(const ConditionIndicators& c, const DiagnosisThresholds& t) {
   // Collect the findings, worst level wins; the reason lists the findings, worst first.
   struct Finding {
@@ -96,7 +160,11 @@ Diagnosis diagnose(const ConditionIndicators& c, const DiagnosisThresholds& t) {
     findings.push_back({HealthLevel::Warn, p.snr_db,
                         what + " suspected: envelope peak at " +
                             fmt(p.frequency_hz, 1) + " Hz (" + fault_frequency_label(f.kind) + " " +
-                            fmt(p.expected_hz, 1) + " Hz), " + fmt(p.snr_db, 0) + " dB over noise"});
+                            fmt(p.expected_hz, 1) + " Hz), " + fmt(p.snr_db, 0) + " dB over noise, " +
+                            std::to_string(f.harmonics_found) + " harmonics" +
+                            (f.sidebands_required ? ", " + std::to_string(f.sidebands_found) + "/2 sidebands at -+" +
+                                                        fmt(f.modulation_hz, 1) + " Hz"
+                                                  : std::string())});
   }
   if (t.kurtosis_warn > 0.0 && c.acceleration.kurtosis >= t.kurtosis_warn)
     findings.push_back({HealthLevel::Warn, 0.0,
@@ -176,8 +244,7 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
     f.kind = k;
     f.envelope_peak = find_peak(c.envelope, fault_frequency_hz(freq, k), o.peak_search, o.envelope_floor_m_s2);
     f.modulation = c.envelope_mean_m_s2 > 0.0 ? f.envelope_peak.amplitude / c.envelope_mean_m_s2 : 0.0;
-    f.suspected = f.envelope_peak.searched && f.envelope_peak.local_maximum &&
-                  f.envelope_peak.snr_db >= o.thresholds.fault_snr_db;
+    collect_evidence(c.envelope, freq, o, &f);
     c.faults.push_back(f);
   }
   c.diagnosis = diagnose(c, o.thresholds);

@@ -1,6 +1,8 @@
 // analyze_vibration on synthetic signals with known answers: a sine of known velocity,
 // Gaussian noise, and an outer-race impact train exciting a 3 kHz resonance.
 #include <cmath>
+#include <functional>
+#include <string>
 #include <random>
 #include <vector>
 
@@ -133,6 +135,96 @@ TEST(ConditionIndicators, OuterRaceImpactTrain) {
   EXPECT_NEAR(c.acceleration.kurtosis, 4.77, 0.3);
   EXPECT_EQ(c.diagnosis.level, HealthLevel::Warn);
   EXPECT_EQ(c.diagnosis.reason.rfind("outer race defect suspected: envelope peak at 87.", 0), 0u) << c.diagnosis.reason;
+}
+
+// A 3 kHz carrier amplitude-modulated by 1 + e(t), in Gaussian noise (0.5 m/s^2 RMS, 20 kHz):
+// the band envelope is 1 + e(t) (e > -1), so its spectrum holds exactly the lines of e and
+// no harmonics that e does not have. 2 s: 0.5 Hz bins.
+std::vector<double> modulated_carrier(const std::function<double(double)>& e, unsigned seed) {
+  const double fs = 20000.0;
+  std::vector<double> x(40000);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> n(0.0, 0.5);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double t = i / fs;
+    x[i] = (1.0 + e(t)) * std::sin(2.0 * kPi * 3000.0 * t) + n(rng);
+  }
+  return x;
+}
+
+ConditionIndicators analyze_carrier(const std::vector<double>& x, const BearingFrequencies& f) {
+  AnalysisOptions o;
+  o.resonance_hz = 3000.0;
+  return analyze_vibration(x, 20000.0, f, o);
+}
+
+// Envelope noise per 0.5 Hz bin: the band noise (0.5^2 x 2/10 = 0.05 (m/s^2)^2 over 1 kHz
+// of envelope bandwidth) gives about 2 sqrt(5e-5 x 0.5 x 1.5) = 0.012 m/s^2 with Hann, so a
+// 0.3 line is ~28 dB over it, a 0.2 line ~24 dB, a 0.09 sideband ~17 dB: all far over the
+// 12 / 10 dB thresholds; an absent line is noise (a Rayleigh bin over 10 dB: ~0.1%).
+TEST(ConditionIndicators, FundamentalWithoutHarmonicsIsNotAFault) {
+  const double bpfo = frequencies().ball_pass_outer_race_hz;
+  const ConditionIndicators c =
+      analyze_carrier(modulated_carrier([&](double t) { return 0.3 * std::cos(2.0 * kPi * bpfo * t); }, 21),
+                      frequencies());
+  const FaultIndicator& f = c.faults[0];
+  ASSERT_EQ(f.kind, FaultKind::OuterRace);
+  ASSERT_EQ(f.harmonics.size(), 3u);
+  EXPECT_TRUE(f.harmonics[0].found);
+  EXPECT_GE(f.harmonics[0].peak.snr_db, 20.0);
+  EXPECT_FALSE(f.harmonics[1].found) << f.harmonics[1].peak.snr_db;
+  EXPECT_EQ(f.harmonics_found, 1);
+  EXPECT_FALSE(f.sidebands_required);  // frequencies() has both rings at 0 in the load frame
+  EXPECT_FALSE(f.suspected);
+  for (const FaultIndicator& g : c.faults) EXPECT_FALSE(g.suspected) << fault_frequency_label(g.kind);
+  EXPECT_EQ(c.diagnosis.reason.find("suspected"), std::string::npos) << c.diagnosis.reason;
+}
+
+TEST(ConditionIndicators, FundamentalWithHarmonicsIsAFault) {
+  const double bpfo = frequencies().ball_pass_outer_race_hz;
+  const ConditionIndicators c = analyze_carrier(
+      modulated_carrier(
+          [&](double t) { return 0.3 * std::cos(2.0 * kPi * bpfo * t) + 0.2 * std::cos(4.0 * kPi * bpfo * t); }, 21),
+      frequencies());
+  const FaultIndicator& f = c.faults[0];
+  EXPECT_EQ(f.harmonics_found, 2);  // no 3rd harmonic in e
+  EXPECT_NEAR(f.harmonics[1].peak.frequency_hz, 2.0 * bpfo, 0.01 * 2.0 * bpfo);
+  EXPECT_GE(f.harmonics[1].peak.snr_db, 15.0);
+  EXPECT_TRUE(f.suspected);
+  for (std::size_t k = 1; k < 4; ++k) EXPECT_FALSE(c.faults[k].suspected) << fault_frequency_label(c.faults[k].kind);
+  EXPECT_EQ(c.diagnosis.reason.rfind("outer race defect suspected: envelope peak at 87.", 0), 0u) << c.diagnosis.reason;
+  EXPECT_NE(c.diagnosis.reason.find("2 harmonics"), std::string::npos) << c.diagnosis.reason;
+}
+
+TEST(ConditionIndicators, InnerRaceNeedsItsShaftSpeedSidebands) {
+  // The inner ring turns at 29 Hz in the load frame: an inner-race spall passes the load
+  // zone once per turn, so its lines carry sidebands at -+29 Hz.
+  BearingFrequencies fr = frequencies();
+  fr.inner_ring_hz = 29.0;
+  fr.relative_ring_hz = 29.0;
+  const double bpfi = fr.ball_pass_inner_race_hz;
+  auto series = [&](double t) { return 0.3 * std::cos(2.0 * kPi * bpfi * t) + 0.2 * std::cos(4.0 * kPi * bpfi * t); };
+  // Harmonics but no sidebands: not an inner race defect.
+  const ConditionIndicators bare = analyze_carrier(modulated_carrier(series, 22), fr);
+  const FaultIndicator& b = bare.faults[1];
+  ASSERT_EQ(b.kind, FaultKind::InnerRace);
+  EXPECT_EQ(b.harmonics_found, 2);
+  EXPECT_TRUE(b.sidebands_required);
+  EXPECT_DOUBLE_EQ(b.modulation_hz, 29.0);
+  ASSERT_EQ(b.sidebands.size(), 2u);
+  EXPECT_EQ(b.sidebands_found, 0);
+  EXPECT_FALSE(b.suspected);
+  // The same series modulated by 1 + 0.6 cos(2 pi 29 t): sidebands of 0.09 at 133 -+ 29 Hz.
+  const ConditionIndicators mod = analyze_carrier(
+      modulated_carrier([&](double t) { return series(t) * (1.0 + 0.6 * std::cos(2.0 * kPi * 29.0 * t)); }, 22), fr);
+  const FaultIndicator& m = mod.faults[1];
+  EXPECT_EQ(m.harmonics_found, 2);
+  EXPECT_EQ(m.sidebands_found, 2);
+  EXPECT_NEAR(m.sidebands[0].peak.frequency_hz, bpfi - 29.0, 0.01 * (bpfi - 29.0));
+  EXPECT_NEAR(m.sidebands[1].peak.frequency_hz, bpfi + 29.0, 0.01 * (bpfi + 29.0));
+  EXPECT_TRUE(m.suspected);
+  EXPECT_NE(mod.diagnosis.reason.find("inner race defect suspected"), std::string::npos) << mod.diagnosis.reason;
+  EXPECT_NE(mod.diagnosis.reason.find("2/2 sidebands at -+29.0 Hz"), std::string::npos) << mod.diagnosis.reason;
 }
 
 TEST(ConditionIndicators, WindowAndErrors) {
