@@ -17,6 +17,12 @@ std::string fmt(double v, int decimals) {
   return s.str();
 }
 
+// Some band of the kurtogram's tree is wide enough and starts high enough: the half band
+// [fs/4, fs/2] is the widest one off DC.
+bool kurtogram_fits(double fs, double highest_fault_hz, double lowest_edge_hz) {
+  return 0.25 * fs >= 3.0 * highest_fault_hz && 0.25 * fs >= lowest_edge_hz;
+}
+
 bool line_found(const SpectralPeak& p, double threshold_db) {
   return p.searched && p.local_maximum && p.snr_db >= threshold_db;
 }
@@ -222,15 +228,25 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
                                          FaultKind::Cage};
   double highest_fault_hz = 0.0;
   for (FaultKind k : kKinds) highest_fault_hz = std::max(highest_fault_hz, fault_frequency_hz(freq, k));
+  // Well above the fault lines themselves, so that the band holds the resonances they
+  // excite rather than the lines (and their low harmonics).
+  const double lowest_edge_hz = std::max(500.0, 4.0 * highest_fault_hz);
   if (o.resonance_hz > 0.0) {
     if (!(o.envelope_band_width_hz > 0.0)) throw InvalidInputError("analysis: the envelope band width must be > 0");
     c.envelope_low_hz = std::max(0.0, o.resonance_hz - 0.5 * o.envelope_band_width_hz);
     c.envelope_high_hz = o.resonance_hz + 0.5 * o.envelope_band_width_hz;
+    c.envelope_band_source = "resonance";
+  } else if (o.envelope_band == EnvelopeBand::Kurtogram && kurtogram_fits(fs, highest_fault_hz, lowest_edge_hz)) {
+    // The most impulsive band wide enough to hold harmonics 1-3 of every fault line.
+    const Kurtogram k = fast_kurtogram(x, fs, 3.0 * highest_fault_hz, lowest_edge_hz);
+    c.envelope_low_hz = k.best.low_hz;
+    c.envelope_high_hz = k.best.high_hz;
+    c.envelope_band_kurtosis = k.best.kurtosis;
+    c.envelope_band_source = "kurtogram";
   } else {
-    // Well above the fault lines themselves, so that the band holds the resonances they
-    // excite rather than the lines (and their low harmonics).
-    c.envelope_low_hz = std::max(500.0, 4.0 * highest_fault_hz);
+    c.envelope_low_hz = lowest_edge_hz;
     c.envelope_high_hz = 0.4 * fs;
+    c.envelope_band_source = "fixed";
   }
   if (!(c.envelope_high_hz <= nyquist) || !(c.envelope_low_hz < c.envelope_high_hz))
     throw InvalidInputError("analysis: envelope band " + fmt(c.envelope_low_hz, 0) + "-" + fmt(c.envelope_high_hz, 0) +

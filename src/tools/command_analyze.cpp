@@ -205,6 +205,8 @@ void run(const AnalyzeCliOptions& o) {
                                  {"zone", velocity_zone_name(c.zone)},
                                  {"zone_boundaries_mm_s", o.zones},
                                  {"envelope_band_hz", {c.envelope_low_hz, c.envelope_high_hz}},
+                                 {"envelope_band_source", c.envelope_band_source},
+                                 {"envelope_band_kurtosis", c.envelope_band_kurtosis},
                                  {"envelope_mean_m_s2", c.envelope_mean_m_s2},
                                  {"envelope_resolution_hz", c.envelope.resolution_hz},
                                  {"faults", faults},
@@ -235,7 +237,9 @@ void run(const AnalyzeCliOptions& o) {
              velocity_zone_name(c.zone), ""});
   t.print(out);
   out << "\nEnvelope spectrum (band " << fixed(c.envelope_low_hz, 0) << "-" << fixed(c.envelope_high_hz, 0)
-      << " Hz, resolution " << fixed(c.envelope.resolution_hz, 3) << " Hz; noise = median of the neighbouring bins)\n";
+      << " Hz from the " << c.envelope_band_source
+      << (c.envelope_band_source == "kurtogram" ? ", spectral kurtosis " + fixed(c.envelope_band_kurtosis, 2) : "")
+      << ", resolution " << fixed(c.envelope.resolution_hz, 3) << " Hz; noise = median of the neighbouring bins)\n";
   Table e({"fault", "frequency", "expected Hz", "peak Hz", "amplitude m/s^2", "SNR dB", "harmonics dB",
            "sidebands dB", "suspected"},
           {true, true, false, false, false, false, false, false, true});

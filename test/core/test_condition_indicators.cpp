@@ -92,7 +92,9 @@ TEST(ConditionIndicators, GaussianNoiseIsOk) {
   std::normal_distribution<double> n(0.0, 0.5);
   std::vector<double> x(200000);
   for (double& v : x) v = n(rng);
-  const ConditionIndicators c = analyze_vibration(x, 20000.0, frequencies());
+  AnalysisOptions fixed;
+  fixed.envelope_band = EnvelopeBand::Fixed;
+  const ConditionIndicators c = analyze_vibration(x, 20000.0, frequencies(), fixed);
   // White noise of 0.5 m/s^2 at 20 kHz: v^2 = S/(4 pi^2) (1/10 - 1/1000) with
   // S = 0.25/10000 (m/s^2)^2/Hz: 0.25 mm/s, zone A. 15%: the 1/f^2 weight leaves some
   // 150 independent bins near 10 Hz in 10 s, a standard error of about 4% in v.
@@ -102,6 +104,51 @@ TEST(ConditionIndicators, GaussianNoiseIsOk) {
   // Default envelope band: 4 x the highest fault frequency (133 Hz -> 532 Hz) up to 0.4 fs.
   EXPECT_DOUBLE_EQ(c.envelope_low_hz, 532.0);
   EXPECT_DOUBLE_EQ(c.envelope_high_hz, 8000.0);
+  EXPECT_EQ(c.envelope_band_source, "fixed");
+  // The default, the kurtogram's band: in white noise every band is Gaussian (SK about 0;
+  // the estimate of a band of B Hz over 10 s scatters by ~sqrt(4/(10 B)), < 0.1 here).
+  const ConditionIndicators k = analyze_vibration(x, 20000.0, frequencies());
+  EXPECT_EQ(k.envelope_band_source, "kurtogram");
+  EXPECT_NEAR(k.envelope_band_kurtosis, 0.0, 0.3);
+  EXPECT_GE(k.envelope_low_hz, 532.0);
+  EXPECT_GE(k.envelope_high_hz - k.envelope_low_hz, 3.0 * 133.0);
+  EXPECT_EQ(k.diagnosis.level, HealthLevel::Ok) << k.diagnosis.reason;
+}
+
+TEST(ConditionIndicators, KurtogramFindsTheImpulsiveBand) {
+  // Bursts at BPFO of a 6 kHz tone under a Gaussian of 0.4 ms (a band-limited impulse: its
+  // spectrum is a Gaussian of 1/(2 pi 0.4 ms) = 400 Hz around 6 kHz), RMS 0.18 m/s^2,
+  // buried under Gaussian noise low-passed to 3 kHz (RMS ~1.6, nine times larger) and a weak
+  // white floor (0.05). The band of the largest spectral kurtosis must hold the bursts'
+  // band and none of the strong noise.
+  const double fs = 20000.0, bpfo = frequencies().ball_pass_outer_race_hz;
+  const double fn = 6000.0, wn = 2.0 * kPi * fn;
+  std::mt19937_64 rng(8);
+  std::normal_distribution<double> n(0.0, 1.0);
+  std::vector<double> loud(40000), x(40000);
+  for (double& v : loud) v = 3.0 * n(rng);
+  loud = band_pass(loud, fs, 0.0, 3000.0);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double since = std::fmod(i / fs, 1.0 / bpfo);
+    const double g = (since - 2e-3) / 0.4e-3;
+    x[i] = std::exp(-0.5 * g * g) * std::sin(wn * since) + loud[i] + 0.05 * n(rng);
+  }
+  const Kurtogram k = fast_kurtogram(x, fs, 300.0);
+  EXPECT_LE(k.best.low_hz, fn);
+  EXPECT_GE(k.best.high_hz, fn);
+  EXPECT_GE(k.best.low_hz, 3000.0);
+  EXPECT_GT(k.best.kurtosis, 3.0);  // impulsive (Gaussian: 0; measured 9)
+  // The whole band [0, fs/2] is dominated by the loud Gaussian noise: SK near 0.
+  ASSERT_FALSE(k.bands.empty());
+  EXPECT_EQ(k.bands.front().bands_in_level, 1);
+  EXPECT_LT(k.bands.front().kurtosis, 0.3);
+  // analyze_vibration's default takes that band and finds the outer race series.
+  const ConditionIndicators c = analyze_vibration(x, fs, frequencies());
+  EXPECT_EQ(c.envelope_band_source, "kurtogram");
+  EXPECT_LE(c.envelope_low_hz, fn);
+  EXPECT_GE(c.envelope_high_hz, fn);
+  EXPECT_TRUE(c.faults[0].suspected) << c.diagnosis.reason;
+  for (std::size_t j = 1; j < 4; ++j) EXPECT_FALSE(c.faults[j].suspected) << fault_frequency_label(c.faults[j].kind);
 }
 
 TEST(ConditionIndicators, OuterRaceImpactTrain) {

@@ -85,6 +85,10 @@ TEST_F(AnalyzeTool, SameIndicatorsAsTheLibrary) {
   near(j["L_dB"], c.level_db);
   near(j["velocity_rms_mm_s"], c.velocity_rms_mm_s);
   EXPECT_EQ(j["zone"], bearing_sim::velocity_zone_name(c.zone));
+  EXPECT_EQ(j["envelope_band_source"], "kurtogram");
+  near(j["envelope_band_hz"][0], c.envelope_low_hz);
+  near(j["envelope_band_hz"][1], c.envelope_high_hz);
+  EXPECT_NEAR(j["envelope_band_kurtosis"].get<double>(), c.envelope_band_kurtosis, 1e-4);
   ASSERT_EQ(j["faults"].size(), c.faults.size());
   for (std::size_t k = 0; k < c.faults.size(); ++k) {
     const json& p = j["faults"][k]["envelope_peak"];

@@ -44,15 +44,22 @@ struct DiagnosisThresholds {
   VelocityZone error_zone = VelocityZone::D;  // ... ERROR
 };
 
+// How the envelope band is chosen when no resonance_hz is given (docs/health.md).
+enum class EnvelopeBand { Kurtogram, Fixed };
+
 struct AnalysisOptions {
   // Analyse the last window_s seconds of the signal (0: all of it). The window is then
   // shortened to an FFT-friendly length (2^a 3^b 5^c samples, a few percent at most).
   double window_s = 0.0;
   // Envelope band: centred on resonance_hz (the sensor's transmission-path resonance,
-  // typically 3-5 kHz) with envelope_band_width_hz; when resonance_hz is 0, from
-  // 4 x the highest fault frequency (at least 500 Hz) up to 0.4 x the sample rate.
+  // typically 3-5 kHz) with envelope_band_width_hz; when resonance_hz is 0, by
+  // envelope_band: Kurtogram, the band of the largest spectral kurtosis (fast_kurtogram)
+  // among those at least 3 x the highest fault frequency wide with a low edge at or above
+  // max(500 Hz, 4 x the highest fault frequency); Fixed, from that low edge up to 0.4 x the
+  // sample rate.
   double resonance_hz = 0.0;
   double envelope_band_width_hz = 2000.0;
+  EnvelopeBand envelope_band = EnvelopeBand::Kurtogram;
   // Velocity band; a low edge of 0 takes ISO 20816-3's for the machine's speed
   // (iso20816_velocity_low_hz of the relative ring speed).
   double velocity_low_hz = 0.0;
@@ -116,6 +123,8 @@ struct ConditionIndicators {
   double velocity_low_hz = 0.0, velocity_high_hz = 0.0;  // the band used
   VelocityZone zone = VelocityZone::A;
   double envelope_low_hz = 0.0, envelope_high_hz = 0.0;
+  std::string envelope_band_source;    // "resonance", "kurtogram" or "fixed"
+  double envelope_band_kurtosis = 0.0; // spectral kurtosis of the band (kurtogram only)
   double envelope_mean_m_s2 = 0.0;  // mean of the band envelope (the demodulated level)
   Spectrum envelope;  // envelope spectrum, m/s^2
   std::vector<FaultIndicator> faults;  // outer race, inner race, ball, cage in that order
