@@ -16,6 +16,66 @@ std::string fmt(double v, int decimals) {
   s << v;
   return s.str();
 }
+
+// Some band of the kurtogram's tree is wide enough and starts high enough: the half band
+// [fs/4, fs/2] is the widest one off DC.
+bool kurtogram_fits(double fs, double highest_fault_hz, double lowest_edge_hz) {
+  return 0.25 * fs >= 3.0 * highest_fault_hz && 0.25 * fs >= lowest_edge_hz;
+}
+
+bool line_found(const SpectralPeak& p, double threshold_db) {
+  return p.searched && p.local_maximum && p.snr_db >= threshold_db;
+}
+
+}  // namespace
+
+double modulation_frequency_hz(const BearingFrequencies& f, FaultKind kind);
+
+namespace {
+// Harmonics 1..kHarmonics and, where modulation is predicted, the sidebands of the
+// fundamental; the decision (docs/health.md, "Evidence").
+constexpr int kHarmonics = 3;
+
+void collect_evidence(const Spectrum& envelope, const BearingFrequencies& freq, const AnalysisOptions& o,
+                      FaultIndicator* f) {
+  const DiagnosisThresholds& t = o.thresholds;
+  EvidenceLine first;
+  first.peak = f->envelope_peak;
+  first.found = line_found(first.peak, t.fault_snr_db);
+  f->harmonics.push_back(first);
+  // Higher harmonics at n x the fundamental as found (as expected if it was not found).
+  const double base_hz = first.found ? first.peak.frequency_hz : first.peak.expected_hz;
+  for (int n = 2; n <= kHarmonics; ++n) {
+    EvidenceLine h;
+    h.order = n;
+    h.peak = find_peak(envelope, n * base_hz, o.peak_search, o.envelope_floor_m_s2);
+    h.found = line_found(h.peak, t.evidence_snr_db);
+    f->harmonics.push_back(h);
+  }
+  f->harmonics_found = 0;
+  for (const EvidenceLine& h : f->harmonics) {
+    if (!h.found) break;
+    ++f->harmonics_found;
+  }
+  // Sidebands: only when the modulation is resolvable, i.e. the sideband's search window
+  // (+-1 bin at least) lies outside the carrier's excluded main lobe (+-noise_exclude_bins).
+  const double df = envelope.resolution_hz;
+  const double fm = modulation_frequency_hz(freq, f->kind);
+  const double min_fm = (o.peak_search.noise_exclude_bins + 2) * df;
+  if (df > 0.0 && fm >= min_fm && base_hz - fm > min_fm) {
+    f->sidebands_required = true;
+    f->modulation_hz = fm;
+    for (double sign : {-1.0, 1.0}) {
+      EvidenceLine sb;
+      sb.offset_hz = sign * fm;
+      sb.peak = find_peak(envelope, base_hz + sign * fm, o.peak_search, o.envelope_floor_m_s2);
+      sb.found = line_found(sb.peak, t.evidence_snr_db);
+      f->sidebands_found += sb.found ? 1 : 0;
+      f->sidebands.push_back(sb);
+    }
+  }
+  f->suspected = first.found && f->harmonics_found >= 2 && (!f->sidebands_required || f->sidebands_found >= 1);
+}
 }  // namespace
 
 const char* velocity_zone_name(VelocityZone zone) {
@@ -74,6 +134,16 @@ double fault_frequency_hz(const BearingFrequencies& f, FaultKind kind) {
   return 0.0;
 }
 
+double modulation_frequency_hz(const BearingFrequencies& f, FaultKind kind) {
+  switch (kind) {
+    case FaultKind::OuterRace: return f.outer_ring_hz;
+    case FaultKind::InnerRace: return f.inner_ring_hz;
+    case FaultKind::Ball: return std::abs(f.cage_hz);
+    case FaultKind::Cage: return 0.0;
+  }
+  return 0.0;
+}
+
 Diagnosis diagnose(const ConditionIndicators& c, const DiagnosisThresholds& t) {
   // Collect the findings, worst level wins; the reason lists the findings, worst first.
   struct Finding {
@@ -96,7 +166,11 @@ Diagnosis diagnose(const ConditionIndicators& c, const DiagnosisThresholds& t) {
     findings.push_back({HealthLevel::Warn, p.snr_db,
                         what + " suspected: envelope peak at " +
                             fmt(p.frequency_hz, 1) + " Hz (" + fault_frequency_label(f.kind) + " " +
-                            fmt(p.expected_hz, 1) + " Hz), " + fmt(p.snr_db, 0) + " dB over noise"});
+                            fmt(p.expected_hz, 1) + " Hz), " + fmt(p.snr_db, 0) + " dB over noise, " +
+                            std::to_string(f.harmonics_found) + " harmonics" +
+                            (f.sidebands_required ? ", " + std::to_string(f.sidebands_found) + "/2 sidebands at -+" +
+                                                        fmt(f.modulation_hz, 1) + " Hz"
+                                                  : std::string())});
   }
   if (t.kurtosis_warn > 0.0 && c.acceleration.kurtosis >= t.kurtosis_warn)
     findings.push_back({HealthLevel::Warn, 0.0,
@@ -154,15 +228,25 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
                                          FaultKind::Cage};
   double highest_fault_hz = 0.0;
   for (FaultKind k : kKinds) highest_fault_hz = std::max(highest_fault_hz, fault_frequency_hz(freq, k));
+  // Well above the fault lines themselves, so that the band holds the resonances they
+  // excite rather than the lines (and their low harmonics).
+  const double lowest_edge_hz = std::max(500.0, 4.0 * highest_fault_hz);
   if (o.resonance_hz > 0.0) {
     if (!(o.envelope_band_width_hz > 0.0)) throw InvalidInputError("analysis: the envelope band width must be > 0");
     c.envelope_low_hz = std::max(0.0, o.resonance_hz - 0.5 * o.envelope_band_width_hz);
     c.envelope_high_hz = o.resonance_hz + 0.5 * o.envelope_band_width_hz;
+    c.envelope_band_source = "resonance";
+  } else if (o.envelope_band == EnvelopeBand::Kurtogram && kurtogram_fits(fs, highest_fault_hz, lowest_edge_hz)) {
+    // The most impulsive band wide enough to hold harmonics 1-3 of every fault line.
+    const Kurtogram k = fast_kurtogram(x, fs, 3.0 * highest_fault_hz, lowest_edge_hz);
+    c.envelope_low_hz = k.best.low_hz;
+    c.envelope_high_hz = k.best.high_hz;
+    c.envelope_band_kurtosis = k.best.kurtosis;
+    c.envelope_band_source = "kurtogram";
   } else {
-    // Well above the fault lines themselves, so that the band holds the resonances they
-    // excite rather than the lines (and their low harmonics).
-    c.envelope_low_hz = std::max(500.0, 4.0 * highest_fault_hz);
+    c.envelope_low_hz = lowest_edge_hz;
     c.envelope_high_hz = 0.4 * fs;
+    c.envelope_band_source = "fixed";
   }
   if (!(c.envelope_high_hz <= nyquist) || !(c.envelope_low_hz < c.envelope_high_hz))
     throw InvalidInputError("analysis: envelope band " + fmt(c.envelope_low_hz, 0) + "-" + fmt(c.envelope_high_hz, 0) +
@@ -176,8 +260,7 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
     f.kind = k;
     f.envelope_peak = find_peak(c.envelope, fault_frequency_hz(freq, k), o.peak_search, o.envelope_floor_m_s2);
     f.modulation = c.envelope_mean_m_s2 > 0.0 ? f.envelope_peak.amplitude / c.envelope_mean_m_s2 : 0.0;
-    f.suspected = f.envelope_peak.searched && f.envelope_peak.local_maximum &&
-                  f.envelope_peak.snr_db >= o.thresholds.fault_snr_db;
+    collect_evidence(c.envelope, freq, o, &f);
     c.faults.push_back(f);
   }
   c.diagnosis = diagnose(c, o.thresholds);

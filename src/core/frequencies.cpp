@@ -18,6 +18,8 @@ BearingFrequencies bearing_frequencies(const BearingModel& model, double inner_r
   f.relative_ring_hz = std::abs(inner_rad_s - outer_rad_s) / kTwoPi;
   f.ball_spin_hz = model.ball_spin_speed_rad_s(inner_rad_s, outer_rad_s) / kTwoPi;
   f.varying_compliance_hz = z * std::abs(wc) / kTwoPi;
+  f.inner_ring_hz = std::abs(inner_rad_s) / kTwoPi;
+  f.outer_ring_hz = std::abs(outer_rad_s) / kTwoPi;
   return f;
 }
 

@@ -183,6 +183,63 @@ double band_velocity_rms(const std::vector<double>& accel, double sample_rate_hz
   return std::sqrt(static_cast<double>(sum / (static_cast<long double>(n) * window_energy)));
 }
 
+Kurtogram fast_kurtogram(const std::vector<double>& x, double fs, double min_width_hz, double min_low_hz,
+                         int max_bands) {
+  check_signal(x, fs, "kurtogram");
+  const std::vector<Complex> spectrum = forward(x);
+  const std::size_t n = spectrum.size();
+  const double df = fs / static_cast<double>(n);
+  const double nyquist = 0.5 * fs;
+  Kurtogram k;
+  bool have_best = false;
+  Eigen::FFT<double> fft;
+  // 1, 2, 3, 4, 6, 8, 12, 16, 24, ...: the binary levels 2^j and the 1/3 levels 3 x 2^(j-1).
+  for (int binary = 1; binary <= max_bands; binary *= 2) {
+    for (int nb : {binary, binary * 3 / 2}) {
+      if (nb > max_bands || (binary == 1 && nb != 1)) continue;
+      const double width = nyquist / nb;
+      if (width < min_width_hz) continue;
+      for (int i = 0; i < nb; ++i) {
+        KurtogramBand b;
+        b.bands_in_level = nb;
+        b.low_hz = i * width;
+        b.high_hz = (i + 1) * width;
+        if (b.low_hz < min_low_hz) continue;
+        // Bins in [low, high) (the last band up to, not including, Nyquist; never DC).
+        const auto k0 = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(b.low_hz / df)));
+        std::size_t k1 = static_cast<std::size_t>(std::ceil(b.high_hz / df));  // one past
+        k1 = std::min(k1, (n + 1) / 2);
+        if (k1 <= k0 + 8) continue;  // too few bins for a kurtosis
+        const std::size_t count = k1 - k0;
+        std::size_t m = 16;
+        while (m < 2 * count) m *= 2;
+        std::vector<Complex> band(m, Complex(0.0, 0.0));
+        for (std::size_t j = 0; j < count; ++j) band[j] = spectrum[k0 + j];
+        std::vector<Complex> envelope;
+        fft.inv(envelope, band);
+        long double m2 = 0.0L, m4 = 0.0L;
+        for (const Complex& c : envelope) {
+          const long double p = std::norm(c);
+          m2 += p;
+          m4 += p * p;
+        }
+        m2 /= static_cast<long double>(m);
+        m4 /= static_cast<long double>(m);
+        b.kurtosis = m2 > 0.0L ? static_cast<double>(m4 / (m2 * m2)) - 2.0 : 0.0;
+        k.bands.push_back(b);
+        if (!have_best || b.kurtosis > k.best.kurtosis) {
+          k.best = b;
+          have_best = true;
+        }
+      }
+    }
+  }
+  if (!have_best)
+    throw InvalidInputError("kurtogram: no band of at least " + std::to_string(min_width_hz) + " Hz above " +
+                            std::to_string(min_low_hz) + " Hz fits below the Nyquist frequency");
+  return k;
+}
+
 SpectralPeak find_peak(const Spectrum& s, double expected_hz, const PeakSearchOptions& o, double absolute_floor) {
   SpectralPeak p;
   p.expected_hz = expected_hz;

@@ -40,6 +40,8 @@ py::dict analyze(const PyBearing& b, py::array_t<double, py::array::c_style | py
   d["velocity_zone"] = velocity_zone_name(c.zone);
   d["envelope_band_hz"] = py::make_tuple(c.envelope_low_hz, c.envelope_high_hz);
   d["envelope_mean_m_s2"] = c.envelope_mean_m_s2;
+  d["envelope_band_source"] = c.envelope_band_source;
+  d["envelope_band_kurtosis"] = c.envelope_band_kurtosis;
   d["envelope_resolution_hz"] = c.envelope.resolution_hz;
   d["envelope_m_s2"] = py::array_t<double>(static_cast<py::ssize_t>(c.envelope.amplitude.size()),
                                            c.envelope.amplitude.data());
@@ -54,6 +56,15 @@ py::dict analyze(const PyBearing& b, py::array_t<double, py::array::c_style | py
     e["noise_floor_m_s2"] = fi.envelope_peak.noise_floor;
     e["snr_db"] = fi.envelope_peak.snr_db;
     e["modulation"] = fi.modulation;
+    py::list harmonics, sidebands;
+    for (const EvidenceLine& h : fi.harmonics) harmonics.append(py::make_tuple(h.peak.frequency_hz, h.peak.snr_db, h.found));
+    for (const EvidenceLine& s : fi.sidebands) sidebands.append(py::make_tuple(s.peak.frequency_hz, s.peak.snr_db, s.found));
+    e["harmonics"] = harmonics;  // (frequency_hz, snr_db, found) of harmonics 1..3
+    e["harmonics_found"] = fi.harmonics_found;
+    e["sidebands_required"] = fi.sidebands_required;
+    e["modulation_hz"] = fi.modulation_hz;
+    e["sidebands"] = sidebands;  // (frequency_hz, snr_db, found) at -f_mod, +f_mod
+    e["sidebands_found"] = fi.sidebands_found;
     e["suspected"] = fi.suspected;
     faults.append(e);
   }

@@ -597,6 +597,8 @@ void BearingSimRos::publish_health(const HealthReport& report) {
     for (const EnvelopeLine& l : msg.faults)
       add("envelope " + l.label + " " + fmt(l.expected_hz, 2) + " Hz",
           "peak " + fmt(l.peak_hz, 2) + " Hz, " + fmt(l.snr_db, 1) + " dB over noise" +
+              ", " + std::to_string(l.harmonics_found) + " harmonics" +
+              (l.sidebands_required ? ", " + std::to_string(l.sidebands_found) + "/2 sidebands" : std::string()) +
               (l.suspected ? " (suspected)" : ""));
   }
   std::string defects;

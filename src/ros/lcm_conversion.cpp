@@ -1,5 +1,6 @@
 #include "bearing_sim/ros/lcm_conversion.hpp"
 
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -104,6 +105,10 @@ bearing_sim_lcm::envelope_line_t to_lcm(const EnvelopeLine& msg) {
   out.amplitude_m_s2 = msg.amplitude_m_s2;
   out.noise_floor_m_s2 = msg.noise_floor_m_s2;
   out.snr_db = msg.snr_db;
+  out.harmonics_found = static_cast<std::int8_t>(msg.harmonics_found);
+  out.sidebands_required = msg.sidebands_required;
+  out.modulation_hz = msg.modulation_hz;
+  out.sidebands_found = static_cast<std::int8_t>(msg.sidebands_found);
   out.suspected = msg.suspected;
   return out;
 }

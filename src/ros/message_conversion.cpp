@@ -1,6 +1,7 @@
 #include "bearing_sim/ros/message_conversion.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <utility>
 
 namespace bearing_sim {
@@ -53,6 +54,12 @@ void fill_bearing_health(const HealthReport& r, const std::string& signal, doubl
       line.amplitude_m_s2 = f.envelope_peak.amplitude;
       line.noise_floor_m_s2 = f.envelope_peak.noise_floor;
       line.snr_db = f.envelope_peak.snr_db;
+      for (const EvidenceLine& h : f.harmonics) line.harmonic_snr_db.push_back(h.peak.snr_db);
+      line.harmonics_found = static_cast<std::uint8_t>(f.harmonics_found);
+      line.sidebands_required = f.sidebands_required;
+      line.modulation_hz = f.modulation_hz;
+      for (const EvidenceLine& s : f.sidebands) line.sideband_snr_db.push_back(s.peak.snr_db);
+      line.sidebands_found = static_cast<std::uint8_t>(f.sidebands_found);
       line.suspected = f.suspected;
       msg->faults.push_back(line);
     }

@@ -135,6 +135,23 @@ nlohmann::json peak_json(const SpectralPeak& p) {
           {"local_maximum", p.local_maximum}};
 }
 
+// "24/13*/-" : the SNR of each line (from `first`), * when found, - when not searched.
+std::string evidence_cell(const std::vector<EvidenceLine>& lines, std::size_t first) {
+  std::string cell;
+  for (std::size_t i = first; i < lines.size(); ++i) {
+    const EvidenceLine& l = lines[i];
+    cell += (cell.empty() ? "" : "/") + (l.peak.searched ? fixed(l.peak.snr_db, 0) + (l.found ? "*" : "") : "-");
+  }
+  return cell.empty() ? "-" : cell;
+}
+
+nlohmann::json evidence_json(const std::vector<EvidenceLine>& lines) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const EvidenceLine& l : lines)
+    a.push_back({{"order", l.order}, {"offset_hz", l.offset_hz}, {"found", l.found}, {"peak", peak_json(l.peak)}});
+  return a;
+}
+
 void run(const AnalyzeCliOptions& o) {
   const BearingModel model = load_model(o.bearing);
   if (o.inner_rpm == 0.0 && o.outer_rpm == 0.0)
@@ -163,7 +180,13 @@ void run(const AnalyzeCliOptions& o) {
                       {"label", fault_frequency_label(fi.kind)},
                       {"suspected", fi.suspected},
                       {"modulation", fi.modulation},
-                      {"envelope_peak", peak_json(fi.envelope_peak)}});
+                      {"envelope_peak", peak_json(fi.envelope_peak)},
+                      {"harmonics_found", fi.harmonics_found},
+                      {"harmonics", evidence_json(fi.harmonics)},
+                      {"sidebands_required", fi.sidebands_required},
+                      {"modulation_hz", fi.modulation_hz},
+                      {"sidebands_found", fi.sidebands_found},
+                      {"sidebands", evidence_json(fi.sidebands)}});
   const nlohmann::json result = {{"bearing", bearing_json(model, o.bearing)},
                                  {"csv", o.csv},
                                  {"column", signal.column},
@@ -182,6 +205,8 @@ void run(const AnalyzeCliOptions& o) {
                                  {"zone", velocity_zone_name(c.zone)},
                                  {"zone_boundaries_mm_s", o.zones},
                                  {"envelope_band_hz", {c.envelope_low_hz, c.envelope_high_hz}},
+                                 {"envelope_band_source", c.envelope_band_source},
+                                 {"envelope_band_kurtosis", c.envelope_band_kurtosis},
                                  {"envelope_mean_m_s2", c.envelope_mean_m_s2},
                                  {"envelope_resolution_hz", c.envelope.resolution_hz},
                                  {"faults", faults},
@@ -212,14 +237,18 @@ void run(const AnalyzeCliOptions& o) {
              velocity_zone_name(c.zone), ""});
   t.print(out);
   out << "\nEnvelope spectrum (band " << fixed(c.envelope_low_hz, 0) << "-" << fixed(c.envelope_high_hz, 0)
-      << " Hz, resolution " << fixed(c.envelope.resolution_hz, 3) << " Hz; noise = median of the neighbouring bins)\n";
-  Table e({"fault", "frequency", "expected Hz", "peak Hz", "amplitude m/s^2", "SNR dB", "suspected"},
-          {true, true, false, false, false, false, true});
+      << " Hz from the " << c.envelope_band_source
+      << (c.envelope_band_source == "kurtogram" ? ", spectral kurtosis " + fixed(c.envelope_band_kurtosis, 2) : "")
+      << ", resolution " << fixed(c.envelope.resolution_hz, 3) << " Hz; noise = median of the neighbouring bins)\n";
+  Table e({"fault", "frequency", "expected Hz", "peak Hz", "amplitude m/s^2", "SNR dB", "harmonics dB",
+           "sidebands dB", "suspected"},
+          {true, true, false, false, false, false, false, false, true});
   for (const FaultIndicator& fi : c.faults) {
     const SpectralPeak& p = fi.envelope_peak;
     e.add_row({fault_kind_name(fi.kind), fault_frequency_label(fi.kind), fixed(p.expected_hz, 2),
                p.searched ? fixed(p.frequency_hz, 2) : "-", p.searched ? scientific(p.amplitude, 3) : "-",
-               p.searched ? fixed(p.snr_db, 1) : "-", fi.suspected ? "yes" : "no"});
+               p.searched ? fixed(p.snr_db, 1) : "-", evidence_cell(fi.harmonics, 1),
+               fi.sidebands_required ? evidence_cell(fi.sidebands, 0) : "n/a", fi.suspected ? "yes" : "no"});
   }
   e.print(out);
   out << "\nDiagnosis: " << health_level_name(c.diagnosis.level) << ": " << c.diagnosis.reason << "\n";

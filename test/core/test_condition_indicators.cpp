@@ -1,6 +1,8 @@
 // analyze_vibration on synthetic signals with known answers: a sine of known velocity,
 // Gaussian noise, and an outer-race impact train exciting a 3 kHz resonance.
 #include <cmath>
+#include <functional>
+#include <string>
 #include <random>
 #include <vector>
 
@@ -90,7 +92,9 @@ TEST(ConditionIndicators, GaussianNoiseIsOk) {
   std::normal_distribution<double> n(0.0, 0.5);
   std::vector<double> x(200000);
   for (double& v : x) v = n(rng);
-  const ConditionIndicators c = analyze_vibration(x, 20000.0, frequencies());
+  AnalysisOptions fixed;
+  fixed.envelope_band = EnvelopeBand::Fixed;
+  const ConditionIndicators c = analyze_vibration(x, 20000.0, frequencies(), fixed);
   // White noise of 0.5 m/s^2 at 20 kHz: v^2 = S/(4 pi^2) (1/10 - 1/1000) with
   // S = 0.25/10000 (m/s^2)^2/Hz: 0.25 mm/s, zone A. 15%: the 1/f^2 weight leaves some
   // 150 independent bins near 10 Hz in 10 s, a standard error of about 4% in v.
@@ -100,6 +104,51 @@ TEST(ConditionIndicators, GaussianNoiseIsOk) {
   // Default envelope band: 4 x the highest fault frequency (133 Hz -> 532 Hz) up to 0.4 fs.
   EXPECT_DOUBLE_EQ(c.envelope_low_hz, 532.0);
   EXPECT_DOUBLE_EQ(c.envelope_high_hz, 8000.0);
+  EXPECT_EQ(c.envelope_band_source, "fixed");
+  // The default, the kurtogram's band: in white noise every band is Gaussian (SK about 0;
+  // the estimate of a band of B Hz over 10 s scatters by ~sqrt(4/(10 B)), < 0.1 here).
+  const ConditionIndicators k = analyze_vibration(x, 20000.0, frequencies());
+  EXPECT_EQ(k.envelope_band_source, "kurtogram");
+  EXPECT_NEAR(k.envelope_band_kurtosis, 0.0, 0.3);
+  EXPECT_GE(k.envelope_low_hz, 532.0);
+  EXPECT_GE(k.envelope_high_hz - k.envelope_low_hz, 3.0 * 133.0);
+  EXPECT_EQ(k.diagnosis.level, HealthLevel::Ok) << k.diagnosis.reason;
+}
+
+TEST(ConditionIndicators, KurtogramFindsTheImpulsiveBand) {
+  // Bursts at BPFO of a 6 kHz tone under a Gaussian of 0.4 ms (a band-limited impulse: its
+  // spectrum is a Gaussian of 1/(2 pi 0.4 ms) = 400 Hz around 6 kHz), RMS 0.18 m/s^2,
+  // buried under Gaussian noise low-passed to 3 kHz (RMS ~1.6, nine times larger) and a weak
+  // white floor (0.05). The band of the largest spectral kurtosis must hold the bursts'
+  // band and none of the strong noise.
+  const double fs = 20000.0, bpfo = frequencies().ball_pass_outer_race_hz;
+  const double fn = 6000.0, wn = 2.0 * kPi * fn;
+  std::mt19937_64 rng(8);
+  std::normal_distribution<double> n(0.0, 1.0);
+  std::vector<double> loud(40000), x(40000);
+  for (double& v : loud) v = 3.0 * n(rng);
+  loud = band_pass(loud, fs, 0.0, 3000.0);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double since = std::fmod(i / fs, 1.0 / bpfo);
+    const double g = (since - 2e-3) / 0.4e-3;
+    x[i] = std::exp(-0.5 * g * g) * std::sin(wn * since) + loud[i] + 0.05 * n(rng);
+  }
+  const Kurtogram k = fast_kurtogram(x, fs, 300.0);
+  EXPECT_LE(k.best.low_hz, fn);
+  EXPECT_GE(k.best.high_hz, fn);
+  EXPECT_GE(k.best.low_hz, 3000.0);
+  EXPECT_GT(k.best.kurtosis, 3.0);  // impulsive (Gaussian: 0; measured 9)
+  // The whole band [0, fs/2] is dominated by the loud Gaussian noise: SK near 0.
+  ASSERT_FALSE(k.bands.empty());
+  EXPECT_EQ(k.bands.front().bands_in_level, 1);
+  EXPECT_LT(k.bands.front().kurtosis, 0.3);
+  // analyze_vibration's default takes that band and finds the outer race series.
+  const ConditionIndicators c = analyze_vibration(x, fs, frequencies());
+  EXPECT_EQ(c.envelope_band_source, "kurtogram");
+  EXPECT_LE(c.envelope_low_hz, fn);
+  EXPECT_GE(c.envelope_high_hz, fn);
+  EXPECT_TRUE(c.faults[0].suspected) << c.diagnosis.reason;
+  for (std::size_t j = 1; j < 4; ++j) EXPECT_FALSE(c.faults[j].suspected) << fault_frequency_label(c.faults[j].kind);
 }
 
 TEST(ConditionIndicators, OuterRaceImpactTrain) {
@@ -133,6 +182,96 @@ TEST(ConditionIndicators, OuterRaceImpactTrain) {
   EXPECT_NEAR(c.acceleration.kurtosis, 4.77, 0.3);
   EXPECT_EQ(c.diagnosis.level, HealthLevel::Warn);
   EXPECT_EQ(c.diagnosis.reason.rfind("outer race defect suspected: envelope peak at 87.", 0), 0u) << c.diagnosis.reason;
+}
+
+// A 3 kHz carrier amplitude-modulated by 1 + e(t), in Gaussian noise (0.5 m/s^2 RMS, 20 kHz):
+// the band envelope is 1 + e(t) (e > -1), so its spectrum holds exactly the lines of e and
+// no harmonics that e does not have. 2 s: 0.5 Hz bins.
+std::vector<double> modulated_carrier(const std::function<double(double)>& e, unsigned seed) {
+  const double fs = 20000.0;
+  std::vector<double> x(40000);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> n(0.0, 0.5);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double t = i / fs;
+    x[i] = (1.0 + e(t)) * std::sin(2.0 * kPi * 3000.0 * t) + n(rng);
+  }
+  return x;
+}
+
+ConditionIndicators analyze_carrier(const std::vector<double>& x, const BearingFrequencies& f) {
+  AnalysisOptions o;
+  o.resonance_hz = 3000.0;
+  return analyze_vibration(x, 20000.0, f, o);
+}
+
+// Envelope noise per 0.5 Hz bin: the band noise (0.5^2 x 2/10 = 0.05 (m/s^2)^2 over 1 kHz
+// of envelope bandwidth) gives about 2 sqrt(5e-5 x 0.5 x 1.5) = 0.012 m/s^2 with Hann, so a
+// 0.3 line is ~28 dB over it, a 0.2 line ~24 dB, a 0.09 sideband ~17 dB: all far over the
+// 12 / 10 dB thresholds; an absent line is noise (a Rayleigh bin over 10 dB: ~0.1%).
+TEST(ConditionIndicators, FundamentalWithoutHarmonicsIsNotAFault) {
+  const double bpfo = frequencies().ball_pass_outer_race_hz;
+  const ConditionIndicators c =
+      analyze_carrier(modulated_carrier([&](double t) { return 0.3 * std::cos(2.0 * kPi * bpfo * t); }, 21),
+                      frequencies());
+  const FaultIndicator& f = c.faults[0];
+  ASSERT_EQ(f.kind, FaultKind::OuterRace);
+  ASSERT_EQ(f.harmonics.size(), 3u);
+  EXPECT_TRUE(f.harmonics[0].found);
+  EXPECT_GE(f.harmonics[0].peak.snr_db, 20.0);
+  EXPECT_FALSE(f.harmonics[1].found) << f.harmonics[1].peak.snr_db;
+  EXPECT_EQ(f.harmonics_found, 1);
+  EXPECT_FALSE(f.sidebands_required);  // frequencies() has both rings at 0 in the load frame
+  EXPECT_FALSE(f.suspected);
+  for (const FaultIndicator& g : c.faults) EXPECT_FALSE(g.suspected) << fault_frequency_label(g.kind);
+  EXPECT_EQ(c.diagnosis.reason.find("suspected"), std::string::npos) << c.diagnosis.reason;
+}
+
+TEST(ConditionIndicators, FundamentalWithHarmonicsIsAFault) {
+  const double bpfo = frequencies().ball_pass_outer_race_hz;
+  const ConditionIndicators c = analyze_carrier(
+      modulated_carrier(
+          [&](double t) { return 0.3 * std::cos(2.0 * kPi * bpfo * t) + 0.2 * std::cos(4.0 * kPi * bpfo * t); }, 21),
+      frequencies());
+  const FaultIndicator& f = c.faults[0];
+  EXPECT_EQ(f.harmonics_found, 2);  // no 3rd harmonic in e
+  EXPECT_NEAR(f.harmonics[1].peak.frequency_hz, 2.0 * bpfo, 0.01 * 2.0 * bpfo);
+  EXPECT_GE(f.harmonics[1].peak.snr_db, 15.0);
+  EXPECT_TRUE(f.suspected);
+  for (std::size_t k = 1; k < 4; ++k) EXPECT_FALSE(c.faults[k].suspected) << fault_frequency_label(c.faults[k].kind);
+  EXPECT_EQ(c.diagnosis.reason.rfind("outer race defect suspected: envelope peak at 87.", 0), 0u) << c.diagnosis.reason;
+  EXPECT_NE(c.diagnosis.reason.find("2 harmonics"), std::string::npos) << c.diagnosis.reason;
+}
+
+TEST(ConditionIndicators, InnerRaceNeedsItsShaftSpeedSidebands) {
+  // The inner ring turns at 29 Hz in the load frame: an inner-race spall passes the load
+  // zone once per turn, so its lines carry sidebands at -+29 Hz.
+  BearingFrequencies fr = frequencies();
+  fr.inner_ring_hz = 29.0;
+  fr.relative_ring_hz = 29.0;
+  const double bpfi = fr.ball_pass_inner_race_hz;
+  auto series = [&](double t) { return 0.3 * std::cos(2.0 * kPi * bpfi * t) + 0.2 * std::cos(4.0 * kPi * bpfi * t); };
+  // Harmonics but no sidebands: not an inner race defect.
+  const ConditionIndicators bare = analyze_carrier(modulated_carrier(series, 22), fr);
+  const FaultIndicator& b = bare.faults[1];
+  ASSERT_EQ(b.kind, FaultKind::InnerRace);
+  EXPECT_EQ(b.harmonics_found, 2);
+  EXPECT_TRUE(b.sidebands_required);
+  EXPECT_DOUBLE_EQ(b.modulation_hz, 29.0);
+  ASSERT_EQ(b.sidebands.size(), 2u);
+  EXPECT_EQ(b.sidebands_found, 0);
+  EXPECT_FALSE(b.suspected);
+  // The same series modulated by 1 + 0.6 cos(2 pi 29 t): sidebands of 0.09 at 133 -+ 29 Hz.
+  const ConditionIndicators mod = analyze_carrier(
+      modulated_carrier([&](double t) { return series(t) * (1.0 + 0.6 * std::cos(2.0 * kPi * 29.0 * t)); }, 22), fr);
+  const FaultIndicator& m = mod.faults[1];
+  EXPECT_EQ(m.harmonics_found, 2);
+  EXPECT_EQ(m.sidebands_found, 2);
+  EXPECT_NEAR(m.sidebands[0].peak.frequency_hz, bpfi - 29.0, 0.01 * (bpfi - 29.0));
+  EXPECT_NEAR(m.sidebands[1].peak.frequency_hz, bpfi + 29.0, 0.01 * (bpfi + 29.0));
+  EXPECT_TRUE(m.suspected);
+  EXPECT_NE(mod.diagnosis.reason.find("inner race defect suspected"), std::string::npos) << mod.diagnosis.reason;
+  EXPECT_NE(mod.diagnosis.reason.find("2/2 sidebands at -+29.0 Hz"), std::string::npos) << mod.diagnosis.reason;
 }
 
 TEST(ConditionIndicators, WindowAndErrors) {

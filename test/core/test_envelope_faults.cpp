@@ -5,6 +5,7 @@
 // sampled at 40 kHz. Spall: 1 mm wide, 30 um deep (a ball of 7.94 mm drops
 // w^2/(4d) = 31 um into it, so the full depth is reached).
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <string>
 #include <vector>
@@ -105,6 +106,30 @@ TEST(Envelope, HealthyBearingShowsNoFaultLine) {
   EXPECT_EQ(c.diagnosis.reason.find("suspected"), std::string::npos) << c.diagnosis.reason;
 }
 
+TEST(Envelope, FrozenRoughnessSeriesWithoutSidebandsIsNotAnInnerRaceDefect) {
+  // The core's roughness is a frozen profile: with evenly spaced balls it repeats exactly
+  // at BPFI (docs/health.md, known limitation), a line series with harmonics. But it does
+  // not pass the load zone once per inner ring turn as a spall does, so it carries no
+  // -+30 Hz sidebands, and the evidence rule does not call it an inner race defect
+  // (before the rule: "inner race defect suspected", BPFI 13.5 dB). Noise-free run, in the
+  // fixed band (from 4 x BPFI to 0.4 fs): the kurtogram picks a narrower band where the
+  // frozen profile's BPFO series stands out (18 dB, 3 harmonics, and no sidebands are
+  // predicted for the stationary outer race: reported, docs/health.md known limitation).
+  const BearingModel model = bearing_6205(kRoughness);
+  AnalysisOptions o;
+  o.window_s = 0.8;
+  o.envelope_band = EnvelopeBand::Fixed;
+  const ConditionIndicators c =
+      analyze_vibration(simulate(model, 1.0), kRateHz, bearing_frequencies(model, kSpeedRadS), o);
+  const FaultIndicator& bpfi = fault(c, FaultKind::InnerRace);
+  EXPECT_TRUE(bpfi.harmonics[0].found) << bpfi.envelope_peak.snr_db;  // the line is there ...
+  EXPECT_TRUE(bpfi.sidebands_required);
+  EXPECT_EQ(bpfi.sidebands_found, 0);                                  // ... its modulation is not
+  for (const EvidenceLine& s : bpfi.sidebands) EXPECT_LT(s.peak.snr_db, 10.0) << s.offset_hz;
+  for (const FaultIndicator& f : c.faults) EXPECT_FALSE(f.suspected) << fault_frequency_label(f.kind);
+  EXPECT_EQ(c.diagnosis.reason.find("suspected"), std::string::npos) << c.diagnosis.reason;
+}
+
 void expect_fault_line(const ConditionIndicators& c, FaultKind kind, double expected_hz) {
   const SpectralPeak& p = fault(c, kind).envelope_peak;
   ASSERT_TRUE(p.searched);
@@ -114,7 +139,21 @@ void expect_fault_line(const ConditionIndicators& c, FaultKind kind, double expe
   // 10 dB over the median of the neighbouring bins: a Rayleigh-distributed noise bin
   // exceeds its median by 10 dB with probability exp(-ln2 * 10) = 0.1%.
   EXPECT_GE(p.snr_db, 10.0) << fault_frequency_label(kind);
-  EXPECT_TRUE(fault(c, kind).suspected);
+  // The evidence rule (docs/health.md): the 2nd harmonic, and a sideband where predicted.
+  const FaultIndicator& f = fault(c, kind);
+  std::printf("%s band %s %.0f-%.0f Hz, SK %.2f\n", fault_frequency_label(kind), c.envelope_band_source.c_str(),
+              c.envelope_low_hz, c.envelope_high_hz, c.envelope_band_kurtosis);
+  for (const EvidenceLine& h : f.harmonics)
+    std::printf("%s harmonic %d: %.2f Hz %.1f dB\n", fault_frequency_label(kind), h.order, h.peak.frequency_hz,
+                h.peak.snr_db);
+  for (const EvidenceLine& b : f.sidebands)
+    std::printf("%s sideband %+.2f Hz: %.2f Hz %.1f dB\n", fault_frequency_label(kind), b.offset_hz,
+                b.peak.frequency_hz, b.peak.snr_db);
+  EXPECT_GE(f.harmonics_found, 2) << fault_frequency_label(kind);
+  if (f.sidebands_required) {
+    EXPECT_GE(f.sidebands_found, 1) << fault_frequency_label(kind);
+  }
+  EXPECT_TRUE(f.suspected);
 }
 
 TEST(Envelope, OuterRaceSpallAtBpfo) {

@@ -22,6 +22,9 @@ TEST(Frequencies, Bearing6205PublishedMultipliers) {
   EXPECT_NEAR(f.cage_hz / shaft_hz, 0.39828, 1e-3 * 0.39828);
   EXPECT_NEAR(2.0 * f.ball_spin_hz / shaft_hz, 4.7135, 1e-3 * 4.7135);
   EXPECT_NEAR(f.relative_ring_hz, shaft_hz, 1e-12 * shaft_hz);
+  // Ring speeds in the load frame (the modulation of race defects): inner turns, outer stands.
+  EXPECT_NEAR(f.inner_ring_hz, shaft_hz, 1e-12 * shaft_hz);
+  EXPECT_EQ(f.outer_ring_hz, 0.0);
   // Conservation: BPFO + BPFI = Z f_r for any bearing (rounding only).
   EXPECT_NEAR(f.ball_pass_outer_race_hz + f.ball_pass_inner_race_hz, 9.0 * shaft_hz, 1e-12 * shaft_hz);
   // Outer ring fixed: the load zone is fixed to it, so the varying compliance is BPFO.
@@ -41,6 +44,8 @@ TEST(Frequencies, CtBearingOuterRingAt180Rpm) {
   EXPECT_NEAR(f.ball_pass_inner_race_hz, f.varying_compliance_hz, 1e-9);
   EXPECT_NEAR(f.ball_pass_outer_race_hz, 207.0 * (3.0 - f.cage_hz), 1e-9);
   EXPECT_NEAR(f.relative_ring_hz, 3.0, 1e-12);
+  EXPECT_EQ(f.inner_ring_hz, 0.0);
+  EXPECT_NEAR(f.outer_ring_hz, 3.0, 1e-12);
 }
 
 TEST(Frequencies, CageSpeedIsLinearInRingSpeeds) {

@@ -151,22 +151,33 @@ def test_generate_gives_bearing_tool_generate_samples(tmp_path):
 
 
 def test_analyze_a_modulated_carrier():
-    # An outer-race fault's signature: a 3 kHz carrier amplitude-modulated at BPFO. Its
-    # RMS is A sqrt((1 + m^2/2)/2) in closed form, and the envelope line sits at BPFO.
+    # An outer-race fault's signature: a 3 kHz carrier amplitude-modulated at BPFO and its
+    # 2nd harmonic. Its RMS is A sqrt((1 + m1^2/2 + m2^2/2)/2) in closed form, and the
+    # envelope lines sit at BPFO and 2 BPFO. A lone BPFO line (m2 = 0) is not a defect: the
+    # evidence rule wants the 2nd harmonic too (docs/health.md, "Evidence").
     b = bearing_sim.load_bearing(B6205)
     rate, fr = 20000.0, 25.0
     bpfo = b.frequencies(2 * math.pi * fr)['ball_pass_outer_race_hz']
     t = np.arange(int(2.0 * rate)) / rate
-    A, m = 5.0, 0.8
-    x = A * (1 + m * np.cos(2 * np.pi * bpfo * t)) * np.sin(2 * np.pi * 3000.0 * t)
-    rng = np.random.default_rng(3)
-    x = x + rng.normal(0.0, 0.05, x.size)
-    r = bearing_sim.analyze(x, rate, b, inner_rad_s=2 * math.pi * fr, resonance_hz=3000.0)
-    assert r['rms_m_s2'] == pytest.approx(A * math.sqrt((1 + m * m / 2) / 2), rel=0.01)
+    A = 5.0
+
+    def analyze(m1, m2):
+        x = A * (1 + m1 * np.cos(2 * np.pi * bpfo * t) + m2 * np.cos(4 * np.pi * bpfo * t)) \
+            * np.sin(2 * np.pi * 3000.0 * t)
+        rng = np.random.default_rng(3)
+        x = x + rng.normal(0.0, 0.05, x.size)
+        return bearing_sim.analyze(x, rate, b, inner_rad_s=2 * math.pi * fr, resonance_hz=3000.0)
+
+    m1, m2 = 0.5, 0.3
+    r = analyze(m1, m2)
+    assert r['rms_m_s2'] == pytest.approx(A * math.sqrt((1 + m1 * m1 / 2 + m2 * m2 / 2) / 2), rel=0.01)
     outer = r['faults'][0]
     assert outer['label'] == 'BPFO' and outer['suspected']
+    assert outer['harmonics_found'] >= 2
     assert outer['frequency_hz'] == pytest.approx(bpfo, abs=r['envelope_resolution_hz'])
     assert not r['faults'][1]['suspected']
+    lone = analyze(0.8, 0.0)['faults'][0]
+    assert lone['harmonics_found'] == 1 and not lone['suspected']
 
 
 def test_modes_agree_with_an_independent_eigensolver():

@@ -115,6 +115,10 @@ inline void expect_equal(const bearing_sim::BearingHealth& ros, const bearing_si
     LCM_EXPECT_SAME_DOUBLE(r.amplitude_m_s2, l.amplitude_m_s2);
     LCM_EXPECT_SAME_DOUBLE(r.noise_floor_m_s2, l.noise_floor_m_s2);
     LCM_EXPECT_SAME_DOUBLE(r.snr_db, l.snr_db);
+    EXPECT_EQ(static_cast<int>(r.harmonics_found), static_cast<int>(l.harmonics_found));
+    EXPECT_EQ(static_cast<bool>(r.sidebands_required), l.sidebands_required);
+    LCM_EXPECT_SAME_DOUBLE(r.modulation_hz, l.modulation_hz);
+    EXPECT_EQ(static_cast<int>(r.sidebands_found), static_cast<int>(l.sidebands_found));
     EXPECT_EQ(static_cast<bool>(r.suspected), l.suspected);
   }
   EXPECT_EQ(ros.level, lcm.level);

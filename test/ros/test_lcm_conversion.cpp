@@ -82,6 +82,10 @@ BearingHealth health(std::size_t faults, std::size_t defects) {
     l.amplitude_m_s2 = 1e-5 * static_cast<double>(i + 1);
     l.noise_floor_m_s2 = 1e-7;
     l.snr_db = std::nan("7");  // a payload-carrying NaN must survive
+    l.harmonics_found = static_cast<std::uint8_t>(i % 4);
+    l.sidebands_required = i % 2 == 1;
+    l.modulation_hz = 29.5;
+    l.sidebands_found = static_cast<std::uint8_t>(i % 3);
     l.suspected = i % 2 == 0;
     h.faults.push_back(l);
   }

@@ -85,6 +85,10 @@ TEST_F(AnalyzeTool, SameIndicatorsAsTheLibrary) {
   near(j["L_dB"], c.level_db);
   near(j["velocity_rms_mm_s"], c.velocity_rms_mm_s);
   EXPECT_EQ(j["zone"], bearing_sim::velocity_zone_name(c.zone));
+  EXPECT_EQ(j["envelope_band_source"], "kurtogram");
+  near(j["envelope_band_hz"][0], c.envelope_low_hz);
+  near(j["envelope_band_hz"][1], c.envelope_high_hz);
+  EXPECT_NEAR(j["envelope_band_kurtosis"].get<double>(), c.envelope_band_kurtosis, 1e-4);
   ASSERT_EQ(j["faults"].size(), c.faults.size());
   for (std::size_t k = 0; k < c.faults.size(); ++k) {
     const json& p = j["faults"][k]["envelope_peak"];
@@ -92,7 +96,24 @@ TEST_F(AnalyzeTool, SameIndicatorsAsTheLibrary) {
     near(p["amplitude_m_s2"], c.faults[k].envelope_peak.amplitude);
     EXPECT_NEAR(p["snr_db"].get<double>(), c.faults[k].envelope_peak.snr_db, 1e-4);
     EXPECT_EQ(j["faults"][k]["suspected"].get<bool>(), c.faults[k].suspected);
+    // The evidence behind the decision.
+    const bearing_sim::FaultIndicator& f = c.faults[k];
+    EXPECT_EQ(j["faults"][k]["harmonics_found"].get<int>(), f.harmonics_found);
+    EXPECT_EQ(j["faults"][k]["sidebands_found"].get<int>(), f.sidebands_found);
+    EXPECT_EQ(j["faults"][k]["sidebands_required"].get<bool>(), f.sidebands_required);
+    ASSERT_EQ(j["faults"][k]["harmonics"].size(), f.harmonics.size());
+    for (std::size_t n = 0; n < f.harmonics.size(); ++n) {
+      const json& h = j["faults"][k]["harmonics"][n];
+      EXPECT_EQ(h["order"].get<int>(), f.harmonics[n].order);
+      EXPECT_EQ(h["found"].get<bool>(), f.harmonics[n].found);
+      EXPECT_NEAR(h["peak"]["snr_db"].get<double>(), f.harmonics[n].peak.snr_db, 1e-4);
+    }
+    ASSERT_EQ(j["faults"][k]["sidebands"].size(), f.sidebands.size());
   }
+  // The outer race spall's BPFO series: fundamental and 2nd harmonic found (the inner ring
+  // turns, the outer stands: no sidebands required).
+  EXPECT_GE(j["faults"][0]["harmonics_found"].get<int>(), 2);
+  EXPECT_FALSE(j["faults"][0]["sidebands_required"].get<bool>());
   EXPECT_EQ(j["level"], bearing_sim::health_level_name(c.diagnosis.level));
   EXPECT_EQ(j["reason"], c.diagnosis.reason);
   // And physically: the outer race spall is what the tool reports.

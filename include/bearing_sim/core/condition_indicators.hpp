@@ -33,20 +33,33 @@ struct DiagnosisThresholds {
   // suspected -> WARN. The peak is the largest of the ~13 bins searched around each of 4
   // lines; in pure noise (Rayleigh bins) 10 dB is exceeded in ~4% of analyses, 12 dB in ~0.1%.
   double fault_snr_db = 12.0;
+  // Supporting lines (the 2nd harmonic, the modulation sidebands) this far over their noise
+  // floor. They are only looked at once the fundamental has passed fault_snr_db, so a lower
+  // bar is safe: a noise bin exceeds its median by 10 dB with probability 0.1% (Rayleigh),
+  // ~1% as the largest of the ~13 bins searched; with the fundamental's 0.1% that is ~1e-5
+  // per fault type. Evidence rule: docs/health.md, "Evidence".
+  double evidence_snr_db = 10.0;
   double kurtosis_warn = 6.0;    // impulsive signal -> WARN (Gaussian noise: 3); <= 0 disables
   VelocityZone warn_zone = VelocityZone::C;   // velocity zone at or above: WARN
   VelocityZone error_zone = VelocityZone::D;  // ... ERROR
 };
+
+// How the envelope band is chosen when no resonance_hz is given (docs/health.md).
+enum class EnvelopeBand { Kurtogram, Fixed };
 
 struct AnalysisOptions {
   // Analyse the last window_s seconds of the signal (0: all of it). The window is then
   // shortened to an FFT-friendly length (2^a 3^b 5^c samples, a few percent at most).
   double window_s = 0.0;
   // Envelope band: centred on resonance_hz (the sensor's transmission-path resonance,
-  // typically 3-5 kHz) with envelope_band_width_hz; when resonance_hz is 0, from
-  // 4 x the highest fault frequency (at least 500 Hz) up to 0.4 x the sample rate.
+  // typically 3-5 kHz) with envelope_band_width_hz; when resonance_hz is 0, by
+  // envelope_band: Kurtogram, the band of the largest spectral kurtosis (fast_kurtogram)
+  // among those at least 3 x the highest fault frequency wide with a low edge at or above
+  // max(500 Hz, 4 x the highest fault frequency); Fixed, from that low edge up to 0.4 x the
+  // sample rate.
   double resonance_hz = 0.0;
   double envelope_band_width_hz = 2000.0;
+  EnvelopeBand envelope_band = EnvelopeBand::Kurtogram;
   // Velocity band; a low edge of 0 takes ISO 20816-3's for the machine's speed
   // (iso20816_velocity_low_hz of the relative ring speed).
   double velocity_low_hz = 0.0;
@@ -62,6 +75,15 @@ struct AnalysisOptions {
 };
 
 enum class FaultKind { OuterRace, InnerRace, Ball, Cage };
+
+// One line of a fault's evidence in the envelope spectrum: a harmonic n f_fault (order n)
+// or a sideband f_fault + offset_hz (offset -f_mod or +f_mod).
+struct EvidenceLine {
+  int order = 1;           // harmonic number (1: the fundamental); sidebands: 1
+  double offset_hz = 0.0;  // 0 for a harmonic; -+ the modulation frequency for a sideband
+  SpectralPeak peak;       // searched at expected_hz (amplitude in m/s^2, snr_db over noise)
+  bool found = false;      // a local maximum with snr_db >= its threshold
+};
 const char* fault_kind_name(FaultKind kind);  // "outer race", "inner race", "ball", "cage"
 const char* fault_frequency_label(FaultKind kind);  // "BPFO", "BPFI", "2xBSF", "FTF"
 
@@ -71,7 +93,19 @@ struct FaultIndicator {
   // Line amplitude over the mean of the envelope: near 1 for a spall's impact train,
   // well below for the weak periodicity of distributed roughness (informative only).
   double modulation = 0.0;
-  bool suspected = false;      // a local maximum with snr_db >= thresholds.fault_snr_db
+  // Evidence (docs/health.md "Evidence"): harmonics 1..3 (the 1st is envelope_peak; the 2nd
+  // and 3rd searched at n x the found fundamental), and the sidebands f_fault -+ f_mod when
+  // the physics predicts amplitude modulation (inner race: the inner ring's speed in the
+  // load frame; outer race: the outer ring's; ball: the cage's), else empty.
+  std::vector<EvidenceLine> harmonics;
+  std::vector<EvidenceLine> sidebands;
+  double modulation_hz = 0.0;        // f_mod (0: no modulation predicted or not resolvable)
+  int harmonics_found = 0;           // consecutive from the 1st: 0 .. 3
+  int sidebands_found = 0;           // 0 .. 2
+  bool sidebands_required = false;   // modulation predicted and resolvable
+  // Fundamental found (fault_snr_db) AND 2nd harmonic found (evidence_snr_db) AND, when
+  // sidebands_required, at least one sideband found (evidence_snr_db).
+  bool suspected = false;
 };
 
 struct Diagnosis {
@@ -89,6 +123,8 @@ struct ConditionIndicators {
   double velocity_low_hz = 0.0, velocity_high_hz = 0.0;  // the band used
   VelocityZone zone = VelocityZone::A;
   double envelope_low_hz = 0.0, envelope_high_hz = 0.0;
+  std::string envelope_band_source;    // "resonance", "kurtogram" or "fixed"
+  double envelope_band_kurtosis = 0.0; // spectral kurtosis of the band (kurtogram only)
   double envelope_mean_m_s2 = 0.0;  // mean of the band envelope (the demodulated level)
   Spectrum envelope;  // envelope spectrum, m/s^2
   std::vector<FaultIndicator> faults;  // outer race, inner race, ball, cage in that order
@@ -106,6 +142,11 @@ double iso20816_velocity_low_hz(double shaft_speed_hz);
 
 // The fault frequency searched for a kind: BPFO, BPFI, 2 x ball spin, |cage|.
 double fault_frequency_hz(const BearingFrequencies& f, FaultKind kind);
+
+// The frequency that amplitude-modulates a defect of this kind: the speed, in the frame of
+// the (fixed) load, of what carries the defect through the load zone. Inner race:
+// inner_ring_hz; outer race: outer_ring_hz; ball: |cage_hz|; cage: 0 (none predicted).
+double modulation_frequency_hz(const BearingFrequencies& f, FaultKind kind);
 
 // The diagnosis from indicators already computed (analyze_vibration calls it).
 Diagnosis diagnose(const ConditionIndicators& indicators, const DiagnosisThresholds& thresholds);

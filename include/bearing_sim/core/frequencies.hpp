@@ -11,6 +11,10 @@ struct BearingFrequencies {
   double ball_spin_hz = 0.0;               // dm/(2d) (1 - gamma^2) f_r
   double relative_ring_hz = 0.0;           // |f_i - f_o|
   double varying_compliance_hz = 0.0;      // Z |f_c|: balls passing the stationary load zone
+  // Ring speeds in the bearing frame (where the load is fixed): a spall on a ring turns
+  // through the load zone at this rate (0 for a stationary ring).
+  double inner_ring_hz = 0.0;              // |f_i|
+  double outer_ring_hz = 0.0;              // |f_o|
 };
 
 BearingFrequencies bearing_frequencies(const BearingModel& model, double inner_rad_s, double outer_rad_s);
