@@ -2,7 +2,9 @@
 // the key and both lines (yaml-cpp's node API would silently keep the first occurrence).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <regex>
@@ -49,15 +51,18 @@ void expect_names(const std::string& message, const std::vector<std::string>& wo
 }
 
 TEST(DuplicateKeys, AStaleBallCountAboveTheRealOneIsRefusedNotSimulated) {
-  // The classic: balls_per_row: 10 left above the real balls_per_row: 207 (line 19).
+  // The classic: balls_per_row: 10 left above the real balls_per_row: 207.
   const std::string path = config_path("bearings/ct_gantry_lyc.yaml");
   std::vector<std::string> lines = lines_of(read_text(path));
-  ASSERT_EQ(lines.at(18), "balls_per_row: 207");
-  lines.insert(lines.begin() + 18, "balls_per_row: 10");
+  const auto real = std::find(lines.begin(), lines.end(), "balls_per_row: 207");
+  ASSERT_NE(real, lines.end());
+  const int line = static_cast<int>(real - lines.begin()) + 1;  // 1-based, as the message
+  lines.insert(real, "balls_per_row: 10");
   std::string text;
   for (const auto& l : lines) text += l + "\n";
   const std::string message = error_of<ConfigError>([&] { bearing_config_from_string(text, path); });
-  expect_names(message, {path, "'balls_per_row'", "appears twice", "lines 19 and 20"});
+  expect_names(message, {path, "'balls_per_row'", "appears twice",
+                         "lines " + std::to_string(line) + " and " + std::to_string(line + 1)});
 }
 
 TEST(DuplicateKeys, EveryTopLevelKeyOfEveryShippedFileWrittenTwiceIsRefused) {
@@ -65,14 +70,21 @@ TEST(DuplicateKeys, EveryTopLevelKeyOfEveryShippedFileWrittenTwiceIsRefused) {
     std::string relative;
     std::function<void(const std::string&, const std::string&)> load;
   };
-  const std::vector<File> files = {
-      {"bearings/ct_gantry_lyc.yaml", [](auto& t, auto& s) { bearing_config_from_string(t, s); }},
-      {"bearings/deep_groove_6205.yaml", [](auto& t, auto& s) { bearing_config_from_string(t, s); }},
-      {"bearings/ins_618_22_db.yaml", [](auto& t, auto& s) { bearing_config_from_string(t, s); }},
-      {"sensors/ct_gantry_housing_accelerometer.yaml", [](auto& t, auto& s) { accelerometer_config_from_string(t, s); }},
-      {"scenarios/ct_gantry_scan.yaml", [](auto& t, auto& s) { Scenario::from_string(t, s); }},
-      {"scenarios/ct_gantry_run_to_failure.yaml", [](auto& t, auto& s) { Scenario::from_string(t, s); }},
-  };
+  // Every shipped bearing, sensor and scenario file, whatever is added later.
+  std::vector<File> files;
+  const std::function<void(const std::string&, const std::string&)> loaders[] = {
+      [](auto& t, auto& s) { bearing_config_from_string(t, s); },
+      [](auto& t, auto& s) { accelerometer_config_from_string(t, s); },
+      [](auto& t, auto& s) { Scenario::from_string(t, s); }};
+  const char* const folders[] = {"bearings", "sensors", "scenarios"};
+  for (int k = 0; k < 3; ++k) {
+    std::vector<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(config_path(folders[k])))
+      if (entry.path().extension() == ".yaml") names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    for (const std::string& name : names) files.push_back({std::string(folders[k]) + "/" + name, loaders[k]});
+  }
+  ASSERT_GE(files.size(), 6u);
   const std::regex top_level_key(R"(^([A-Za-z_][A-Za-z0-9_]*):.*$)");
   int checked = 0;
   for (const File& f : files) {
