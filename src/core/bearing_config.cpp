@@ -120,7 +120,7 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
     c.contact_damping_Ns_per_m = dr.number("contact_damping_Ns_per_m", 0.0);
     dr.require(c.contact_damping_Ns_per_m >= 0.0, "contact_damping_Ns_per_m", "must be >= 0");
   }
-  c.imperfections = parse_imperfections(root["imperfections"], root["defects"], source);
+  c.imperfections = parse_imperfections(root["imperfections"], root["defects"], source, c.rows);
   if (c.imperfections.ball_spacing_jitter_m > 0.1 * kPi * c.pitch_diameter_m / c.balls_per_row)
     throw ConfigError(source + ": key 'imperfections.ball_spacing_jitter_mm': must be below a tenth of the ball "
                                "pitch, or balls would overlap");
