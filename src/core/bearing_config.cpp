@@ -192,7 +192,7 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
   if (const YAML::Node body = r.map("carried_body")) read_carried_body(Reader(body, source, "carried_body."), &c);
   const YAML::Node dmp = r.map("damping");
   if (dmp) read_damping(Reader(dmp, source, "damping."), dmp, &c);
-  c.imperfections = parse_imperfections(root["imperfections"], root["defects"], source);
+  c.imperfections = parse_imperfections(root["imperfections"], root["defects"], source, c.rows);
   if (c.imperfections.ball_spacing_jitter_m > 0.1 * kPi * c.pitch_diameter_m / c.balls_per_row)
     throw ConfigError(source + ": key 'imperfections.ball_spacing_jitter_mm': must be below a tenth of the ball "
                                "pitch, or balls would overlap");

@@ -28,8 +28,13 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
   groove_centre_distance_ = (c.inner_groove_curvature + c.outer_groove_curvature - 1.0) * d;
   clearance_m_ = operating_clearance_m(c);
   cos_a0_ = std::cos(a0);
-  groove_centre_radius_ = c.pitch_diameter_m / 2.0 - (c.outer_groove_curvature - 0.5) * d * cos_a0_;
   moving_sign_ = c.rotating_ring == RotatingRing::Outer ? 1.0 : -1.0;
+  // The moving ring's displacement and moment arms are taken at its own groove centre:
+  // P_o for a moving outer ring, P_i = P_o + A e0 for a moving inner ring (section 5.1).
+  const bool inner_moves = c.rotating_ring == RotatingRing::Inner;
+  const double arm_shift = inner_moves ? groove_centre_distance_ : 0.0;
+  const double outer_centre_radius = c.pitch_diameter_m / 2.0 - (c.outer_groove_curvature - 0.5) * d * cos_a0_;
+  groove_centre_radius_ = outer_centre_radius + arm_shift * cos_a0_;
 
   const int n = c.rows * c.balls_per_row;
   base_azimuth_.resize(n);
@@ -47,7 +52,7 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
   std::normal_distribution<double> spacing(0.0, 1.0);
   for (int r = 0; r < c.rows; ++r) {
     const double nz = row_contact_sign(r) * std::sin(a0);
-    const double gz = row_axial_position_m(r) - (c.outer_groove_curvature - 0.5) * d * nz;
+    const double gz = row_axial_position_m(r) - (c.outer_groove_curvature - 0.5) * d * nz + arm_shift * nz;
     for (int j = 0; j < c.balls_per_row; ++j) {
       const int b = r * c.balls_per_row + j;
       const double jitter = c.imperfections.ball_spacing_jitter_m / (c.pitch_diameter_m / 2.0) * spacing(spacing_rng);
@@ -205,7 +210,7 @@ void BearingModel::set_deflection_offsets(const std::vector<double>& offsets_m) 
 // inlined so that the force loop vectorizes.
 namespace {
 struct Kinematics {
-  double px, py, pz;  // outer-groove centre P_o
+  double px, py, pz;  // groove centre of the moving ring (P_o or P_i)
   double vx, vy, vz;  // loaded centre vector v = A e0 - u
   double norm;        // |v|
   double deflection;  // delta

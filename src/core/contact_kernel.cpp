@@ -9,7 +9,8 @@
 
 #include <cmath>
 
-// Per ball b, with z = groove_centre_z[b], nz = normal_z[b] and s = sign (docs/model.md section 5):
+// Per ball b, with z = groove_centre_z[b] (of the moving ring's groove centre), nz = normal_z[b] and
+// s = sign (docs/model.md section 5):
 //   loaded centre vector v = A e0 - s u = (a_ca cphi + vx0, a_ca sphi + vy0, vz0 + vz_s sphi + vz_c cphi),
 //     vx0 = -s (q0 + q4 z), vy0 = -s (q1 - q3 z), vz0 = A nz - s q2;
 //   w = s du/dt = (wx0, wy0, wz0 + wz_s sphi + wz_c cphi),

@@ -18,20 +18,21 @@ namespace bearing_sim::detail {
 // evaluation fills them on the stack for every call.
 struct ContactKernelInput {
   double cos_cage, sin_cage;
-  double groove_centre_radius, cos_a0, groove_centre_distance;
+  double groove_centre_radius, cos_a0, groove_centre_distance;  // radius: of the moving ring's groove centre
   double clearance, sign, stiffness, damping;
   const double* q;
   const double* q_dot;
   const double* cos_base;
   const double* sin_base;
-  const double* groove_centre_z;  // per ball (of its row)
+  const double* groove_centre_z;  // per ball (of its row); groove centre of the moving ring
   const double* normal_z;         // per ball (of its row)
   const double* offset;
   int n;
 };
 
 // Sums over the balls of s_b v_b (s_b = Q_b / |v_b|), of s_b v_bz cos(phi_b), s_b v_bz sin(phi_b),
-// and of s_b v_bx z_b, s_b v_by z_b (z_b: axial coordinate of the ball's groove centre).
+// and of s_b v_bx z_b, s_b v_by z_b (z_b: axial coordinate of the ball's groove centre in the
+// moving ring, where its displacement and moment arm are taken).
 struct ContactSums {
   double x, y, z, z_cos, z_sin, x_z, y_z;
 };

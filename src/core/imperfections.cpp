@@ -44,7 +44,7 @@ Surface parse_surface(const std::string& name) {
 }
 
 ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML::Node& defects,
-                                     const std::string& source) {
+                                     const std::string& source, int rows) {
   ImperfectionSpec spec;
   auto surface_of = [&](const detail::Reader& r, const std::string& key) {
     try {
@@ -53,11 +53,20 @@ ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML
       r.fail(key, e.what());
     }
   };
+  // A row index of this bearing, or `fallback` when the key is absent.
+  auto row_of = [&](const detail::Reader& r, const std::string& key, int fallback) {
+    const int row = r.integer(key, fallback);
+    if (r.has(key))
+      r.require(row >= 0 && row < rows, key,
+                rows == 1 ? "must be 0 (the bearing has one row)" : "must be 0 or 1 (the bearing has two rows)");
+    return row;
+  };
   if (imperfections) {
     if (!imperfections.IsMap()) throw ConfigError(source + ": key 'imperfections': expected a mapping");
     detail::Reader r(imperfections, source, "imperfections.");
-    r.check_keys({"seed", "waviness", "ball_diameter_variation_um", "roughness_rms_um", "ball_spacing_jitter_mm",
-                  "cage_slip_percent", "cage_slip_variation_percent", "cage_slip_correlation_s"});
+    r.check_keys({"seed", "waviness", "ball_diameter_variation_um", "roughness_rms_um", "roughness_row",
+                  "ball_spacing_jitter_mm", "cage_slip_percent", "cage_slip_variation_percent",
+                  "cage_slip_correlation_s"});
     const int seed = r.integer("seed", 1);
     r.require(seed >= 0, "seed", "must be >= 0");
     spec.seed = static_cast<std::uint64_t>(seed);
@@ -65,6 +74,7 @@ ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML
     r.require(spec.ball_diameter_variation_m >= 0.0, "ball_diameter_variation_um", "must be >= 0");
     spec.roughness_rms_m = r.number("roughness_rms_um", 0.0) * 1e-6;
     r.require(spec.roughness_rms_m >= 0.0, "roughness_rms_um", "must be >= 0");
+    spec.roughness_row = row_of(r, "roughness_row", -1);
     spec.ball_spacing_jitter_m = r.number("ball_spacing_jitter_mm", 0.0) * 1e-3;
     r.require(spec.ball_spacing_jitter_m >= 0.0, "ball_spacing_jitter_mm", "must be >= 0");
     spec.cage_slip = r.number("cage_slip_percent", 0.0) / 100.0;
@@ -80,7 +90,7 @@ ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML
       for (std::size_t i = 0; i < list.size(); ++i) {
         if (!list[i].IsMap()) r.fail("waviness[" + std::to_string(i) + "]", "expected a mapping");
         detail::Reader w(list[i], source, "imperfections.waviness[" + std::to_string(i) + "].");
-        w.check_keys({"surface", "order", "amplitude_um", "phase_deg"});
+        w.check_keys({"surface", "order", "amplitude_um", "phase_deg", "row"});
         Waviness wv;
         wv.surface = surface_of(w, "surface");
         wv.order = w.integer("order", 0, true);
@@ -88,6 +98,7 @@ ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML
         wv.amplitude_m = w.number("amplitude_um", 0.0, true) * 1e-6;
         w.require(wv.amplitude_m >= 0.0 && wv.amplitude_m < 50e-6, "amplitude_um", "must be in [0, 50) um");
         wv.phase_rad = w.number("phase_deg", 0.0) * kPi / 180.0;
+        wv.row = row_of(w, "row", -1);
         spec.waviness.push_back(wv);
       }
     }
@@ -99,10 +110,13 @@ ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML
       const std::string prefix = "defects[" + std::to_string(i) + "].";
       if (!defects[i].IsMap()) throw ConfigError(source + ": key '" + prefix + "': expected a mapping");
       detail::Reader d(defects[i], source, prefix);
-      d.check_keys({"surface", "position_deg", "ball", "width_mm", "depth_um", "width_growth_mm_per_hour",
+      d.check_keys({"surface", "position_deg", "ball", "row", "width_mm", "depth_um", "width_growth_mm_per_hour",
                     "depth_growth_um_per_hour"});
       Spall s;
       s.surface = surface_of(d, "surface");
+      if (s.surface == Surface::Ball && d.has("row"))
+        d.fail("row", "not for a ball spall: the ball index (row-major) gives the row");
+      s.row = row_of(d, "row", 0);
       s.position_rad = d.number("position_deg", 0.0) * kPi / 180.0;
       s.ball = d.integer("ball", 0);
       s.width_m = d.number("width_mm", 0.0, true) * 1e-3;
@@ -145,7 +159,14 @@ Imperfections::Imperfections(const ImperfectionSpec& spec, const Geometry& g) : 
   std::uniform_real_distribution<double> uniform_angle(0.0, kTwoPi);
   for (double& p : ball_phase_) p = uniform_angle(rng);
 
+  const auto check_row = [&g](int row, const char* what) {
+    if (row < -1 || row >= g.rows)
+      throw InvalidInputError(std::string(what) + ": row " + std::to_string(row) + " is not a row of the bearing (" +
+                              (g.rows == 1 ? "0" : "0 or 1") + ")");
+  };
+  check_row(spec.roughness_row, "roughness");
   for (const Waviness& w : spec.waviness) {
+    check_row(w.row, "waviness");
     Harmonic h{w.surface, w.order, w.amplitude_m, {}, {}};
     if (w.surface == Surface::Ball) {
       // The diameter along the contact line changes by r(psi) + r(psi + pi): 2 a cos(k psi + p)
@@ -155,8 +176,10 @@ Imperfections::Imperfections(const ImperfectionSpec& spec, const Geometry& g) : 
     }
     for (int b = 0; b < n_balls; ++b) {
       const double angle = w.surface == Surface::Ball ? ball_phase_[b] : g.base_azimuth[b];
-      h.cos_phase.push_back(std::cos(w.order * angle + w.phase_rad));
-      h.sin_phase.push_back(std::sin(w.order * angle + w.phase_rad));
+      // A harmonic of one row: zero terms for the other row's balls (no test in the loop).
+      const bool on_row = w.row < 0 || b / g.balls_per_row == w.row;
+      h.cos_phase.push_back(on_row ? std::cos(w.order * angle + w.phase_rad) : 0.0);
+      h.sin_phase.push_back(on_row ? std::sin(w.order * angle + w.phase_rad) : 0.0);
     }
     const int surface = static_cast<int>(w.surface);
     slope_[surface] += h.amplitude_m * w.order;
@@ -168,6 +191,7 @@ Imperfections::Imperfections(const ImperfectionSpec& spec, const Geometry& g) : 
   // race, scaled to the RMS asked for, tabulated for linear interpolation.
   if (spec.roughness_rms_m > 0.0) {
     has_roughness_ = true;
+    roughness_row_ = spec.roughness_row;
     const int k_min = std::max(2, g.balls_per_row), k_max = kProfilePoints / 4;
     for (int race = 0; race < 2; ++race) {
       std::vector<std::complex<double>> spectrum(kProfilePoints, 0.0);
@@ -223,6 +247,9 @@ void Imperfections::validate(const Spall& s) const {
       throw InvalidInputError("defect: a ball spall must be wider than 0 and at most a quarter of the ball "
                               "circumference (" + std::to_string(limit.max_width_m * 1e3) + " mm)");
   } else {
+    if (s.row < 0 || s.row >= g.rows)
+      throw InvalidInputError("defect: row " + std::to_string(s.row) + " is not a row of the bearing (" +
+                              (g.rows == 1 ? "0" : "0 or 1") + ")");
     if (!(s.width_m > 0.0) || s.width_m > limit.max_width_m)
       throw InvalidInputError("defect: a race spall must be wider than 0 and at most a quarter of the raceway (" +
                               std::to_string(limit.max_width_m * 1e3) + " mm)");
@@ -285,6 +312,10 @@ void Imperfections::fill_ball_set(const std::vector<int>& balls, BallSet* set) c
     set->entry_of_ball[balls[e]] = static_cast<int>(e);
     set->base_azimuth[e] = geometry_.base_azimuth[balls[e]];
   }
+  set->roughness_weight.clear();
+  if (has_roughness_ && roughness_row_ >= 0)
+    for (std::size_t e = 0; e < n; ++e)
+      set->roughness_weight.push_back(balls[e] / geometry_.balls_per_row == roughness_row_ ? 1.0 : 0.0);
   set->harmonic_terms.resize(2 * n * (race_waviness_.size() + ball_waviness_.size()));
   double* column = set->harmonic_terms.data();
   for (const auto* harmonics : {&race_waviness_, &ball_waviness_})
@@ -351,14 +382,21 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, d
     // Race-frame shifts wrapped to [0, 2 pi), so that the table index stays positive.
     const double to_outer = std::fmod(std::fmod(phase.cage - phase.outer_ring, kTwoPi) + 2.0 * kTwoPi, kTwoPi);
     const double to_inner = std::fmod(std::fmod(phase.cage - phase.inner_ring, kTwoPi) + 2.0 * kTwoPi, kTwoPi);
-#pragma omp simd
-    for (int b = 0; b < n; ++b) {
+    const auto rough = [=](int b) {
       const double xo = (base[b] + to_outer) * kScale, xi = (base[b] + to_inner) * kScale;
       const long io = static_cast<long>(xo), ii = static_cast<long>(xi);  // x >= 0: truncation is floor
       const double fo = xo - static_cast<double>(io), fi = xi - static_cast<double>(ii);
       const double po = outer[io & kMask], po1 = outer[(io + 1) & kMask];
       const double pi = inner[ii & kMask], pi1 = inner[(ii + 1) & kMask];
-      out[b] += po + fo * (po1 - po) + pi + fi * (pi1 - pi);
+      return po + fo * (po1 - po) + pi + fi * (pi1 - pi);
+    };
+    if (set.roughness_weight.empty()) {
+#pragma omp simd
+      for (int b = 0; b < n; ++b) out[b] += rough(b);
+    } else {  // one rough row: weight 1 on it, 0 on the other
+      const double* weight = set.roughness_weight.data();
+#pragma omp simd
+      for (int b = 0; b < n; ++b) out[b] += weight[b] * rough(b);
     }
   }
   if (!include_spalls) return;
@@ -386,7 +424,8 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, d
       // half width plus that error, in pitches, either side of its centre. Floor and ceil
       // keep a ball of slack against rounding (two balls to look at for a narrow spall).
       const double reach = (0.5 * angular_width + max_spacing_error_) / pitch;
-      for (int row = 0; row < geometry_.rows; ++row) {
+      {  // the spall's own row only
+        const int row = s.row;
         const double centre = -(start + all_base[row * z]) / pitch;
         long first = static_cast<long>(std::floor(centre - reach));
         long last = static_cast<long>(std::ceil(centre + reach));

@@ -321,7 +321,7 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
       ScenarioDefectEvent event;
       const std::string type = d.text("type", "spall");
       if (type == "spall") {
-        d.check_keys({"type", "at_s", "surface", "position_deg", "ball", "width_mm", "depth_um",
+        d.check_keys({"type", "at_s", "surface", "position_deg", "ball", "row", "width_mm", "depth_um",
                       "width_growth_mm_per_hour", "width_growth_mm_per_s", "depth_growth_um_per_hour",
                       "depth_growth_um_per_s"});
       } else if (type == "clear") {
@@ -345,6 +345,13 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
         }
         s.position_rad = d.number("position_deg", 0.0) * kPi / 180.0;
         s.ball = d.integer("ball", 0);
+        // A race spall is on one raceway: row 0 unless given; a ball spall's row is its ball's.
+        if (s.surface == Surface::Ball && d.has("row"))
+          d.fail("row", "not for a ball spall: the ball index (row-major) gives the row");
+        s.row = d.integer("row", 0);
+        d.require(s.row >= 0 && s.row < bearing_config.rows, "row",
+                  bearing_config.rows == 1 ? "must be 0 (the bearing has one row)"
+                                           : "must be 0 or 1 (the bearing has two rows)");
         s.width_m = d.number("width_mm", 0.0, true) * 1e-3;
         d.require(s.width_m > 0.0, "width_mm", "must be > 0");
         s.depth_m = d.number("depth_um", 0.0, true) * 1e-6;

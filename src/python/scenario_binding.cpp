@@ -78,6 +78,7 @@ py::dict labels_dict(const std::vector<tool::LabelState>& labels) {
       e["surface"] = surface_name(d.spall.surface);
       e["position_rad"] = d.spall.position_rad;
       e["ball"] = d.spall.surface == Surface::Ball ? d.spall.ball : -1;
+      e["row"] = d.spall.surface == Surface::Ball ? -1 : d.spall.row;
       e["width_m"] = d.width_m;
       e["depth_m"] = d.depth_m;
       e["age_s"] = d.age_s;

@@ -289,6 +289,7 @@ bool BearingSimRos::on_inject_defect(InjectDefect::Request& req, InjectDefect::R
   Spall spall;
   spall.position_rad = req.position_rad;
   spall.ball = req.ball;
+  spall.row = req.row;
   spall.width_m = req.width_m;
   spall.depth_m = req.depth_m;
   spall.width_growth_m_per_s = req.width_growth_m_per_s;

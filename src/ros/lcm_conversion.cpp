@@ -118,6 +118,7 @@ bearing_sim_lcm::defect_state_t to_lcm(const DefectState& msg) {
   out.surface = msg.surface;
   out.position_rad = msg.position_rad;
   out.ball = msg.ball;
+  out.row = msg.row;
   out.width_m = msg.width_m;
   out.depth_m = msg.depth_m;
   out.width_growth_m_per_s = msg.width_growth_m_per_s;

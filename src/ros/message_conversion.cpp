@@ -90,6 +90,7 @@ void fill_defect_state(const DefectNow& d, DefectState* s) {
   s->surface = surface_name(d.spall.surface);
   s->position_rad = d.spall.position_rad;
   s->ball = d.spall.surface == Surface::Ball ? d.spall.ball : -1;
+  s->row = d.spall.surface == Surface::Ball ? -1 : d.spall.row;
   s->width_m = d.width_m;
   s->depth_m = d.depth_m;
   s->width_growth_m_per_s = d.spall.width_growth_m_per_s;

@@ -209,6 +209,7 @@ void ScenarioPlayer::inject(const TimelineCommand& c) {
   srv.request.surface = surface_name(s.surface);
   srv.request.position_rad = s.position_rad;
   srv.request.ball = s.ball;
+  srv.request.row = s.row;
   srv.request.width_m = s.width_m;
   srv.request.depth_m = s.depth_m;
   srv.request.width_growth_m_per_s = s.width_growth_m_per_s;

@@ -73,6 +73,7 @@ void DatasetPlainWriter::label(const LabelState& s) {
     defects.push_back({{"surface", surface_name(d.spall.surface)},
                        {"position_rad", d.spall.position_rad},
                        {"ball", d.spall.surface == Surface::Ball ? d.spall.ball : -1},
+                       {"row", d.spall.surface == Surface::Ball ? -1 : d.spall.row},
                        {"width_m", d.width_m},
                        {"depth_m", d.depth_m},
                        {"width_growth_m_per_s", d.spall.width_growth_m_per_s},

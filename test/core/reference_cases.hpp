@@ -16,7 +16,7 @@ inline BearingConfig ct_gantry_with_defects(const std::string& source_dir) {
   BearingConfig config = load_bearing_config(source_dir + "/config/bearings/ct_gantry_lyc.yaml");
   const std::string file = source_dir + "/config/imperfections/ct_gantry_waviness_and_spall.yaml";
   const YAML::Node spec = YAML::LoadFile(file);
-  config.imperfections = parse_imperfections(spec["imperfections"], spec["defects"], file);
+  config.imperfections = parse_imperfections(spec["imperfections"], spec["defects"], file, config.rows);
   return config;
 }
 

@@ -132,6 +132,7 @@ inline void expect_equal(const bearing_sim::BearingHealth& ros, const bearing_si
     EXPECT_EQ(r.surface, l.surface);
     LCM_EXPECT_SAME_DOUBLE(r.position_rad, l.position_rad);
     EXPECT_EQ(r.ball, l.ball);
+    EXPECT_EQ(r.row, l.row);
     LCM_EXPECT_SAME_DOUBLE(r.width_m, l.width_m);
     LCM_EXPECT_SAME_DOUBLE(r.depth_m, l.depth_m);
     LCM_EXPECT_SAME_DOUBLE(r.width_growth_m_per_s, l.width_growth_m_per_s);

@@ -96,6 +96,7 @@ BearingHealth health(std::size_t faults, std::size_t defects) {
     d.surface = i == 0 ? "outer_race" : "ball";
     d.position_rad = -0.0;
     d.ball = i == 0 ? -1 : 413;
+    d.row = i == 0 ? 1 : -1;
     d.width_m = 2e-3;
     d.depth_m = 2e-5;
     d.width_growth_m_per_s = 1e-9;

@@ -42,7 +42,7 @@ struct BallArrays {
   std::vector<RowRun> row_runs;
   std::vector<double> base_azimuth;        // azimuth at cage angle 0, rad
   std::vector<double> cos_base, sin_base;  // of base_azimuth
-  std::vector<double> groove_centre_z;     // axial coordinate of the outer-groove centre
+  std::vector<double> groove_centre_z;     // axial coordinate of the moving ring's groove centre
   std::vector<double> normal_z;            // c_r sin a0
   std::vector<double> deflection_offset;   // constant extra deflection (ball size), m
   std::uint64_t generation = 0;           // changes whenever the subset changes
@@ -136,7 +136,7 @@ class BearingModel {
                              BallArrays* clear) const;
   // Largest contact deflection over a subset (negative: all clear).
   double max_deflection(const Vector5& q, const RollingPhase& phase, const BallArrays& balls) const;
-  // Largest distance of an outer-groove centre from the bearing centre, m.
+  // Largest distance of a moving-ring groove centre from the bearing centre, m.
   double max_lever_arm_m() const { return max_lever_arm_; }
   // Bound on how much any ball's imperfection offset (spalls left out) can change in dt
   // at these ring speeds, m.
@@ -155,7 +155,9 @@ class BearingModel {
   double contact_stiffness_ = 0.0;
   double groove_centre_distance_ = 0.0;
   double clearance_m_ = 0.0;
-  double groove_centre_radius_ = 0.0;  // radial coordinate of the outer-groove centre
+  // Radial coordinate of the moving ring's groove centre (outer ring: P_o, inner ring:
+  // P_i), where its displacement and moment arms are taken.
+  double groove_centre_radius_ = 0.0;
   double cos_a0_ = 1.0;
   double moving_sign_ = 1.0;
   // Per ball (structure of arrays, for the vectorized force loop).

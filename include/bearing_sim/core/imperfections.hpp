@@ -18,6 +18,7 @@ struct Waviness {
   int order = 1;              // lobes per revolution (of the race, or of the ball)
   double amplitude_m = 0.0;   // of the radius
   double phase_rad = 0.0;
+  int row = -1;               // only the balls of this row (-1: every row, the same form)
 };
 
 // A spall: the ball loses contact depth while over it (half-sine profile).
@@ -30,6 +31,9 @@ struct Spall {
   double width_growth_m_per_s = 0.0;
   double depth_growth_m_per_s = 0.0;
   double created_at_s = 0.0;  // growth counts from here
+  // For a race spall: the row whose raceway holds it (a spall is on one track). A ball
+  // spall's row is that of its ball.
+  int row = 0;
 };
 
 // Largest spall the bearing can hold (the single definition of the limit, used by the
@@ -52,6 +56,7 @@ struct ImperfectionSpec {
   std::vector<Waviness> waviness;
   double ball_diameter_variation_m = 0.0;  // standard deviation of the ball diameters
   double roughness_rms_m = 0.0;            // RMS of a random profile on each race
+  int roughness_row = -1;                  // only this row's raceways are rough (-1: every row)
   // Irregular ball spacing (cage pocket clearance) and cage slip: real bearings are not
   // perfectly periodic, which keeps distributed roughness from ringing at the ball-pass
   // frequencies.
@@ -67,9 +72,10 @@ struct ImperfectionSpec {
 };
 
 // Parses the `imperfections:` and `defects:` sections of a bearing file (either may be
-// a null node). Throws ConfigError naming the source and key.
+// a null node) for a bearing of `rows` rows (the `row:` keys must name one of them).
+// Throws ConfigError naming the source and key.
 ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML::Node& defects,
-                                     const std::string& source);
+                                     const std::string& source, int rows = 2);
 
 // Angles of the moving parts at one instant, rad.
 struct RollingPhase {
@@ -107,6 +113,7 @@ class Imperfections {
     std::vector<int> entry_of_ball;  // inverse, per bearing ball; -1: not in the set
     std::vector<double> base_azimuth;
     std::vector<double> harmonic_terms;  // per harmonic: cos column, then sin column
+    std::vector<double> roughness_weight;  // 1 on the rough row, 0 elsewhere; empty: every row
   };
   BallSet ball_set(const std::vector<int>& balls) const;
   void fill_ball_set(const std::vector<int>& balls, BallSet* set) const;  // reusing set's storage
@@ -148,6 +155,7 @@ class Imperfections {
   };
   std::vector<Harmonic> race_waviness_, ball_waviness_;
   bool has_roughness_ = false;
+  int roughness_row_ = -1;  // -1: every row
   std::vector<double> roughness_profile_[2];  // 0 outer, 1 inner: radius deviation, m
   std::vector<double> ball_diameter_deviation_;
   std::vector<double> ball_phase_;  // random initial spin angle of each ball
