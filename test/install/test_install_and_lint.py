@@ -40,7 +40,7 @@ DEVELOPMENT_ONLY = {
     'UNINSTALLED_TARGET': {'bearing_sim_bench_simulate', 'bearing_sim_bench_sensor', 'bearing_sim_bench_lcm_bridge',
                            'bearing_sim_integrator_study'},
     'UNINSTALLED_SCRIPT': {'scripts/build.sh', 'scripts/install_deps.sh', 'scripts/setup_and_run.sh',
-                           'scripts/capture_rviz_screenshot.sh', 'scripts/make_validation.py',
+                           'scripts/capture_rviz_screenshot.sh', 'scripts/make_validation.py', 'scripts/cm_benchmark.py',
                            'bench/bench_generate.sh', 'bench/bench_campaign.py'},
 }
 
