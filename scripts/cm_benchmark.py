@@ -201,6 +201,7 @@ def build_cases(grid):
                                                  'load', 'noise_ug_per_sqrt_hz', 'seed_index'))
         c['seed'] = case_seed(c['id'])
         c['settle_s'], c['window_s'], c['depth_um'] = grid['settle_s'], grid['window_s'], grid['depth_um']
+        c['band'] = grid.get('band', 'kurtogram')
     return cases
 
 
@@ -283,7 +284,7 @@ def run_case(case, work_dir):
     """Generates and analyses one case; returns its results row (never raises: a failing
     case is a row with its error)."""
     import bearing_sim
-    row = {k: case[k] for k in ('id', 'bearing', 'truth', 'size_w_over_d', 'position', 'position_deg', 'speed_rpm',
+    row = {k: case[k] for k in ('id', 'band', 'bearing', 'truth', 'size_w_over_d', 'position', 'position_deg', 'speed_rpm',
                                 'load', 'noise_ug_per_sqrt_hz', 'seed_index', 'seed')}
     b = BEARINGS[case['bearing']]
     t0 = time.perf_counter()
@@ -296,6 +297,8 @@ def run_case(case, work_dir):
         rate = r['info']['measured_rate_hz']
         w = 2.0 * math.pi * case['speed_rpm'] / 60.0
         rings = {'inner_rad_s': w} if _rotating_ring(b) == 'inner' else {'outer_rad_s': w}
+        if case.get('band', 'kurtogram') == 'resonance':  # the sensor's path resonance +- 1 kHz
+            rings.update(resonance_hz=b['sensor'].get('path_resonance_Hz', 3000.0), band_width_hz=2000.0)
         a = bearing_sim.analyze(x, rate, sc['bearing_file'], window_s=case['window_s'], **rings)
         suspected = set()
         for f in a['faults']:
@@ -498,9 +501,13 @@ def main(argv=None):
                    help='Dask LocalCluster worker processes (default: the usable cores); 0: in this process')
     p.add_argument('--bearings', default=None, help='comma-separated subset of ' + ','.join(BEARINGS))
     p.add_argument('--window-s', type=float, default=None, help='analysis window (s), instead of the grid\'s')
+    p.add_argument('--band', choices=('kurtogram', 'resonance'), default='kurtogram',
+                   help="envelope band: the analyser's default (kurtogram) or the sensor's path resonance "
+                        '(3 kHz +- 1 kHz, resonance_hz of analyze)')
     p.add_argument('--limit', type=int, default=0, help='only every k-th case so that about this many remain')
     args = p.parse_args(argv)
     grid = dict(QUICK if args.quick else FULL)
+    grid['band'] = args.band
     if args.window_s:
         grid['window_s'] = args.window_s
     if args.bearings:
