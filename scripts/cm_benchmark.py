@@ -410,6 +410,14 @@ def summarize(rows):
         'by': groups,
         'size_threshold_w_over_d': threshold,
         'size_threshold_by_bearing': {b: size_threshold(t) for b, t in per_bearing_size.items()},
+        # per bearing, defect type and position: right-type rate per size and the group's threshold
+        'by_group_and_size': {
+            g: {'right_type_by_size': {str(sz): t[str(sz)]['right_type']['rate'] for sz in sizes},
+                'size_threshold_w_over_d': size_threshold(t)}
+            for g, t in {f'{b}/{k}/{p}': {str(sz): scores([r for r in spalls if (r['bearing'], r['truth'], r['position'],
+                                                                                 r['size_w_over_d']) == (b, k, p, sz)])
+                                            for sz in sizes}
+                         for b, k, p in sorted({(r['bearing'], r['truth'], r['position']) for r in spalls})}.items()},
         'by_bearing_and_noise_large': {  # spalls of w/D >= 0.05
             b: {str(n): scores([r for r in spalls if r['bearing'] == b and r['noise_ug_per_sqrt_hz'] == n
                                 and r['size_w_over_d'] >= 0.05])
@@ -475,8 +483,12 @@ def plot(rows, summary, path):
         ax.grid(True, which='both', alpha=0.3)
         ax.legend(fontsize=8, loc='lower right')
     fa = summary['false_alarm']
-    fig.suptitle(f"Envelope diagnosis benchmark: {summary['cases']} cases; false alarms {fa['count']}/{fa['of']} "
-                 f"healthy; threshold w/D >= {summary['size_threshold_w_over_d']}", fontsize=11)
+    th = summary['size_threshold_w_over_d']
+    band = {'kurtogram': "analyser's default band (kurtogram)", 'resonance': 'band at the sensor resonance (2-4 kHz)'}
+    fig.suptitle(f"Envelope diagnosis, {band[rows[0].get('band', 'kurtogram')]}: {summary['cases']} cases; "
+                 f"false alarms {fa['count']}/{fa['of']} healthy runs; "
+                 + (f'right type >= 95 % from w/D = {th}' if th is not None else 'no spall size reaches 95 % right type'),
+                 fontsize=11)
     fig.tight_layout()
     fig.savefig(path, dpi=90)
     plt.close(fig)
