@@ -5,10 +5,12 @@ Generates a grid of simulated runs (bearing x defect type x spall size x positio
 relative to the load zone x speed x load x sensor noise x seed), each a scenario of
 `bearing_sim.generate` with a virtual accelerometer, runs `bearing_sim.analyze` on the
 measured signal with the right ring speeds (the analyser's defaults: kurtogram band,
-evidence rule of docs/health.md) and scores what the analyser suspects against the truth.
+evidence rule of docs/health.md; or --band resonance: the band at the sensor's path
+resonance) and scores what the analyser suspects against the truth.
 
     source scripts/env.sh; source build/devel/setup.bash
     scripts/cm_benchmark.py --out /tmp/cm_benchmark                 # full grid (docs/health.md, "Benchmark")
+    scripts/cm_benchmark.py --out /tmp/cm_benchmark_res --band resonance
     scripts/cm_benchmark.py --quick --out /tmp/cm_quick --workers 2  # a few dozen cases
 
 Writes into --out:
