@@ -4,6 +4,7 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <numeric>
 #include <string>
 
 #include <unsupported/Eigen/FFT>
@@ -186,7 +187,23 @@ double band_velocity_rms(const std::vector<double>& accel, double sample_rate_hz
 Kurtogram fast_kurtogram(const std::vector<double>& x, double fs, double min_width_hz, double min_low_hz,
                          int max_bands) {
   check_signal(x, fs, "kurtogram");
-  const std::vector<Complex> spectrum = forward(x);
+  // The band filters are circular: the jump between the window's last and first sample is a
+  // click that rings in every band and, in the bands above a sensor's anti-alias cut-off
+  // where nothing else is left, reads as the most impulsive signal. A Tukey taper (cosine
+  // over kTaper of the window at each end) removes the jump, and the moments below leave out
+  // the tapered ends of each band's envelope.
+  constexpr double kTaper = 0.05;
+  const std::size_t samples = x.size();
+  const double mean = std::accumulate(x.begin(), x.end(), 0.0) / static_cast<double>(samples);
+  const std::size_t ramp = static_cast<std::size_t>(kTaper * static_cast<double>(samples));
+  std::vector<double> tapered(samples);
+  for (std::size_t i = 0; i < samples; ++i) {
+    const std::size_t from_end = std::min(i, samples - 1 - i);
+    const double w = from_end >= ramp ? 1.0 : 0.5 * (1.0 - std::cos(kPi * (static_cast<double>(from_end) + 0.5) /
+                                                                    static_cast<double>(ramp)));
+    tapered[i] = (x[i] - mean) * w;
+  }
+  const std::vector<Complex> spectrum = forward(tapered);
   const std::size_t n = spectrum.size();
   const double df = fs / static_cast<double>(n);
   const double nyquist = 0.5 * fs;
@@ -217,14 +234,16 @@ Kurtogram fast_kurtogram(const std::vector<double>& x, double fs, double min_wid
         for (std::size_t j = 0; j < count; ++j) band[j] = spectrum[k0 + j];
         std::vector<Complex> envelope;
         fft.inv(envelope, band);
+        // The envelope spans the window in m samples: its tapered ends are left out.
+        const std::size_t skip = static_cast<std::size_t>(std::ceil(kTaper * static_cast<double>(m)));
         long double m2 = 0.0L, m4 = 0.0L;
-        for (const Complex& c : envelope) {
-          const long double p = std::norm(c);
+        for (std::size_t j = skip; j + skip < m; ++j) {
+          const long double p = std::norm(envelope[j]);
           m2 += p;
           m4 += p * p;
         }
-        m2 /= static_cast<long double>(m);
-        m4 /= static_cast<long double>(m);
+        m2 /= static_cast<long double>(m - 2 * skip);
+        m4 /= static_cast<long double>(m - 2 * skip);
         b.kurtosis = m2 > 0.0L ? static_cast<double>(m4 / (m2 * m2)) - 2.0 : 0.0;
         k.bands.push_back(b);
         if (!have_best || b.kurtosis > k.best.kurtosis) {

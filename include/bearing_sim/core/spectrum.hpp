@@ -53,8 +53,9 @@ double band_velocity_rms(const std::vector<double>& accel, double sample_rate_hz
 // transient faults", MSSP 21:108-124), simplified: the 1/3-binary tree of bands tiling
 // [0, fs/2] (level k: 2^k bands; level k + log2(3) - 1: 3 x 2^(k-1) bands, i.e. 1, 2, 3, 4,
 // 6, 8, 12, ... bands), each band's complex envelope taken by FFT masking (the band's bins
-// of one forward FFT, moved to baseband, zero-padded x2 and inverse-transformed: an ideal
-// band-pass instead of Antoni's quasi-analytic FIR filter bank), and its spectral kurtosis
+// of one forward FFT of the Tukey-tapered window, moved to baseband, zero-padded x2 and
+// inverse-transformed: an ideal band-pass instead of Antoni's quasi-analytic FIR filter
+// bank; the tapered ends left out), and its spectral kurtosis
 // SK = <|c|^4> / <|c|^2>^2 - 2 (0 for Gaussian noise, large for an impulse train).
 struct KurtogramBand {
   int bands_in_level = 1;  // 1, 2, 3, 4, 6, 8, 12, ...: width = (fs/2) / bands_in_level
