@@ -30,24 +30,8 @@ using bearing_sim::test::read_file;
 using bearing_sim::test::RunResult;
 
 // A scratch directory for YAML and CSV files, removed at exit of the test.
-class ToolTest : public ::testing::Test {
+class ToolTest : public bearing_sim::test::ToolScratchTest {
  protected:
-  void SetUp() override {
-    char tmpl[] = "/tmp/test_bearing_tool_XXXXXX";
-    ASSERT_NE(mkdtemp(tmpl), nullptr);
-    dir_ = tmpl;
-  }
-  void TearDown() override { std::system(("rm -rf '" + dir_ + "'").c_str()); }
-
-  std::string write(const std::string& name, const std::string& text) {
-    const std::string path = dir_ + "/" + name;
-    std::ofstream(path) << text;
-    return path;
-  }
-
-  // Runs bearing_tool with `args` (shell words); stdout and stderr captured apart.
-  RunResult run(const std::string& args) { return bearing_sim::test::run_bearing_tool(args, dir_); }
-
   json run_json(const std::string& args) {
     const RunResult r = run(args + " --json");
     EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
@@ -58,8 +42,6 @@ class ToolTest : public ::testing::Test {
       return json::object();
     }
   }
-
-  std::string dir_;
 };
 
 const std::string kCt = std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/ct_gantry_lyc.yaml";

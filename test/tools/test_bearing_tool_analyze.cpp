@@ -34,20 +34,14 @@ const std::string kBearing = bearing_sim::test::kBearing6205Yaml +
 
 using bearing_sim::test::RunResult;
 
-class AnalyzeTool : public ::testing::Test {
+class AnalyzeTool : public bearing_sim::test::ToolScratchTest {
  protected:
   void SetUp() override {
-    char tmpl[] = "/tmp/test_bearing_tool_analyze_XXXXXX";
-    ASSERT_NE(mkdtemp(tmpl), nullptr);
-    dir_ = tmpl;
-    bearing_ = dir_ + "/b.yaml";
-    std::ofstream(bearing_) << kBearing;
+    ToolScratchTest::SetUp();
+    bearing_ = write("b.yaml", kBearing);
   }
-  void TearDown() override { std::system(("rm -rf '" + dir_ + "'").c_str()); }
 
-  RunResult run(const std::string& args) { return bearing_sim::test::run_bearing_tool(args, dir_); }
-
-  std::string dir_, bearing_;
+  std::string bearing_;
 };
 
 TEST_F(AnalyzeTool, SameIndicatorsAsTheLibrary) {

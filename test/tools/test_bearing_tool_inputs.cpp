@@ -28,20 +28,8 @@ bool contains(const std::string& haystack, const std::string& needle) {
   return haystack.find(needle) != std::string::npos;
 }
 
-class ToolInputTest : public ::testing::Test {
+class ToolInputTest : public bearing_sim::test::ToolScratchTest {
  protected:
-  void SetUp() override {
-    char tmpl[] = "/tmp/test_bearing_tool_inputs_XXXXXX";
-    ASSERT_NE(mkdtemp(tmpl), nullptr);
-    dir_ = tmpl;
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
-  std::string write(const std::string& name, const std::string& text) {
-    const std::string path = dir_ + "/" + name;
-    std::ofstream(path) << text;
-    return path;
-  }
   // The CT bearing file with one line replaced (the key must be in it).
   std::string ct_with(const std::string& key, const std::string& value) {
     const std::string text = std::regex_replace(read_file(kCt), std::regex("(^|\n)( *)" + key + ":[^\n]*"),
@@ -49,7 +37,6 @@ class ToolInputTest : public ::testing::Test {
     EXPECT_NE(text, read_file(kCt)) << key;
     return write("ct_" + key + ".yaml", text);
   }
-  RunResult run(const std::string& args) { return bearing_sim::test::run_bearing_tool(args, dir_); }
 
   // Exit 2, each word in stderr, nothing on stdout.
   void expect_refused(const std::string& args, const std::vector<std::string>& words) {
@@ -59,8 +46,6 @@ class ToolInputTest : public ::testing::Test {
     for (const auto& w : words) EXPECT_TRUE(contains(r.err, w)) << "'" << w << "' not in: " << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
   }
-
-  std::string dir_;
 };
 
 TEST_F(ToolInputTest, FilesThatAreNoRegularFilesAreRefusedNamingThem) {

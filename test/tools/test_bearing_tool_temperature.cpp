@@ -30,20 +30,8 @@ std::string bearing_6205(double clearance_um) {
          std::to_string(clearance_um) + "\n";
 }
 
-class ToolTemperatureTest : public ::testing::Test {
+class ToolTemperatureTest : public bearing_sim::test::ToolScratchTest {
  protected:
-  void SetUp() override {
-    char tmpl[] = "/tmp/test_bearing_tool_temperature_XXXXXX";
-    ASSERT_NE(mkdtemp(tmpl), nullptr);
-    dir_ = tmpl;
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& text) {
-    const std::string path = dir_ + "/" + name;
-    std::ofstream(path) << text;
-    return path;
-  }
-  RunResult run(const std::string& args) { return bearing_sim::test::run_bearing_tool(args, dir_); }
   nlohmann::json static_json(const std::string& args) {
     const RunResult r = run("static --json " + args);
     EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -56,7 +44,6 @@ class ToolTemperatureTest : public ::testing::Test {
     for (const auto& w : words) EXPECT_NE(r.err.find(w), std::string::npos) << "'" << w << "' not in: " << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
   }
-  std::string dir_;
 };
 
 }  // namespace

@@ -1,11 +1,15 @@
 #pragma once
 // Runs the built bearing_tool (BEARING_TOOL_PATH) for the tool tests.
+#include <stdlib.h>
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+
+#include <gtest/gtest.h>
 
 namespace bearing_sim::test {
 
@@ -38,5 +42,26 @@ inline RunResult run_bearing_tool(const std::string& args, const std::string& sc
   r.err = read_file(err_path);
   return r;
 }
+
+// A test with a scratch directory of its own (removed afterwards) to write inputs into and
+// run bearing_tool in.
+class ToolScratchTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char pattern[] = "/tmp/bearing_tool_test_XXXXXX";
+    ASSERT_NE(mkdtemp(pattern), nullptr);
+    dir_ = pattern;
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  // Writes `text` to `name` in the scratch directory; returns its path.
+  std::string write(const std::string& name, const std::string& text) {
+    const std::string path = dir_ + "/" + name;
+    std::ofstream(path) << text;
+    return path;
+  }
+  RunResult run(const std::string& args) { return run_bearing_tool(args, dir_); }
+
+  std::string dir_;
+};
 
 }  // namespace bearing_sim::test
