@@ -73,6 +73,10 @@ class Recorder {
   bool wait_for_sample(std::uint64_t index, double timeout_s) {
     return wait_for([&] { return have_samples_ && next_index_ > index; }, timeout_s);
   }
+  // Until at least n vibration levels have arrived.
+  bool wait_for_levels(std::size_t n, double timeout_s) {
+    return wait_for([&] { return levels_.size() >= n; }, timeout_s);
+  }
   std::uint64_t next_index() {
     std::lock_guard<std::mutex> lock(mutex_);
     return next_index_;
