@@ -1,9 +1,11 @@
 #include "bearing_sim/core/simulation_run.hpp"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 
 #include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/signal_statistics.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
 
 namespace bearing_sim {
@@ -21,9 +23,9 @@ SimulationSummary run_simulation(const BearingModel& model, const SimulationRequ
   BearingDynamics dynamics(model, request.load, request.ring_speed_rad_s,
                            DynamicsOptions{request.sample_rate_hz, request.substeps, true, request.method});
   const std::size_t half = n / 2;
-  // Mean and RMS about it streamed (Welford): a buffer of the accelerations took 12 bytes per
-  // sample, 12 GB for the longest run.
-  Eigen::Vector3d mean_a = Eigen::Vector3d::Zero(), sum_sq = Eigen::Vector3d::Zero();
+  // Mean and RMS about it streamed: a buffer of the accelerations took 12 bytes per sample,
+  // 12 GB for the longest run.
+  std::array<StreamedStatistics, 3> accel;
   SimulationSummary s;
   s.samples = n;
   s.substeps = dynamics.substeps();
@@ -35,19 +37,16 @@ SimulationSummary run_simulation(const BearingModel& model, const SimulationRequ
     const DynamicSample& sample = dynamics.step();
     integration_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (i >= half) {
-      const Eigen::Vector3d a = sample.acceleration.head<3>();
-      const Eigen::Vector3d before = a - mean_a;
-      mean_a += before / static_cast<double>(i - half + 1);
-      sum_sq += before.cwiseProduct(a - mean_a);
+      for (int axis = 0; axis < 3; ++axis) accel[axis].add(sample.acceleration[axis]);
       s.mean_displacement += sample.displacement;
     }
     if (on_sample) on_sample(sample);
   }
   const double kept = static_cast<double>(n - half);
   s.mean_displacement /= kept;
-  s.a_rms_x = std::sqrt(sum_sq[0] / kept);
-  s.a_rms_y = std::sqrt(sum_sq[1] / kept);
-  s.a_rms_z = std::sqrt(sum_sq[2] / kept);
+  s.a_rms_x = accel[0].statistics().rms;
+  s.a_rms_y = accel[1].statistics().rms;
+  s.a_rms_z = accel[2].statistics().rms;
   s.level_db = vibration_level_db(s.a_rms_x);
   s.realtime_factor = request.duration_s / integration_s;
   return s;

@@ -204,8 +204,8 @@ void run(const SimulateOptions& o) {
     Table t({"axis", "rms", "crest factor", "kurtosis", "unit"}, {true, false, false, false, true});
     static const char* const axes[3] = {"x", "y", "z"};
     for (int a = 0; a < 3; ++a) {
-      const StreamedStatistics& st = sensor->statistics()[a];
-      t.add_row({axes[a], scientific(st.rms(), 4), fixed(st.crest_factor(), 2), fixed(st.kurtosis(), 2), sensor->unit()});
+      const SignalStatistics st = sensor->statistics()[a].statistics();
+      t.add_row({axes[a], scientific(st.rms, 4), fixed(st.crest_factor, 2), fixed(st.kurtosis, 2), sensor->unit()});
     }
     t.print(out);
   } else {

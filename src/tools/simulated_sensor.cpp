@@ -12,34 +12,6 @@
 
 namespace bearing_sim::tool {
 
-void StreamedStatistics::add(double x) {
-  // Pebay (2008), one-pass update of the central moment sums M2..M4.
-  const double n1 = static_cast<double>(n_);
-  ++n_;
-  const double n = static_cast<double>(n_);
-  const double delta = x - mean_, delta_n = delta / n, delta_n2 = delta_n * delta_n;
-  const double term = delta * delta_n * n1;
-  mean_ += delta_n;
-  m4_ += term * delta_n2 * (n * n - 3.0 * n + 3.0) + 6.0 * delta_n2 * m2_ - 4.0 * delta_n * m3_;
-  m3_ += term * delta_n * (n - 2.0) - 3.0 * delta_n * m2_;
-  m2_ += term;
-  min_ = n_ == 1 ? x : std::min(min_, x);
-  max_ = n_ == 1 ? x : std::max(max_, x);
-}
-
-double StreamedStatistics::rms() const { return n_ ? std::sqrt(m2_ / static_cast<double>(n_)) : 0.0; }
-
-double StreamedStatistics::peak() const { return n_ ? std::max(max_ - mean_, mean_ - min_) : 0.0; }
-
-double StreamedStatistics::crest_factor() const {
-  const double r = rms();
-  return r > 0.0 ? peak() / r : 0.0;
-}
-
-double StreamedStatistics::kurtosis() const {
-  return m2_ > 0.0 ? static_cast<double>(n_) * m4_ / (m2_ * m2_) : 0.0;
-}
-
 SimulatedSensor::SimulatedSensor(const std::string& sensor_file, double rate_hz, std::size_t window_start,
                                  const std::string& csv)
     : file_(sensor_file), csv_path_(csv), window_start_(window_start) {
@@ -82,10 +54,11 @@ void SimulatedSensor::finish() {
 
 nlohmann::json SimulatedSensor::to_json() const {
   nlohmann::json rms = nlohmann::json::array(), crest = nlohmann::json::array(), kurt = nlohmann::json::array();
-  for (const StreamedStatistics& s : stats_) {
-    rms.push_back(s.rms());
-    crest.push_back(s.crest_factor());
-    kurt.push_back(s.kurtosis());
+  for (const StreamedStatistics& axis : stats_) {
+    const SignalStatistics s = axis.statistics();
+    rms.push_back(s.rms);
+    crest.push_back(s.crest_factor);
+    kurt.push_back(s.kurtosis);
   }
   return {{"name", sensor_->config().name},
           {"file", file_},

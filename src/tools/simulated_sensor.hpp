@@ -11,28 +11,10 @@
 #include <nlohmann/json.hpp>
 
 #include "bearing_sim/core/bearing_dynamics.hpp"
+#include "bearing_sim/core/signal_statistics.hpp"
 #include "bearing_sim/ros/triaxial_sensor.hpp"
 
 namespace bearing_sim::tool {
-
-// Mean, RMS, peak, crest factor and kurtosis of one signal, one sample at a time (the
-// central moments updated as in Pebay 2008, numerically safe for a large mean such as a
-// voltage output's bias).
-class StreamedStatistics {
- public:
-  void add(double x);
-  std::size_t samples() const { return n_; }
-  double mean() const { return mean_; }
-  double rms() const;            // about the mean
-  double peak() const;           // largest |x - mean|
-  double crest_factor() const;   // peak / rms
-  double kurtosis() const;       // m4 / m2^2 (3 for Gaussian noise)
-
- private:
-  std::size_t n_ = 0;
-  double mean_ = 0.0, m2_ = 0.0, m3_ = 0.0, m4_ = 0.0;
-  double min_ = 0.0, max_ = 0.0;
-};
 
 class SimulatedSensor {
  public:

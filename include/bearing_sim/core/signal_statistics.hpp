@@ -23,6 +23,22 @@ inline SignalStatistics signal_statistics(const std::vector<double>& x) {
   return signal_statistics(x, 0, x.size());
 }
 
+// The same statistics one sample at a time, for runs too long to store: the mean and the
+// central moment sums updated as in Welford (1962) and Pebay (2008), safe for a small signal
+// on a large mean (a voltage output's bias). The peak is about the final mean.
+class StreamedStatistics {
+ public:
+  void add(double x);
+  std::size_t samples() const { return n_; }
+  // samples = 0 gives zeros.
+  SignalStatistics statistics() const;
+
+ private:
+  std::size_t n_ = 0;
+  double mean_ = 0.0, m2_ = 0.0, m3_ = 0.0, m4_ = 0.0;
+  double min_ = 0.0, max_ = 0.0;
+};
+
 // Shorthands over the whole vector (about the mean).
 double signal_rms(const std::vector<double>& x);
 double signal_peak(const std::vector<double>& x);
