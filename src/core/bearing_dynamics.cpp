@@ -204,14 +204,19 @@ void BearingDynamics::update_substeps() {
   }
 }
 
-void BearingDynamics::set_load(const Vector5& load) {
+void BearingDynamics::set_load(const Vector5& load) { set_load(load, load); }
+
+void BearingDynamics::set_load(const Vector5& load, const Vector5& load_at_sample_end) {
   if (!load.allFinite()) throw InvalidInputError("load is not finite");
+  if (!load_at_sample_end.allFinite()) throw InvalidInputError("load at the sample's end is not finite");
+  sample_end_load_ = load_at_sample_end;
   // The contact forces do not depend on the external load: the current acceleration moves
   // by the change over the mass, and stays the first RK4 stage of the next sample. The ball
   // split stays too (inputs may change every sample, e.g. a rotating unbalance): a ball that
   // the new load brings into contact is caught by the check after the sample.
+  current_.acceleration += inverse_mass_ * (load - load_in_current_acceleration_);
+  load_in_current_acceleration_ = load;
   const Vector5 load_change_acceleration = inverse_mass_ * (load - load_);
-  current_.acceleration += load_change_acceleration;
   // So do the Adams method's past remainders: as if the new load had always been there
   // (it holds over the whole next step).
   for (int i = 0; i < adams_history_.size; ++i)
@@ -286,6 +291,7 @@ void BearingDynamics::reset_to_equilibrium() {
   current_.displacement = s.displacement;
   current_.velocity.setZero();
   current_.acceleration = acceleration(current_.displacement, current_.velocity, phase_, model_.balls());
+  load_in_current_acceleration_ = load_;
   acceleration_current_ = true;
   samples_since_split_ = 0;
   if (exponential()) linearize(s.displacement, phase_);
@@ -469,7 +475,10 @@ DynamicSample BearingDynamics::step() {
   const Vector5& q0 = current_.displacement;
   const Vector5& v0 = current_.velocity;
   // The last sample's acceleration is the first stage, unless an input changed since.
-  const Vector5 a_start = acceleration_current_ ? current_.acceleration : acceleration(q0, v0, phase_, model_.balls());
+  // The last sample's acceleration is reported with its end load; the integration holds load_.
+  Vector5 a_start = acceleration_current_ ? current_.acceleration : acceleration(q0, v0, phase_, model_.balls());
+  if (acceleration_current_ && load_in_current_acceleration_ != load_)
+    a_start += inverse_mass_ * (load_ - load_in_current_acceleration_);
   // Only the balls that can touch during the next kSamplesPerBallSplit samples take part
   // in the integration; the others carry no load now, so a_start holds for either set.
   if (samples_since_split_ == 0) {
@@ -580,6 +589,9 @@ DynamicSample BearingDynamics::commit_sample(const Vector5& q, const Vector5& v,
   current_.displacement = q;
   current_.velocity = v;
   current_.acceleration = a;
+  if (sample_end_load_ != load_) current_.acceleration += inverse_mass_ * (sample_end_load_ - load_);
+  load_in_current_acceleration_ = sample_end_load_;
+  sample_end_load_ = load_;  // an end load is for one sample
   acceleration_current_ = true;
   return current_;
 }

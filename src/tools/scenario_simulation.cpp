@@ -222,8 +222,11 @@ RunStats ScenarioSimulation::run(const std::vector<DatasetSink*>& sinks, const s
       const double t_mid = (static_cast<double>(i) - 0.5) / rate;
       const double speed = scenario_.ring_speed_at(t_mid);
       if (speed != dynamics.ring_speed_rad_s()) dynamics.set_ring_speed(speed);
+      // The load: its mid value held over the step, its end value for the sample's reported
+      // acceleration (a turning unbalance would otherwise leave a line growing with the step).
       const Vector5 load = scenario_.load_at(t_mid);
-      if (load != dynamics.load()) dynamics.set_load(load);
+      const Vector5 load_at_end = scenario_.load_at(static_cast<double>(i) / rate);
+      if (load != dynamics.load() || load_at_end != load) dynamics.set_load(load, load_at_end);
       // The ring temperature difference: a new model on each change (ramps come in steps).
       if (!settings_.ring_temperature_difference_K) {
         const double dT = scenario_.ring_temperature_difference_at(t_mid);

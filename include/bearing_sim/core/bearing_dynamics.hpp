@@ -70,6 +70,12 @@ class BearingDynamics {
 
   // New inputs take effect from the next sample. Throw InvalidInputError if not finite.
   void set_load(const Vector5& load);
+  // A load that moves within the next sample (a ramp, a rotating unbalance): the integration
+  // holds `load_over_sample` (a driver passes the mid-sample value, exact for the impulse of a
+  // linear change), and the sample's reported acceleration is that of its end time, with
+  // `load_at_sample_end`. Holding the mid value for it would add M^-1 dF/dt h/2, a spurious
+  // line proportional to the step (docs/model.md 7.5).
+  void set_load(const Vector5& load_over_sample, const Vector5& load_at_sample_end);
   void set_ring_speed(double ring_speed_rad_s);
   // Replace the bearing (clearance, damping, defects) keeping the state.
   void set_model(BearingModel model);
@@ -194,6 +200,10 @@ class BearingDynamics {
   std::uint64_t sample_index_ = 0;
   DynamicSample current_;
   bool acceleration_current_ = false;
+  // The load the next sample's end acceleration is reported with, and the load that
+  // current_.acceleration holds (the two differ only after a set_load with an end load).
+  Vector5 sample_end_load_ = Vector5::Zero();
+  Vector5 load_in_current_acceleration_ = Vector5::Zero();
   BallArrays active_balls_, clear_balls_;  // per sample: near contact / clear by the margin
   std::uint64_t full_sample_retries_ = 0;
   // Exponential integrator: y = (q - q_lin, v), y' = L y + (0, r), L = [0 I; A], the
