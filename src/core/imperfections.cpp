@@ -8,6 +8,7 @@
 #include <unsupported/Eigen/FFT>
 
 #include "bearing_sim/core/errors.hpp"
+#include "harmonic_sums.hpp"
 #include "yaml_reader.hpp"
 
 namespace bearing_sim {
@@ -326,27 +327,6 @@ void Imperfections::fill_ball_set(const std::vector<int>& balls, BallSet* set) c
     }
 }
 
-namespace {
-// out[b] += sum over H harmonics of c_h cos_hb - s_h sin_hb, in one pass over the balls.
-// Also built for AVX2 with FMA and picked at load time (the default build is for baseline
-// x86-64): fused multiply-adds halve the arithmetic of the CT bearing's waviness (its results
-// differ from the baseline clone's by rounding, as the contact kernel's do between targets).
-template <int H>
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("arch=haswell", "default")))
-#endif
-void add_harmonics(const double* coefficients, const double* __restrict terms, int n, double* __restrict out) {
-  double c[2 * H];  // in registers, not reloaded per ball
-  for (int i = 0; i < 2 * H; ++i) c[i] = coefficients[i];
-#pragma omp simd
-  for (int b = 0; b < n; ++b) {
-    double sum = 0.0;
-    for (int h = 0; h < H; ++h) sum += c[2 * h] * terms[2 * h * n + b] - c[2 * h + 1] * terms[(2 * h + 1) * n + b];
-    out[b] += sum;
-  }
-}
-}  // namespace
-
 void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, double* out, bool include_spalls) const {
   const int n = static_cast<int>(set.ball.size());
   const double* base = set.base_azimuth.data();
@@ -363,17 +343,8 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, d
     coefficients.push_back(h.amplitude_m * std::cos(h.order * phase.ball_spin));
     coefficients.push_back(h.amplitude_m * std::sin(h.order * phase.ball_spin));
   }
-  const int harmonics = static_cast<int>(coefficients.size() / 2);
-  for (int first = 0; first < harmonics; first += 4) {
-    const double* c = coefficients.data() + 2 * first;
-    const double* terms = set.harmonic_terms.data() + 2 * static_cast<std::size_t>(first) * n;
-    switch (std::min(4, harmonics - first)) {
-      case 1: add_harmonics<1>(c, terms, n, out); break;
-      case 2: add_harmonics<2>(c, terms, n, out); break;
-      case 3: add_harmonics<3>(c, terms, n, out); break;
-      default: add_harmonics<4>(c, terms, n, out); break;
-    }
-  }
+  detail::add_harmonic_sums(coefficients.data(), static_cast<int>(coefficients.size() / 2),
+                            set.harmonic_terms.data(), n, out);
   if (has_roughness_) {
     constexpr double kScale = kProfilePoints / kTwoPi;
     constexpr long kMask = kProfilePoints - 1;

@@ -11,8 +11,10 @@
 #include <cstdlib>
 #include <iostream>
 #include <random>
+#include <vector>
 
 #include "../../src/core/contact_kernel.hpp"
+#include "../../src/core/harmonic_sums.hpp"
 #include "../../src/core/small_products.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "bearing_sim/core/simd_info.hpp"
@@ -156,6 +158,39 @@ TEST(ContactKernel, SimdAndScalarKernelsAgreeOnRandomBallsWithEdgeCases) {
   });
   // The damping case must really occur, or the test would not cover it.
   EXPECT_GT(pulled_negative, 0);
+}
+
+// The waviness sums against the scalar loop: random phases and amplitudes of 0.01-1 um, 1-9
+// harmonics, ball counts that are not multiples of any vector width. Each offset is a sum of
+// at most 18 terms of <= 1e-6 m: FMAs and the order give rounding of ~1e-15 of that.
+TEST(ContactKernel, HarmonicSumsAgreeWithTheScalarLoop) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for_each_target([&] {
+    for (int harmonics : {1, 4, 9})
+      for (int n : {1, 3, 7, 9, 207, 317}) {
+        std::vector<double> c(2 * harmonics), terms(2 * static_cast<std::size_t>(harmonics) * n), base(n);
+        double bound = 0.0;
+        for (int h = 0; h < harmonics; ++h) {
+          const double amplitude = 1e-8 + 1e-6 * std::abs(u(rng)), shift = 3.0 * u(rng);
+          c[2 * h] = amplitude * std::cos(shift);
+          c[2 * h + 1] = amplitude * std::sin(shift);
+          bound += amplitude;
+          for (int b = 0; b < n; ++b) {
+            const double angle = 40.0 * u(rng);
+            terms[2 * h * n + b] = std::cos(angle);
+            terms[(2 * h + 1) * n + b] = std::sin(angle);
+          }
+        }
+        for (double& x : base) x = 1e-6 * u(rng);  // the constant offsets the sums add to
+        std::vector<double> simd = base, scalar = base;
+        detail::add_harmonic_sums(c.data(), harmonics, terms.data(), n, simd.data());
+        detail::add_harmonic_sums_scalar(c.data(), harmonics, terms.data(), n, scalar.data());
+        for (int b = 0; b < n; ++b)
+          ASSERT_NEAR(simd[b], scalar[b], 1e-14 * (bound + 1e-6)) << harmonics << " harmonics, ball " << b << " of " << n;
+        // A wrong term (a harmonic or a ball missed) would be >= 1e-8 m off somewhere.
+      }
+  });
 }
 
 // Every size the Adams step uses, with and without the added vector, against Eigen's

@@ -1,0 +1,95 @@
+// Compiled once per Highway target (hwy/foreach_target.h re-includes this file with the
+// target's attributes); the dispatcher picks the best one the CPU runs.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "harmonic_sums.cpp"
+#include "hwy/foreach_target.h"  // IWYU pragma: keep
+#include "hwy/highway.h"
+
+#include "harmonic_sums.hpp"
+
+#include <cmath>
+
+HWY_BEFORE_NAMESPACE();
+namespace bearing_sim::detail {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// Up to four harmonics per pass over the balls, their coefficients held in registers and
+// the loop unrolled over them (a pass per harmonic would load and store every offset 2H
+// times; an inner loop over a run-time count is a chain of dependent FMAs per ball).
+template <int kHarmonics>
+HWY_INLINE void AddGroup(const double* HWY_RESTRICT c, const double* HWY_RESTRICT terms, int n,
+                         double* HWY_RESTRICT out) {
+  const hn::ScalableTag<double> d;
+  using V = hn::Vec<decltype(d)>;
+  const int lanes = static_cast<int>(hn::Lanes(d));
+  V cos_coefficient[kHarmonics], sin_coefficient[kHarmonics];
+  for (int h = 0; h < kHarmonics; ++h) {
+    cos_coefficient[h] = hn::Set(d, c[2 * h]);
+    sin_coefficient[h] = hn::Set(d, c[2 * h + 1]);
+  }
+  const auto add = [&](int b, V offset, auto load) HWY_ATTR {
+    V sum = hn::Zero(d);
+    for (int h = 0; h < kHarmonics; ++h) {
+      const double* cosines = terms + 2 * static_cast<long>(h) * n + b;
+      sum = hn::MulAdd(cos_coefficient[h], load(cosines), sum);
+      sum = hn::NegMulAdd(sin_coefficient[h], load(cosines + n), sum);
+    }
+    return hn::Add(offset, sum);
+  };
+  const auto load = [&](const double* p) HWY_ATTR { return hn::LoadU(d, p); };
+  int b = 0;
+  for (; b + lanes <= n; b += lanes) hn::StoreU(add(b, hn::LoadU(d, out + b), load), d, out + b);
+  if (b == n) return;
+  if (n >= lanes) {
+    // The tail as the last full vector, its lanes already summed kept as they are (no read
+    // past the arrays: a masked load may read the whole vector on some targets).
+    const int last = n - lanes;
+    const V offset = hn::LoadU(d, out + last);
+    const auto fresh = hn::Not(hn::FirstN(d, static_cast<std::size_t>(b - last)));
+    hn::StoreU(hn::IfThenElse(fresh, add(last, offset, load), offset), d, out + last);
+    return;
+  }
+  for (; b < n; ++b) {  // fewer balls than lanes
+    double sum = 0.0;
+    for (int h = 0; h < kHarmonics; ++h)
+      sum = std::fma(-c[2 * h + 1], terms[(2 * h + 1) * n + b], std::fma(c[2 * h], terms[2 * h * n + b], sum));
+    out[b] += sum;
+  }
+}
+
+void AddHarmonicSums(const double* c, int harmonics, const double* terms, int n, double* out) {
+  for (int first = 0; first < harmonics; first += 4) {
+    const double* group_c = c + 2 * first;
+    const double* group_terms = terms + 2 * static_cast<long>(first) * n;
+    switch (harmonics - first) {
+      case 1: AddGroup<1>(group_c, group_terms, n, out); break;
+      case 2: AddGroup<2>(group_c, group_terms, n, out); break;
+      case 3: AddGroup<3>(group_c, group_terms, n, out); break;
+      default: AddGroup<4>(group_c, group_terms, n, out); break;
+    }
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace bearing_sim::detail
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace bearing_sim::detail {
+HWY_EXPORT(AddHarmonicSums);
+
+void add_harmonic_sums(const double* coefficients, int harmonics, const double* terms, int n, double* out) {
+  if (harmonics > 0 && n > 0) HWY_DYNAMIC_DISPATCH(AddHarmonicSums)(coefficients, harmonics, terms, n, out);
+}
+
+void add_harmonic_sums_scalar(const double* c, int harmonics, const double* terms, int n, double* out) {
+  for (int b = 0; b < n; ++b) {
+    double sum = 0.0;
+    for (int h = 0; h < harmonics; ++h)
+      sum += c[2 * h] * terms[2 * h * n + b] - c[2 * h + 1] * terms[(2 * h + 1) * n + b];
+    out[b] += sum;
+  }
+}
+}  // namespace bearing_sim::detail
+#endif  // HWY_ONCE

@@ -1,0 +1,14 @@
+#pragma once
+// The waviness offsets of a set of balls (internal to the core): per ball, the sum over the
+// harmonics of a_h cos(k_h theta_b + psi_h) with the angle split into its fixed part (per
+// ball, stored) and the part that turns with the phase (per harmonic, per call). A Google
+// Highway kernel compiled for every SIMD target and picked at run time, like the contact
+// kernel; and the scalar loop it is tested against.
+namespace bearing_sim::detail {
+
+// out[b] += sum over h < harmonics of c[2h] terms[2h n + b] - c[2h + 1] terms[(2h + 1) n + b],
+// for b < n (terms: per harmonic, the n cosines then the n sines of its fixed angles).
+void add_harmonic_sums(const double* coefficients, int harmonics, const double* terms, int n, double* out);
+void add_harmonic_sums_scalar(const double* coefficients, int harmonics, const double* terms, int n, double* out);
+
+}  // namespace bearing_sim::detail
