@@ -3,6 +3,11 @@
 // the rotating ring as a thin elastic ring described by its bending modes (docs/model.md 11).
 namespace bearing_sim {
 
+// Why the rigid-ring dynamics (BearingDynamics, the node, scenarios) refuse a flexible ring.
+inline constexpr const char* kFlexibleRingOfflineOnly =
+    "a flexible ring is an offline model for now (bearing_tool static and simulate, "
+    "FlexibleDynamics); the rigid-ring dynamics, the node and scenarios do not take it: remove the block";
+
 struct FlexibleRingSpec {
   bool present = false;            // no block: the ring is rigid (the default)
   double centroid_radius_m = 0.0;  // R, of the section's centroid
