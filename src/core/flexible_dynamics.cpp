@@ -32,7 +32,17 @@ FlexibleDynamics::FlexibleDynamics(FlexibleBearing bearing, const Vector5& load,
                            : std::max(1, static_cast<int>(std::ceil(highest_frequency_rad_s_ /
                                                                      (kStepTimesOmegaMax * sample_rate_hz))));
   current_.coordinates = equilibrium_.coordinates;
+  // The static shape is fixed to the load, so the turning ring runs through it: in the ring's
+  // own frame each mode's (cos, sin) pair turns at n Omega, (a, b)' = n Omega (b, -a). Starting
+  // with that rate instead of at rest spares the run a start-up transient of the ring's modes.
   current_.velocities = Eigen::VectorXd::Zero(bearing_.size());
+  const double ring_rate = model.config().rotating_ring == RotatingRing::Outer ? outer_speed_ : inner_speed_;
+  const auto& modes = bearing_.modes();
+  for (std::size_t i = 0; i < modes.size(); ++i) {
+    const double turn = modes[i].order * ring_rate;
+    current_.velocities[5 + 2 * i] = turn * current_.coordinates[6 + 2 * i];
+    current_.velocities[6 + 2 * i] = -turn * current_.coordinates[5 + 2 * i];
+  }
   current_.accelerations = acceleration(current_.coordinates, current_.velocities, current_.phase);
 }
 

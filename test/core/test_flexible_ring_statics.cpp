@@ -1,4 +1,4 @@
-// The flexible ring's contacts and static equilibrium (docs/model.md 11.2): the rigid ring's
+// The flexible ring's contacts and static equilibrium (docs/model.md 18.2): the rigid ring's
 // forces when the ring is undeformed, the analytic stiffness against finite differences, and
 // the load distribution tending to the rigid ring's as the ring's bending stiffness grows.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // Waviness of order k Z +- n on a race drives the flexible ring's n-th bending mode
-// (docs/model.md 11.4): with Z evenly spaced balls, the load change cos(q phi_j) of ball j
+// (docs/model.md 18.4): with Z evenly spaced balls, the load change cos(q phi_j) of ball j
 // projects onto a ring mode of order m as sum_j cos(q phi_j) cos(m theta_j), which is zero
 // unless q +- m is a multiple of Z. The response of the other modes comes only from the
 // contacts' nonlinearity.

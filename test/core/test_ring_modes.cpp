@@ -1,4 +1,4 @@
-// The flexible ring's modes (docs/model.md 11.1) against the thin-ring closed forms, and the
+// The flexible ring's modes (docs/model.md 18.1) against the thin-ring closed forms, and the
 // bearing file's flexible_ring block: defaults, and every bad value named by its key.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 #pragma once
-// A bearing whose rotating ring is a flexible thin ring (docs/model.md section 11): the rigid
+// A bearing whose rotating ring is a flexible thin ring (docs/model.md section 18): the rigid
 // ring's 5 coordinates q plus two modal coordinates (cos, sin) per ring mode, x = (q, eta).
 // The ring's radial and axial displacement at each ball's place on it adds to the rigid
 // displacement of that ball's groove centre; the ball loads project back onto the modes by

@@ -1,5 +1,5 @@
 #pragma once
-// Dynamics of a bearing with a flexible rotating ring (docs/model.md section 11.3):
+// Dynamics of a bearing with a flexible rotating ring (docs/model.md section 18.3):
 // M x'' = F_ext + F_contact(x, x', t) - K_ring x - C_ring x' with x = (q, eta), integrated by
 // classical RK4 with a fixed internal step from the highest natural frequency at the static
 // equilibrium. Clear rather than fast: an offline (bearing_tool) model; the node and

@@ -1,6 +1,6 @@
 #pragma once
 // The bearing file's `flexible_ring:` block (docs/bearing_file.md), in SI units once loaded:
-// the rotating ring as a thin elastic ring described by its bending modes (docs/model.md 11).
+// the rotating ring as a thin elastic ring described by its bending modes (docs/model.md 18).
 namespace bearing_sim {
 
 // Why the rigid-ring dynamics (BearingDynamics, the node, scenarios) refuse a flexible ring.

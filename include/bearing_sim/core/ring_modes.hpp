@@ -1,5 +1,5 @@
 #pragma once
-// Bending modes of a free thin circular ring (docs/model.md section 11.1): in-plane
+// Bending modes of a free thin circular ring (docs/model.md section 18.1): in-plane
 // inextensional modes (radial displacement w = a cos n theta, tangential v = -(a/n) sin n theta:
 // the centre line does not stretch) and out-of-plane modes (axial displacement, with the
 // section's twist that minimises the strain energy). Each order n >= 2 has a cos and a sin
