@@ -12,6 +12,7 @@
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/flexible_bearing.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
+#include "bearing_sim/core/scenario.hpp"
 #include "test_support.hpp"
 
 namespace bearing_sim {
@@ -106,6 +107,18 @@ TEST(FlexibleRingStatics, TheRigidRingDynamicsRefuseAFlexibleRingNamingTheKey) {
     ADD_FAILURE() << "the rigid-ring dynamics took a flexible ring";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("key 'flexible_ring'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(FlexibleRingStatics, AScenarioRefusesAFlexibleRingNamingTheKey) {
+  const std::string yaml = "name: x\nduration_s: 1\nbearing_file: " + bearing_file("ct_gantry_flexible.yaml") +
+                           "\nspeed: {initial_speed_rpm: 180}\n";
+  try {
+    Scenario::from_string(yaml, "flexible_scenario.yaml");
+    ADD_FAILURE() << "a scenario took a flexible ring";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("flexible_ring"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("key 'bearing_file'"), std::string::npos) << e.what();
   }
 }
 
