@@ -1,6 +1,7 @@
 // The flexible ring's contacts and static equilibrium (docs/model.md 18.2): the rigid ring's
 // forces when the ring is undeformed, the analytic stiffness against finite differences, and
-// the load distribution tending to the rigid ring's as the ring's bending stiffness grows.
+// the load distribution tending to the rigid ring's as the ring's bending stiffness grows;
+// the rigid-ring dynamics, scenarios and sweeps refuse a flexible ring, naming the key.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include "bearing_sim/core/flexible_bearing.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "bearing_sim/core/scenario.hpp"
+#include "bearing_sim/core/sweep.hpp"
 #include "test_support.hpp"
 
 namespace bearing_sim {
@@ -119,6 +121,18 @@ TEST(FlexibleRingStatics, AScenarioRefusesAFlexibleRingNamingTheKey) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("flexible_ring"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("key 'bearing_file'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(FlexibleRingStatics, ASweepRefusesAFlexibleBaseFileNamingTheKey) {
+  const std::string yaml =
+      "bearing: ct_gantry_flexible.yaml\nanalysis: static\noperating_point: {force_N: [6800, 0, 0]}\n"
+      "studies:\n  - parameter: radial_load_N\n    values: [1000]\n";
+  try {
+    parse_sweep_definition(YAML::Load(yaml), "flexible_sweep.yaml", test::config_path("bearings"));
+    ADD_FAILURE() << "a sweep took a flexible ring";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("flexible_ring"), std::string::npos) << e.what();
   }
 }
 
