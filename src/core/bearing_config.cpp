@@ -8,6 +8,7 @@
 #include "bearing_sim/core/bearing_model.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/modal_damping.hpp"
+#include "flexible_ring_config.hpp"
 #include "yaml_reader.hpp"
 
 namespace bearing_sim {
@@ -98,7 +99,8 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
                 "pitch_diameter_mm", "row_spacing_mm", "row_phase_deg", "contact_angle_deg",
                 "inner_groove_curvature", "outer_groove_curvature", "clearance_um",
                 "outer_diameter_mm", "inner_diameter_mm", "width_mm", "rotating_ring", "material",
-                "rotating_mass_kg", "tilt_inertia_kg_m2", "carried_body", "damping", "imperfections", "defects"});
+                "rotating_mass_kg", "tilt_inertia_kg_m2", "carried_body", "damping", "imperfections", "defects",
+                "flexible_ring"});
 
   BearingConfig c;
   c.name = r.text("name", "unnamed bearing");
@@ -190,6 +192,7 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
   }
 
   if (const YAML::Node body = r.map("carried_body")) read_carried_body(Reader(body, source, "carried_body."), &c);
+  if (const YAML::Node ring = r.map("flexible_ring")) detail::read_flexible_ring(Reader(ring, source, "flexible_ring."), &c);
   const YAML::Node dmp = r.map("damping");
   if (dmp) read_damping(Reader(dmp, source, "damping."), dmp, &c);
   c.imperfections = parse_imperfections(root["imperfections"], root["defects"], source, c.rows);

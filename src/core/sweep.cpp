@@ -263,11 +263,14 @@ SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string
     fail(source, "bearing", std::string("cannot read the base bearing file: ") + e.what());
   }
   // The base file must be valid on its own.
+  bool flexible = false;
   try {
-    parse_bearing_config(d.bearing, d.bearing_path);
+    flexible = parse_bearing_config(d.bearing, d.bearing_path).flexible_ring.present;
   } catch (const ConfigError& e) {
     fail(source, "bearing", std::string("the base bearing file is invalid: ") + e.what());
   }
+  // Its static and dynamic cases run the rigid ring's solvers.
+  if (flexible) fail(source, "bearing", std::string("the base bearing file's key 'flexible_ring': ") + kFlexibleRingOfflineOnly);
 
   const std::string analysis = root["analysis"] ? root["analysis"].as<std::string>() : "dynamic";
   if (analysis == "dynamic") d.dynamic = true;

@@ -77,6 +77,8 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
   BearingModel model(load_bearing_config(bearing_file));
   if (!model.config().has_dynamics())
     throw std::runtime_error("bearing file " + bearing_file + " has no rotating_mass_kg: no dynamics possible");
+  if (model.config().flexible_ring.present)
+    throw std::runtime_error("bearing file " + bearing_file + ": key 'flexible_ring': " + kFlexibleRingOfflineOnly);
 
   sample_rate_hz_ = params.sample_rate_hz;
   load_ramp_ = LoadRamp(static_cast<std::uint64_t>(std::llround(params.load_ramp_s * sample_rate_hz_)));

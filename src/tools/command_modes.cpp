@@ -6,6 +6,7 @@
 #include <iostream>
 #include <memory>
 
+#include "bearing_sim/core/flexible_bearing.hpp"
 #include "bearing_sim/core/modal_analysis.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "commands.hpp"
@@ -31,7 +32,10 @@ void run(const ModesOptions& o) {
     if (!(i > 0.0)) throw InputError("--inertia-kg-m2: every component must be > 0");
   const BearingModel model = load_model(o.bearing);
   const Vector5 load = make_load(o.force, o.moment);
-  const StaticSolution sol = solve_static(model, load);
+  // A flexible ring's bushing: its stiffness with the ring's modes statically condensed out.
+  const StaticSolution sol = model.config().flexible_ring.present
+                                 ? solve_flexible_static(FlexibleBearing(model), load).rigid_coordinates
+                                 : solve_static(model, load);
   const Matrix6 bushing = bushing_matrix(sol.stiffness);
   if (bushing(0, 0) <= 0.0 || bushing(2, 2) <= 0.0)
     warn("the bearing has no radial or axial stiffness at this load (zero load on a bearing with clearance?): "

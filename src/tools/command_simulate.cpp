@@ -14,6 +14,7 @@
 #include "bearing_sim/core/simd_info.hpp"
 #include "bearing_sim/core/simulation_run.hpp"
 #include "commands.hpp"
+#include "flexible_ring_report.hpp"
 #include "job_size.hpp"
 #include "simulated_sensor.hpp"
 #include "tool_common.hpp"
@@ -110,6 +111,25 @@ void run(const SimulateOptions& o) {
   request.sample_rate_hz = o.rate_hz;
   request.substeps = o.substeps;
   request.method = *integration_method_from_name(o.integrator);  // CLI11 checked the name
+  if (model.config().flexible_ring.present) {
+    // The offline flexible-ring model: its own RK4 and report (docs/model.md section 18).
+    if (!o.sensor.empty() || !o.sensor_csv.empty())
+      throw InputError("--sensor: not available with a flexible ring (key 'flexible_ring' of " + o.bearing + ")");
+    if (o.integrator != integration_method_name(kDefaultIntegrationMethod) && o.integrator != "rk4")
+      throw InputError("--integrator " + o.integrator + ": a flexible ring is integrated by rk4 only");
+    FlexibleSimulationRequest r;
+    r.bearing_path = o.bearing;
+    r.load = load;
+    r.ring_speed_rad_s = request.ring_speed_rad_s;
+    r.ring_speed_rpm = model.config().rotating_ring == RotatingRing::Outer ? o.outer_rpm : o.inner_rpm;
+    r.duration_s = o.duration_s;
+    r.rate_hz = o.rate_hz;
+    r.substeps = o.substeps;
+    r.csv = o.csv;
+    r.json = o.json;
+    run_flexible_simulation(model, r);
+    return;
+  }
 
   // The static equilibrium the run starts from (also reported, for comparison with the mean).
   const StaticSolution equilibrium = solve_static(model, load);

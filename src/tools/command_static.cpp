@@ -6,6 +6,7 @@
 
 #include "bearing_sim/core/quasi_static.hpp"
 #include "commands.hpp"
+#include "flexible_ring_report.hpp"
 #include "tool_common.hpp"
 
 namespace bearing_sim::tool {
@@ -124,14 +125,25 @@ void print_tables(const StaticOptions& o, const BearingModel& model, const Vecto
 void run(const StaticOptions& o) {
   const BearingModel model = load_model(o.bearing, o.ring_temperature_difference_K);
   const Vector5 load = make_load(o.force, o.moment);
-  const StaticSolution sol = solve_static(model, load, deg_to_rad(o.cage_angle_deg));
-  const nlohmann::json result = solution_json(o, model, load, sol);
+  const RollingPhase phase{deg_to_rad(o.cage_angle_deg)};
+  StaticSolution sol = solve_static(model, load, phase);
+  nlohmann::json ring = nullptr;  // with a flexible ring: its shape and modes, and the rigid ring's peak
+  if (model.config().flexible_ring.present) {
+    const FlexibleBearing flexible(model);
+    const FlexibleStaticSolution flexible_solution = solve_flexible_static(flexible, load, phase);
+    ring = flexible_ring_static_json(flexible, flexible_solution, sol);
+    sol = flexible_solution.rigid_coordinates;
+  }
+  nlohmann::json result = solution_json(o, model, load, sol);
+  result["flexible_ring"] = ring;
   require_finite_result(result, "static");
   if (sol.exceeds_permissible_pressure()) warn(pressure_warning(sol));
-  if (o.json)
+  if (o.json) {
     print_json(result);
-  else
-    print_tables(o, model, load, sol);
+    return;
+  }
+  print_tables(o, model, load, sol);
+  if (!ring.is_null()) print_flexible_ring_static(ring);
 }
 
 }  // namespace

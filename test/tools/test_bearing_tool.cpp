@@ -16,6 +16,7 @@
 
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/bearing_model.hpp"
+#include "bearing_sim/core/flexible_bearing.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
 #include "tool_runner.hpp"
@@ -511,6 +512,57 @@ TEST_F(ToolTest, SimulateUnwritableCsvIsBadInput) {
                           dir_ + "/no/such/dir/run.csv'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(contains(r.err, "--csv")) << r.err;
+}
+
+// A flexible ring (docs/model.md section 18): static reports the core's flexible equilibrium
+// beside the rigid ring's peak; simulate writes the modal coordinates.
+const std::string kCtFlexible = std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/ct_gantry_flexible.yaml";
+
+TEST_F(ToolTest, StaticWithAFlexibleRingIsTheCoresFlexibleEquilibrium) {
+  const json j = run_json("static --bearing '" + kCtFlexible + "' --force 6800,0,0 --moment 0,2100");
+  const bearing_sim::BearingModel model(bearing_sim::load_bearing_config(kCtFlexible));
+  const bearing_sim::Vector5 load = (bearing_sim::Vector5() << 6800, 0, 0, 0, 2100).finished();
+  const bearing_sim::FlexibleStaticSolution core =
+      bearing_sim::solve_flexible_static(bearing_sim::FlexibleBearing(model), load);
+  const double rigid_peak = bearing_sim::solve_static(model, load).max_ball_load_N;
+  ASSERT_TRUE(j["flexible_ring"].is_object()) << j.dump();
+  // The same computation: equal to the printed digits (JSON doubles round-trip).
+  EXPECT_NEAR(j["max_ball_load_N"].get<double>(), core.rigid_coordinates.max_ball_load_N, 1e-9);
+  EXPECT_NEAR(j["flexible_ring"]["rigid_ring_max_ball_load_N"].get<double>(), rigid_peak, 1e-9);
+  for (int i = 0; i < 5; ++i)
+    EXPECT_NEAR(j["displacement"][i].get<double>(), core.coordinates[i], 1e-15) << i;
+  // Ten modes, n = 2..6 in and out of plane; the first is the free ring's n = 2 (Hoppe, 84.7 Hz).
+  ASSERT_EQ(j["flexible_ring"]["modes"].size(), 10u);
+  EXPECT_EQ(j["flexible_ring"]["modes"][0]["direction"], "in_plane");
+  EXPECT_NEAR(j["flexible_ring"]["modes"][0]["frequency_hz"].get<double>(), 84.7, 0.05);
+  EXPECT_EQ(j["flexible_ring"]["natural_frequencies_hz"].size(), 25u);
+  // A rigid ring's file has none.
+  EXPECT_TRUE(run_json("static --bearing '" + kCt + "' --force 6800,0,0")["flexible_ring"].is_null());
+}
+
+TEST_F(ToolTest, SimulateWithAFlexibleRingWritesTheModalCoordinates) {
+  const std::string csv = dir_ + "/flexible.csv";
+  const json j = run_json("simulate --bearing '" + kCtFlexible + "' --force 6800,0,0 --moment 0,2100 " +
+                          "--outer-rpm 180 --duration 0.01 --rate 5000 --csv '" + csv + "'");
+  EXPECT_EQ(j["integrator"], "rk4");
+  EXPECT_EQ(j["samples"].get<int>(), 50);
+  ASSERT_EQ(j["flexible_ring"].size(), 10u);
+  std::string header;
+  const auto rows = parse_csv(csv, &header);
+  ASSERT_EQ(rows.size(), 50u);
+  EXPECT_NE(header.find(",ring_in_plane_n2_cos_m,ring_in_plane_n2_sin_m,"), std::string::npos) << header;
+  EXPECT_NE(header.find(",ring_out_of_plane_n6_sin_m"), std::string::npos) << header;
+  ASSERT_EQ(rows[0].size(), 11u + 20u);
+  // The first sample (0.2 ms in) still holds the static shape: the n = 2 in-plane amplitude,
+  // which turns through the ring at 2 x 3 Hz, within 1 %.
+  const double a = rows[0][11], b = rows[0][12];
+  const double static_amplitude = j["flexible_ring"][0]["static_amplitude_m"].get<double>();
+  EXPECT_NEAR(std::hypot(a, b), static_amplitude, 0.01 * static_amplitude);
+  // Options the flexible model does not have are refused, naming them.
+  const RunResult r = run("simulate --bearing '" + kCtFlexible + "' --force 6800,0,0 --outer-rpm 180 --duration 0.01 "
+                          "--integrator etdrk4");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--integrator"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "bearing_sim/core/flexible_ring_spec.hpp"
 #include "bearing_sim/core/imperfections.hpp"
 
 namespace bearing_sim {
@@ -64,6 +65,8 @@ struct BearingConfig {
   std::array<double, 5> damping_reference_load{};  // Fx, Fy, Fz (N), Mx, My (N*m)
   // Extension of the bearing file: `imperfections:` and `defects:` (docs/bearing_file.md).
   ImperfectionSpec imperfections;
+  // Extension: `flexible_ring:`, the rotating ring's bending modes (absent: a rigid ring).
+  FlexibleRingSpec flexible_ring;
 
   bool has_dynamics() const { return rotating_mass_kg > 0.0; }
 };

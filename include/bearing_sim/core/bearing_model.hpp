@@ -71,6 +71,8 @@ class BearingModel {
   const HertzContact& inner_contact() const { return inner_contact_; }
   const HertzContact& outer_contact() const { return outer_contact_; }
   double pitch_radius_m() const { return config_.pitch_diameter_m / 2.0; }
+  // Radial coordinate of the moving ring's groove centres (P_o or P_i), m.
+  double groove_centre_radius_m() const { return groove_centre_radius_; }
   double row_axial_position_m(int row) const;  // z_r of the ball centres
   int row_contact_sign(int row) const;          // c_r
   int row_of_ball(int ball) const { return balls_.row[ball]; }

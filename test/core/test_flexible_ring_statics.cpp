@@ -1,0 +1,140 @@
+// The flexible ring's contacts and static equilibrium (docs/model.md 18.2): the rigid ring's
+// forces when the ring is undeformed, the analytic stiffness against finite differences, and
+// the load distribution tending to the rigid ring's as the ring's bending stiffness grows;
+// the rigid-ring dynamics, scenarios and sweeps refuse a flexible ring, naming the key.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <string>
+
+#include "bearing_sim/core/bearing_dynamics.hpp"
+#include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/flexible_bearing.hpp"
+#include "bearing_sim/core/quasi_static.hpp"
+#include "bearing_sim/core/scenario.hpp"
+#include "bearing_sim/core/sweep.hpp"
+#include "test_support.hpp"
+
+namespace bearing_sim {
+namespace {
+
+using test::bearing_file;
+using test::load5;
+
+BearingConfig ct_flexible() { return load_bearing_config(bearing_file("ct_gantry_flexible.yaml")); }
+// The paper's load: the rotor's weight 6800 N along x and 2100 N*m about y.
+Vector5 paper_load() { return load5(6800.0, 0.0, 0.0, 0.0, 2100.0); }
+
+TEST(FlexibleRingStatics, AnUndeformedRingLoadsTheBallsAsTheRigidRing) {
+  const FlexibleBearing flexible{BearingModel(ct_flexible())};
+  const BearingModel& rigid = flexible.model();
+  const RollingPhase phase{0.3, 0.0, 1.1, 0.0, 0.0};
+  const StaticSolution s = solve_static(rigid, paper_load(), phase);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(flexible.size()), x_dot = Eigen::VectorXd::Zero(flexible.size());
+  x.head<5>() = s.displacement;
+  x_dot.head<5>() << 1e-4, -2e-4, 5e-5, 1e-4, -1e-4;  // with the contacts' damping
+  const Eigen::VectorXd f = flexible.contact_force(x, x_dot, phase);
+  const Vector5 expected = rigid.contact_force(s.displacement, x_dot.head<5>(), phase, rigid.balls(),
+                                               BearingModel::ContactKernel::Scalar);
+  // Same formulas summed in another order: rounding of a sum of ~200 loads of ~100 N.
+  for (int i = 0; i < 5; ++i) EXPECT_NEAR(f[i], expected[i], 1e-9 * expected.norm()) << i;
+}
+
+TEST(FlexibleRingStatics, TheAnalyticStiffnessIsTheForcesDerivative) {
+  const FlexibleBearing flexible{BearingModel(ct_flexible())};
+  const RollingPhase phase{0.2, 0.0, 0.7, 0.0, 0.0};
+  const FlexibleStaticSolution sol = solve_flexible_static(flexible, paper_load(), phase);
+  Eigen::MatrixXd k;
+  flexible.contact_force_and_stiffness(sol.coordinates, phase, &k);
+  const int n = flexible.size();
+  for (int j = 0; j < n; ++j) {
+    // A nm of displacement, or the tilt that moves the ring's edge by a nm.
+    const double step = (j == 3 || j == 4) ? 1e-9 / flexible.model().pitch_radius_m() : 1e-9;
+    Eigen::VectorXd plus = sol.coordinates, minus = sol.coordinates;
+    plus[j] += step;
+    minus[j] -= step;
+    const Eigen::VectorXd column = -(flexible.contact_force_and_stiffness(plus, phase, nullptr) -
+                                     flexible.contact_force_and_stiffness(minus, phase, nullptr)) /
+                                   (2.0 * step);
+    // Central differences over 2 nm of ~10 um deflections: truncation ~1e-8, rounding ~1e-6.
+    EXPECT_LT((column - k.col(j)).norm(), 1e-5 * k.col(j).norm() + 1e-3) << "column " << j;
+  }
+}
+
+// Largest ball load and its difference from the rigid ring's, ball by ball.
+struct Distribution {
+  double max_load_N = 0.0;
+  double max_difference_N = 0.0;  // max over balls of |Q_flexible - Q_rigid|
+};
+
+Distribution distribution(double modulus_factor, const StaticSolution& rigid) {
+  BearingConfig c = ct_flexible();
+  c.flexible_ring.youngs_modulus_Pa *= modulus_factor;
+  c.flexible_ring.shear_modulus_Pa *= modulus_factor;
+  const FlexibleBearing flexible{BearingModel(c)};
+  const FlexibleStaticSolution sol = solve_flexible_static(flexible, paper_load());
+  Distribution d;
+  d.max_load_N = sol.rigid_coordinates.max_ball_load_N;
+  for (std::size_t b = 0; b < rigid.balls.size(); ++b)
+    d.max_difference_N =
+        std::max(d.max_difference_N, std::abs(sol.rigid_coordinates.balls[b].load_N - rigid.balls[b].load_N));
+  return d;
+}
+
+TEST(FlexibleRingStatics, TheLoadDistributionTendsToTheRigidRingsAsTheRingStiffens) {
+  const BearingConfig c = ct_flexible();
+  const StaticSolution rigid = solve_static(BearingModel(c), paper_load());
+  const Distribution real = distribution(1.0, rigid), e3 = distribution(1e3, rigid), e6 = distribution(1e6, rigid);
+  std::cout << "peak ball load: rigid " << rigid.max_ball_load_N << " N, flexible " << real.max_load_N
+            << " N (largest per-ball difference " << real.max_difference_N << " N), E x 1e3: "
+            << e3.max_difference_N << " N, E x 1e6: " << e6.max_difference_N << " N\n";
+  // The real section changes the distribution visibly: more than 5 % of the peak load.
+  EXPECT_GT(real.max_difference_N, 0.05 * rigid.max_ball_load_N);
+  // The ring's compliance scales as 1/E, and so does the first-order change of the loads: a
+  // thousand times stiffer, a thousand times closer (within 20 % for the remaining curvature
+  // of the Hertz law and of the load zone's edge).
+  EXPECT_NEAR(e3.max_difference_N / e6.max_difference_N, 1e3, 200.0);
+  // At E x 1e6 the ring is rigid to the balls: the 1/E law from E x 1e3 puts the difference
+  // near 1e-3 of that one (~0.01 N, 1e-4 of the peak); below 1e-4 of the peak load.
+  EXPECT_LT(e6.max_difference_N, 1e-4 * rigid.max_ball_load_N);
+  EXPECT_NEAR(e6.max_load_N, rigid.max_ball_load_N, 1e-4 * rigid.max_ball_load_N);
+}
+
+TEST(FlexibleRingStatics, TheRigidRingDynamicsRefuseAFlexibleRingNamingTheKey) {
+  const BearingModel model(ct_flexible());
+  try {
+    BearingDynamics dynamics(model, paper_load(), test::kCtSpeedRadS);
+    ADD_FAILURE() << "the rigid-ring dynamics took a flexible ring";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("key 'flexible_ring'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(FlexibleRingStatics, AScenarioRefusesAFlexibleRingNamingTheKey) {
+  const std::string yaml = "name: x\nduration_s: 1\nbearing_file: " + bearing_file("ct_gantry_flexible.yaml") +
+                           "\nspeed: {initial_speed_rpm: 180}\n";
+  try {
+    Scenario::from_string(yaml, "flexible_scenario.yaml");
+    ADD_FAILURE() << "a scenario took a flexible ring";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("flexible_ring"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("key 'bearing_file'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(FlexibleRingStatics, ASweepRefusesAFlexibleBaseFileNamingTheKey) {
+  const std::string yaml =
+      "bearing: ct_gantry_flexible.yaml\nanalysis: static\noperating_point: {force_N: [6800, 0, 0]}\n"
+      "studies:\n  - parameter: radial_load_N\n    values: [1000]\n";
+  try {
+    parse_sweep_definition(YAML::Load(yaml), "flexible_sweep.yaml", test::config_path("bearings"));
+    ADD_FAILURE() << "a sweep took a flexible ring";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("flexible_ring"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace bearing_sim
