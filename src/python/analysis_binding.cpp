@@ -42,6 +42,7 @@ py::dict analyze(const PyBearing& b, py::array_t<double, py::array::c_style | py
   d["envelope_mean_m_s2"] = c.envelope_mean_m_s2;
   d["envelope_band_source"] = c.envelope_band_source;
   d["envelope_band_kurtosis"] = c.envelope_band_kurtosis;
+  d["envelope_band_independent_samples"] = c.envelope_band_independent_samples;
   d["envelope_resolution_hz"] = c.envelope.resolution_hz;
   d["envelope_m_s2"] = py::array_t<double>(static_cast<py::ssize_t>(c.envelope.amplitude.size()),
                                            c.envelope.amplitude.data());
