@@ -67,6 +67,10 @@ py::dict analyze(const PyBearing& b, py::array_t<double, py::array::c_style | py
     e["sidebands"] = sidebands;  // (frequency_hz, snr_db, found) at -f_mod, +f_mod
     e["sidebands_found"] = fi.sidebands_found;
     e["suspected"] = fi.suspected;
+    e["resolvable"] = fi.resolvable;
+    e["impulsiveness_required"] = fi.impulsiveness_required;
+    e["impulsive"] = fi.impulsive;
+    e["note"] = fi.note;
     faults.append(e);
   }
   d["faults"] = faults;
