@@ -296,10 +296,7 @@ SpectralPeak find_peak(const Spectrum& s, double expected_hz, const PeakSearchOp
   const auto bins = static_cast<long>(s.amplitude.size());
   if (!(s.resolution_hz > 0.0) || bins < 8 || !(expected_hz > 0.0) || !std::isfinite(expected_hz)) return p;
   const double centre = expected_hz / s.resolution_hz;
-  // A line within the relative tolerance has its nearest bin within half a bin more: without
-  // that half bin a line near the edge (e.g. +0.6 % at 112 Hz in 1 Hz bins) is seen only on
-  // its flank and is not a local maximum.
-  const double half = std::max(o.tolerance_rel * centre + 0.5, static_cast<double>(o.tolerance_min_bins));
+  const double half = std::max(o.tolerance_rel * centre, static_cast<double>(o.tolerance_min_bins));
   const long lo = std::max(1L, static_cast<long>(std::ceil(centre - half)));
   const long hi = std::min(bins - 2, static_cast<long>(std::floor(centre + half)));
   if (lo > hi) return p;

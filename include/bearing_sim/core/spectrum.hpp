@@ -86,8 +86,7 @@ BandKurtosis band_spectral_kurtosis(const std::vector<double>& x, double sample_
 
 // Peak search around an expected frequency.
 struct PeakSearchOptions {
-  double tolerance_rel = 0.01;     // search expected * (1 +- tolerance_rel), plus half a bin
-                                   // (the nearest bin of a line at the edge) ...
+  double tolerance_rel = 0.01;     // search expected * (1 +- tolerance_rel) ...
   // ... but at least +- one bin: the nearest bin of a line is within half a bin of it, and a
   // wider window near a low frequency (FTF) would catch unrelated lines.
   int tolerance_min_bins = 1;
