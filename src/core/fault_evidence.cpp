@@ -61,10 +61,6 @@ bool compliance_series(const BearingFrequencies& freq, FaultKind kind, double re
 }
 }  // namespace
 
-double impulsive_kurtosis_threshold(double independent_samples, double sigmas) {
-  return independent_samples > 0.0 ? sigmas * 2.0 / std::sqrt(independent_samples) : 0.0;
-}
-
 void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& freq, const AnalysisOptions& o,
                             const BandKurtosis& band, FaultIndicator* f) {
   const DiagnosisThresholds& t = o.thresholds;

@@ -21,8 +21,4 @@ void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& 
 void arbitrate_fault_series(const Spectrum& envelope, const BearingFrequencies& freq, const AnalysisOptions& o,
                             std::vector<FaultIndicator>* faults);
 
-// Spectral kurtosis a band must exceed to count as impulsive: sigmas standard deviations of
-// the estimate for Gaussian noise, 2 / sqrt(independent samples).
-double impulsive_kurtosis_threshold(double independent_samples, double sigmas);
-
 }  // namespace bearing_sim
