@@ -312,6 +312,17 @@ def run_case(case, work_dir):
             row[f'{kind}_h2_snr_db'] = round(h[1][1], 2) if len(h) > 1 else ''
             row[f'{kind}_sb_snr_db'] = round(max(sb[1] for sb in f['sidebands']), 2) if f['sidebands'] else ''
             row[f'{kind}_sb_required'] = int(f['sidebands_required'])
+            # Evidence in detail (frequencies as found), for studying the rules offline.
+            row[f'{kind}_hz'] = round(f['frequency_hz'], 3)
+            row[f'{kind}_expected_hz'] = round(f['expected_hz'], 3)
+            row[f'{kind}_h3_snr_db'] = round(h[2][1], 2) if len(h) > 2 else ''
+            row[f'{kind}_harmonics_found'] = f['harmonics_found']
+            for side, sb in zip(('lo', 'hi'), f['sidebands']):
+                row[f'{kind}_sb_{side}_hz'], row[f'{kind}_sb_{side}_snr_db'] = round(sb[0], 3), round(sb[1], 2)
+            row[f'{kind}_suspected'] = int(f['suspected'])
+            row[f'{kind}_note'] = f.get('note', '')
+        row['band_sk'] = round(a['envelope_band_kurtosis'], 4)
+        row['band_sk_samples'] = round(a['envelope_band_independent_samples'], 1)
         row['clipped_samples'] = int((abs(x) >= 0.999 * SENSOR_RANGE_G * 9.80665).sum())
         row.update(finding='+'.join(sorted(suspected)) or 'none', predicted=classify(suspected),
                    health=a['health'], kurtosis=round(a['kurtosis'], 3), rms_m_s2=round(a['rms_m_s2'], 4),

@@ -6,6 +6,7 @@
 
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
+#include "fault_evidence.hpp"
 
 namespace bearing_sim {
 namespace {
@@ -23,60 +24,8 @@ bool kurtogram_fits(double fs, double highest_fault_hz, double lowest_edge_hz) {
   return 0.25 * fs >= 3.0 * highest_fault_hz && 0.25 * fs >= lowest_edge_hz;
 }
 
-bool line_found(const SpectralPeak& p, double threshold_db) {
-  return p.searched && p.local_maximum && p.snr_db >= threshold_db;
-}
-
 }  // namespace
 
-double modulation_frequency_hz(const BearingFrequencies& f, FaultKind kind);
-
-namespace {
-// Harmonics 1..kHarmonics and, where modulation is predicted, the sidebands of the
-// fundamental; the decision (docs/health.md, "Evidence").
-constexpr int kHarmonics = 3;
-
-void collect_evidence(const Spectrum& envelope, const BearingFrequencies& freq, const AnalysisOptions& o,
-                      FaultIndicator* f) {
-  const DiagnosisThresholds& t = o.thresholds;
-  EvidenceLine first;
-  first.peak = f->envelope_peak;
-  first.found = line_found(first.peak, t.fault_snr_db);
-  f->harmonics.push_back(first);
-  // Higher harmonics at n x the fundamental as found (as expected if it was not found).
-  const double base_hz = first.found ? first.peak.frequency_hz : first.peak.expected_hz;
-  for (int n = 2; n <= kHarmonics; ++n) {
-    EvidenceLine h;
-    h.order = n;
-    h.peak = find_peak(envelope, n * base_hz, o.peak_search, o.envelope_floor_m_s2);
-    h.found = line_found(h.peak, t.evidence_snr_db);
-    f->harmonics.push_back(h);
-  }
-  f->harmonics_found = 0;
-  for (const EvidenceLine& h : f->harmonics) {
-    if (!h.found) break;
-    ++f->harmonics_found;
-  }
-  // Sidebands: only when the modulation is resolvable, i.e. the sideband's search window
-  // (+-1 bin at least) lies outside the carrier's excluded main lobe (+-noise_exclude_bins).
-  const double df = envelope.resolution_hz;
-  const double fm = modulation_frequency_hz(freq, f->kind);
-  const double min_fm = (o.peak_search.noise_exclude_bins + 2) * df;
-  if (df > 0.0 && fm >= min_fm && base_hz - fm > min_fm) {
-    f->sidebands_required = true;
-    f->modulation_hz = fm;
-    for (double sign : {-1.0, 1.0}) {
-      EvidenceLine sb;
-      sb.offset_hz = sign * fm;
-      sb.peak = find_peak(envelope, base_hz + sign * fm, o.peak_search, o.envelope_floor_m_s2);
-      sb.found = line_found(sb.peak, t.evidence_snr_db);
-      f->sidebands_found += sb.found ? 1 : 0;
-      f->sidebands.push_back(sb);
-    }
-  }
-  f->suspected = first.found && f->harmonics_found >= 2 && (!f->sidebands_required || f->sidebands_found >= 1);
-}
-}  // namespace
 
 const char* velocity_zone_name(VelocityZone zone) {
   switch (zone) {
@@ -241,7 +190,6 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
     const Kurtogram k = fast_kurtogram(x, fs, 3.0 * highest_fault_hz, lowest_edge_hz);
     c.envelope_low_hz = k.best.low_hz;
     c.envelope_high_hz = k.best.high_hz;
-    c.envelope_band_kurtosis = k.best.kurtosis;
     c.envelope_band_source = "kurtogram";
   } else {
     c.envelope_low_hz = lowest_edge_hz;
@@ -252,6 +200,11 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
     throw InvalidInputError("analysis: envelope band " + fmt(c.envelope_low_hz, 0) + "-" + fmt(c.envelope_high_hz, 0) +
                             " Hz does not fit below the Nyquist frequency " + fmt(nyquist, 0) +
                             " Hz (raise the sample rate or give resonance_hz)");
+  // The band's impulsiveness, whichever way it was chosen (the evidence rule asks it of a
+  // series without sidebands).
+  const BandKurtosis sk = band_spectral_kurtosis(x, fs, c.envelope_low_hz, c.envelope_high_hz);
+  c.envelope_band_kurtosis = sk.kurtosis;
+  c.envelope_band_independent_samples = sk.independent_samples;
   const std::vector<double> envelope = band_envelope(x, fs, c.envelope_low_hz, c.envelope_high_hz);
   c.envelope_mean_m_s2 = signal_statistics(envelope).mean;
   c.envelope = amplitude_spectrum(envelope, fs);
@@ -260,9 +213,10 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
     f.kind = k;
     f.envelope_peak = find_peak(c.envelope, fault_frequency_hz(freq, k), o.peak_search, o.envelope_floor_m_s2);
     f.modulation = c.envelope_mean_m_s2 > 0.0 ? f.envelope_peak.amplitude / c.envelope_mean_m_s2 : 0.0;
-    collect_evidence(c.envelope, freq, o, &f);
+    collect_fault_evidence(c.envelope, freq, o, sk, &f);
     c.faults.push_back(f);
   }
+  arbitrate_fault_series(c.envelope, freq, o, &c.faults);
   c.diagnosis = diagnose(c, o.thresholds);
   return c;
 }

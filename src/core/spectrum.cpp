@@ -184,15 +184,16 @@ double band_velocity_rms(const std::vector<double>& accel, double sample_rate_hz
   return std::sqrt(static_cast<double>(sum / (static_cast<long double>(n) * window_energy)));
 }
 
-Kurtogram fast_kurtogram(const std::vector<double>& x, double fs, double min_width_hz, double min_low_hz,
-                         int max_bands) {
-  check_signal(x, fs, "kurtogram");
-  // The band filters are circular: the jump between the window's last and first sample is a
-  // click that rings in every band and, in the bands above a sensor's anti-alias cut-off
-  // where nothing else is left, reads as the most impulsive signal. A Tukey taper (cosine
-  // over kTaper of the window at each end) removes the jump, and the moments below leave out
-  // the tapered ends of each band's envelope.
-  constexpr double kTaper = 0.05;
+namespace {
+// The kurtogram's taper: a cosine over kTaper of the window at each end. The band filters
+// are circular: the jump between the window's last and first sample is a click that rings
+// in every band and, in the bands above a sensor's anti-alias cut-off where nothing else is
+// left, reads as the most impulsive signal. The taper removes the jump, and the moments
+// leave out the tapered ends of each band's envelope.
+constexpr double kTaper = 0.05;
+
+// Spectrum of the mean-removed, Tukey-tapered window.
+std::vector<Complex> tapered_spectrum(const std::vector<double>& x) {
   const std::size_t samples = x.size();
   const double mean = std::accumulate(x.begin(), x.end(), 0.0) / static_cast<double>(samples);
   const std::size_t ramp = static_cast<std::size_t>(kTaper * static_cast<double>(samples));
@@ -203,13 +204,64 @@ Kurtogram fast_kurtogram(const std::vector<double>& x, double fs, double min_wid
                                                                     static_cast<double>(ramp)));
     tapered[i] = (x[i] - mean) * w;
   }
-  const std::vector<Complex> spectrum = forward(tapered);
+  return forward(tapered);
+}
+
+// Spectral kurtosis <|c|^4> / <|c|^2>^2 - 2 of the complex envelope c of the band [low, high)
+// of a tapered spectrum: the band's bins moved to baseband, zero-padded to a power of two
+// >= 2 x their count, inverse-transformed, the tapered ends left out. Also the number of
+// bins (independent complex samples). False when the band holds too few bins.
+bool band_kurtosis(const std::vector<Complex>& spectrum, double fs, double low_hz, double high_hz, double* kurtosis,
+                   std::size_t* bins) {
   const std::size_t n = spectrum.size();
   const double df = fs / static_cast<double>(n);
+  // Bins in [low, high) (the last band up to, not including, Nyquist; never DC).
+  const auto k0 = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(low_hz / df)));
+  std::size_t k1 = static_cast<std::size_t>(std::ceil(high_hz / df));  // one past
+  k1 = std::min(k1, (n + 1) / 2);
+  if (k1 <= k0 + 8) return false;  // too few bins for a kurtosis
+  const std::size_t count = k1 - k0;
+  std::size_t m = 16;
+  while (m < 2 * count) m *= 2;
+  std::vector<Complex> band(m, Complex(0.0, 0.0));
+  for (std::size_t j = 0; j < count; ++j) band[j] = spectrum[k0 + j];
+  std::vector<Complex> envelope;
+  Eigen::FFT<double> fft;
+  fft.inv(envelope, band);
+  // The envelope spans the window in m samples: its tapered ends are left out.
+  const std::size_t skip = static_cast<std::size_t>(std::ceil(kTaper * static_cast<double>(m)));
+  long double m2 = 0.0L, m4 = 0.0L;
+  for (std::size_t j = skip; j + skip < m; ++j) {
+    const long double p = std::norm(envelope[j]);
+    m2 += p;
+    m4 += p * p;
+  }
+  m2 /= static_cast<long double>(m - 2 * skip);
+  m4 /= static_cast<long double>(m - 2 * skip);
+  *kurtosis = m2 > 0.0L ? static_cast<double>(m4 / (m2 * m2)) - 2.0 : 0.0;
+  *bins = count;
+  return true;
+}
+}  // namespace
+
+BandKurtosis band_spectral_kurtosis(const std::vector<double>& x, double fs, double low_hz, double high_hz) {
+  check_signal(x, fs, "band kurtosis");
+  check_band(low_hz, high_hz, "band kurtosis");
+  BandKurtosis b;
+  std::size_t bins = 0;
+  b.valid = band_kurtosis(tapered_spectrum(x), fs, low_hz, high_hz, &b.kurtosis, &bins);
+  // The tapered ends carry no weight: (1 - 2 kTaper) of the window's bins are independent.
+  b.independent_samples = static_cast<double>(bins) * (1.0 - 2.0 * kTaper);
+  return b;
+}
+
+Kurtogram fast_kurtogram(const std::vector<double>& x, double fs, double min_width_hz, double min_low_hz,
+                         int max_bands) {
+  check_signal(x, fs, "kurtogram");
+  const std::vector<Complex> spectrum = tapered_spectrum(x);
   const double nyquist = 0.5 * fs;
   Kurtogram k;
   bool have_best = false;
-  Eigen::FFT<double> fft;
   // 1, 2, 3, 4, 6, 8, 12, 16, 24, ...: the binary levels 2^j and the 1/3 levels 3 x 2^(j-1).
   for (int binary = 1; binary <= max_bands; binary *= 2) {
     for (int nb : {binary, binary * 3 / 2}) {
@@ -222,29 +274,8 @@ Kurtogram fast_kurtogram(const std::vector<double>& x, double fs, double min_wid
         b.low_hz = i * width;
         b.high_hz = (i + 1) * width;
         if (b.low_hz < min_low_hz) continue;
-        // Bins in [low, high) (the last band up to, not including, Nyquist; never DC).
-        const auto k0 = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(b.low_hz / df)));
-        std::size_t k1 = static_cast<std::size_t>(std::ceil(b.high_hz / df));  // one past
-        k1 = std::min(k1, (n + 1) / 2);
-        if (k1 <= k0 + 8) continue;  // too few bins for a kurtosis
-        const std::size_t count = k1 - k0;
-        std::size_t m = 16;
-        while (m < 2 * count) m *= 2;
-        std::vector<Complex> band(m, Complex(0.0, 0.0));
-        for (std::size_t j = 0; j < count; ++j) band[j] = spectrum[k0 + j];
-        std::vector<Complex> envelope;
-        fft.inv(envelope, band);
-        // The envelope spans the window in m samples: its tapered ends are left out.
-        const std::size_t skip = static_cast<std::size_t>(std::ceil(kTaper * static_cast<double>(m)));
-        long double m2 = 0.0L, m4 = 0.0L;
-        for (std::size_t j = skip; j + skip < m; ++j) {
-          const long double p = std::norm(envelope[j]);
-          m2 += p;
-          m4 += p * p;
-        }
-        m2 /= static_cast<long double>(m - 2 * skip);
-        m4 /= static_cast<long double>(m - 2 * skip);
-        b.kurtosis = m2 > 0.0L ? static_cast<double>(m4 / (m2 * m2)) - 2.0 : 0.0;
+        std::size_t bins = 0;
+        if (!band_kurtosis(spectrum, fs, b.low_hz, b.high_hz, &b.kurtosis, &bins)) continue;
         k.bands.push_back(b);
         if (!have_best || b.kurtosis > k.best.kurtosis) {
           k.best = b;

@@ -42,6 +42,7 @@ py::dict analyze(const PyBearing& b, py::array_t<double, py::array::c_style | py
   d["envelope_mean_m_s2"] = c.envelope_mean_m_s2;
   d["envelope_band_source"] = c.envelope_band_source;
   d["envelope_band_kurtosis"] = c.envelope_band_kurtosis;
+  d["envelope_band_independent_samples"] = c.envelope_band_independent_samples;
   d["envelope_resolution_hz"] = c.envelope.resolution_hz;
   d["envelope_m_s2"] = py::array_t<double>(static_cast<py::ssize_t>(c.envelope.amplitude.size()),
                                            c.envelope.amplitude.data());
@@ -66,6 +67,10 @@ py::dict analyze(const PyBearing& b, py::array_t<double, py::array::c_style | py
     e["sidebands"] = sidebands;  // (frequency_hz, snr_db, found) at -f_mod, +f_mod
     e["sidebands_found"] = fi.sidebands_found;
     e["suspected"] = fi.suspected;
+    e["resolvable"] = fi.resolvable;
+    e["impulsiveness_required"] = fi.impulsiveness_required;
+    e["impulsive"] = fi.impulsive;
+    e["note"] = fi.note;
     faults.append(e);
   }
   d["faults"] = faults;

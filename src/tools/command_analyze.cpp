@@ -186,7 +186,11 @@ void run(const AnalyzeCliOptions& o) {
                       {"sidebands_required", fi.sidebands_required},
                       {"modulation_hz", fi.modulation_hz},
                       {"sidebands_found", fi.sidebands_found},
-                      {"sidebands", evidence_json(fi.sidebands)}});
+                      {"sidebands", evidence_json(fi.sidebands)},
+                      {"resolvable", fi.resolvable},
+                      {"impulsiveness_required", fi.impulsiveness_required},
+                      {"impulsive", fi.impulsive},
+                      {"note", fi.note}});
   const nlohmann::json result = {{"bearing", bearing_json(model, o.bearing)},
                                  {"csv", o.csv},
                                  {"column", signal.column},
@@ -207,6 +211,7 @@ void run(const AnalyzeCliOptions& o) {
                                  {"envelope_band_hz", {c.envelope_low_hz, c.envelope_high_hz}},
                                  {"envelope_band_source", c.envelope_band_source},
                                  {"envelope_band_kurtosis", c.envelope_band_kurtosis},
+                                 {"envelope_band_independent_samples", c.envelope_band_independent_samples},
                                  {"envelope_mean_m_s2", c.envelope_mean_m_s2},
                                  {"envelope_resolution_hz", c.envelope.resolution_hz},
                                  {"faults", faults},
@@ -238,7 +243,7 @@ void run(const AnalyzeCliOptions& o) {
   t.print(out);
   out << "\nEnvelope spectrum (band " << fixed(c.envelope_low_hz, 0) << "-" << fixed(c.envelope_high_hz, 0)
       << " Hz from the " << c.envelope_band_source
-      << (c.envelope_band_source == "kurtogram" ? ", spectral kurtosis " + fixed(c.envelope_band_kurtosis, 2) : "")
+      << ", spectral kurtosis " << fixed(c.envelope_band_kurtosis, 2)
       << ", resolution " << fixed(c.envelope.resolution_hz, 3) << " Hz; noise = median of the neighbouring bins)\n";
   Table e({"fault", "frequency", "expected Hz", "peak Hz", "amplitude m/s^2", "SNR dB", "harmonics dB",
            "sidebands dB", "suspected"},
@@ -251,6 +256,8 @@ void run(const AnalyzeCliOptions& o) {
                fi.sidebands_required ? evidence_cell(fi.sidebands, 0) : "n/a", fi.suspected ? "yes" : "no"});
   }
   e.print(out);
+  for (const FaultIndicator& fi : c.faults)
+    if (!fi.note.empty()) out << fault_frequency_label(fi.kind) << ": " << fi.note << "\n";
   out << "\nDiagnosis: " << health_level_name(c.diagnosis.level) << ": " << c.diagnosis.reason << "\n";
 }
 

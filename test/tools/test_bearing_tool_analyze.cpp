@@ -95,6 +95,10 @@ TEST_F(AnalyzeTool, SameIndicatorsAsTheLibrary) {
     EXPECT_EQ(j["faults"][k]["harmonics_found"].get<int>(), f.harmonics_found);
     EXPECT_EQ(j["faults"][k]["sidebands_found"].get<int>(), f.sidebands_found);
     EXPECT_EQ(j["faults"][k]["sidebands_required"].get<bool>(), f.sidebands_required);
+    EXPECT_EQ(j["faults"][k]["resolvable"].get<bool>(), f.resolvable);
+    EXPECT_EQ(j["faults"][k]["impulsiveness_required"].get<bool>(), f.impulsiveness_required);
+    EXPECT_EQ(j["faults"][k]["impulsive"].get<bool>(), f.impulsive);
+    EXPECT_EQ(j["faults"][k]["note"].get<std::string>(), f.note);
     ASSERT_EQ(j["faults"][k]["harmonics"].size(), f.harmonics.size());
     for (std::size_t n = 0; n < f.harmonics.size(); ++n) {
       const json& h = j["faults"][k]["harmonics"][n];

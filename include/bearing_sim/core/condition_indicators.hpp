@@ -39,6 +39,18 @@ struct DiagnosisThresholds {
   // ~1% as the largest of the ~13 bins searched; with the fundamental's 0.1% that is ~1e-5
   // per fault type. Evidence rule: docs/health.md, "Evidence".
   double evidence_snr_db = 10.0;
+  // A series the healthy varying compliance can give (at Z |f_c| without sidebands: the
+  // stationary race's; the cage line) needs the envelope band's spectral kurtosis at least
+  // this (<= 0: not required). A train
+  // of bursts filling a fraction d of each period has SK = 1/d - 2: 2 means the band's
+  // energy comes in bursts filling at most a quarter of the period. Gaussian noise: 0; a
+  // line series: < 0; the simulated healthy ball-pass excitation under a quiet sensor:
+  // 0.1-1.8 (docs/health.md, "Benchmark").
+  double impulsive_band_kurtosis = 2.0;
+  // ... asked only of bearings with at most this many balls per row (Z = varying compliance
+  // / cage frequency): the compliance excitation falls as Z^-2.5 (fault_evidence.cpp); the
+  // 6205 (9) and the 618/22 (10) show it, the CT bearing (207) does not.
+  double compliance_max_balls = 40.0;
   double kurtosis_warn = 6.0;    // impulsive signal -> WARN (Gaussian noise: 3); <= 0 disables
   VelocityZone warn_zone = VelocityZone::C;   // velocity zone at or above: WARN
   VelocityZone error_zone = VelocityZone::D;  // ... ERROR
@@ -103,9 +115,19 @@ struct FaultIndicator {
   int harmonics_found = 0;           // consecutive from the 1st: 0 .. 3
   int sidebands_found = 0;           // 0 .. 2
   bool sidebands_required = false;   // modulation predicted and resolvable
+  // The fault frequency is >= noise_exclude_bins + 2 bins (else nothing of it is "found").
+  bool resolvable = true;
+  // No sideband evidence: the band must be impulsive (impulsive_band_kurtosis).
+  bool impulsiveness_required = false;
+  bool impulsive = true;
+  double band_kurtosis = 0.0;  // the envelope band's spectral kurtosis
   // Fundamental found (fault_snr_db) AND 2nd harmonic found (evidence_snr_db) AND, when
-  // sidebands_required, at least one sideband found (evidence_snr_db).
+  // sidebands_required, at least one sideband found (evidence_snr_db) AND, when
+  // impulsiveness_required, an impulsive band; AND not withdrawn beside another series
+  // (docs/health.md, "Evidence").
   bool suspected = false;
+  // Why a series is not suspected or what else explains it (empty when nothing to say).
+  std::string note;
 };
 
 struct Diagnosis {
@@ -124,7 +146,10 @@ struct ConditionIndicators {
   VelocityZone zone = VelocityZone::A;
   double envelope_low_hz = 0.0, envelope_high_hz = 0.0;
   std::string envelope_band_source;    // "resonance", "kurtogram" or "fixed"
-  double envelope_band_kurtosis = 0.0; // spectral kurtosis of the band (kurtogram only)
+  // Spectral kurtosis of the band (band_spectral_kurtosis, any band source) and the number
+  // of independent envelope samples it rests on (Gaussian noise: 0 +- 2 / sqrt of that).
+  double envelope_band_kurtosis = 0.0;
+  double envelope_band_independent_samples = 0.0;
   double envelope_mean_m_s2 = 0.0;  // mean of the band envelope (the demodulated level)
   Spectrum envelope;  // envelope spectrum, m/s^2
   std::vector<FaultIndicator> faults;  // outer race, inner race, ball, cage in that order

@@ -72,6 +72,18 @@ struct Kurtogram {
 Kurtogram fast_kurtogram(const std::vector<double>& x, double sample_rate_hz, double min_width_hz,
                          double min_low_hz = 0.0, int max_bands = 64);
 
+// Spectral kurtosis of one band [low_hz, high_hz), computed as a kurtogram band is (the
+// tapered window, the band's complex envelope, its tapered ends left out). For Gaussian
+// noise SK is 0 with a standard deviation of about 2 / sqrt(independent_samples) (the
+// band's bins, i.e. width x window duration, less the tapered ends); a stationary line
+// series gives SK < 0 (a pure tone -1), a train of short impacts SK > 0.
+struct BandKurtosis {
+  bool valid = false;               // the band holds enough bins (> 8)
+  double kurtosis = 0.0;
+  double independent_samples = 0.0;
+};
+BandKurtosis band_spectral_kurtosis(const std::vector<double>& x, double sample_rate_hz, double low_hz, double high_hz);
+
 // Peak search around an expected frequency.
 struct PeakSearchOptions {
   double tolerance_rel = 0.01;     // search expected * (1 +- tolerance_rel) ...

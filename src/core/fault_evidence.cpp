@@ -1,0 +1,161 @@
+#include "fault_evidence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace bearing_sim {
+namespace {
+constexpr int kHarmonics = 3;
+
+std::string fmt(double v, int decimals) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(decimals);
+  s << v;
+  return s.str();
+}
+
+bool line_found(const SpectralPeak& p, double threshold_db) {
+  return p.searched && p.local_maximum && p.snr_db >= threshold_db;
+}
+
+// The lowest frequency told apart from its neighbour in the envelope spectrum: a line there
+// has its search window (+-1 bin) outside the excluded main lobe (+-noise_exclude_bins) of
+// a line at 0 Hz (the envelope's mean) or of its carrier.
+double resolvable_hz(const Spectrum& envelope, const AnalysisOptions& o) {
+  return (o.peak_search.noise_exclude_bins + 2) * envelope.resolution_hz;
+}
+
+FaultIndicator* find(std::vector<FaultIndicator>* faults, FaultKind kind) {
+  for (FaultIndicator& f : *faults)
+    if (f.kind == kind) return &f;
+  return nullptr;
+}
+
+// Whether a line of series a (its fundamental as found, or that -+ k f_mod, k = 1, 2: the
+// sidebands of its carrier, searched or not) sits within the peak search window of series
+// b's fundamental as found: b may then be nothing but a's lines.
+bool lines_coincide(const FaultIndicator& a, double a_fmod_hz, const FaultIndicator& b, double resolution_hz,
+                    const PeakSearchOptions& o) {
+  const double fb = b.envelope_peak.frequency_hz;
+  const double tol = std::max(o.tolerance_rel * fb, o.tolerance_min_bins * resolution_hz);
+  for (int k = 0; k <= 2; ++k)
+    for (double sign : {-1.0, 1.0})
+      if (std::abs(a.envelope_peak.frequency_hz + sign * k * a_fmod_hz - fb) <= tol) return true;
+  return false;
+}
+// Whether the healthy varying compliance (Z |f_c|, balls passing the load zone) can give this
+// series: the series lies on Z |f_c| (+-1 %, at least one bin), or is the cage line, and the
+// bearing has few enough balls for the compliance to matter. Its excitation is the Z-th
+// harmonic of the load distribution over the azimuth, which has a (cos psi - cos psi_l)^1.5
+// edge at the load zone's limits: its harmonics fall as n^-2.5, i.e. 68 dB from Z = 9 (the
+// 6205: series up to 31 dB over a quiet sensor) to Z = 207 (the CT bearing: none seen).
+bool compliance_series(const BearingFrequencies& freq, FaultKind kind, double resolution_hz,
+                       const AnalysisOptions& o) {
+  const double vc = freq.varying_compliance_hz, cage = std::abs(freq.cage_hz);
+  if (!(vc > 0.0) || !(cage > 0.0) || vc / cage > o.thresholds.compliance_max_balls) return false;
+  if (kind == FaultKind::Cage) return true;
+  const double f = fault_frequency_hz(freq, kind);
+  return std::abs(f - vc) <= std::max(o.peak_search.tolerance_rel * f, o.peak_search.tolerance_min_bins * resolution_hz);
+}
+}  // namespace
+
+void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& freq, const AnalysisOptions& o,
+                            const BandKurtosis& band, FaultIndicator* f) {
+  const DiagnosisThresholds& t = o.thresholds;
+  const double min_hz = resolvable_hz(envelope, o);
+  f->resolvable = envelope.resolution_hz > 0.0 && f->envelope_peak.expected_hz >= min_hz;
+  EvidenceLine first;
+  first.peak = f->envelope_peak;
+  first.found = f->resolvable && line_found(first.peak, t.fault_snr_db);
+  f->harmonics.push_back(first);
+  // Higher harmonics at n x the fundamental as found (as expected if it was not found).
+  const double base_hz = first.found ? first.peak.frequency_hz : first.peak.expected_hz;
+  for (int n = 2; n <= kHarmonics; ++n) {
+    EvidenceLine h;
+    h.order = n;
+    h.peak = find_peak(envelope, n * base_hz, o.peak_search, o.envelope_floor_m_s2);
+    h.found = f->resolvable && line_found(h.peak, t.evidence_snr_db);
+    f->harmonics.push_back(h);
+  }
+  f->harmonics_found = 0;
+  for (const EvidenceLine& h : f->harmonics) {
+    if (!h.found) break;
+    ++f->harmonics_found;
+  }
+  // Sidebands: only when the modulation is resolvable, i.e. the sideband's search window
+  // (+-1 bin at least) lies outside the carrier's excluded main lobe (+-noise_exclude_bins).
+  const double fm = modulation_frequency_hz(freq, f->kind);
+  if (f->resolvable && fm >= min_hz && base_hz - fm > min_hz) {
+    f->sidebands_required = true;
+    f->modulation_hz = fm;
+    for (double sign : {-1.0, 1.0}) {
+      EvidenceLine sb;
+      sb.offset_hz = sign * fm;
+      sb.peak = find_peak(envelope, base_hz + sign * fm, o.peak_search, o.envelope_floor_m_s2);
+      sb.found = line_found(sb.peak, t.evidence_snr_db);
+      f->sidebands_found += sb.found ? 1 : 0;
+      f->sidebands.push_back(sb);
+    }
+  }
+  const bool lines = first.found && f->harmonics_found >= 2 && (!f->sidebands_required || f->sidebands_found >= 1);
+  // A series at the varying-compliance frequency Z |f_c| (the stationary race's ball pass)
+  // without sidebands, or the cage line (balls of unequal size repeat once per cage turn), is
+  // also what a healthy bearing's ball-pass excitation gives: impacts must then show as an
+  // impulsive band (docs/health.md, "Evidence").
+  f->impulsiveness_required = !f->sidebands_required && t.impulsive_band_kurtosis > 0.0 &&
+                              compliance_series(freq, f->kind, envelope.resolution_hz, o);
+  f->band_kurtosis = band.kurtosis;
+  f->impulsive = !f->impulsiveness_required || band.kurtosis >= t.impulsive_band_kurtosis;
+  f->suspected = lines && f->impulsive;
+  if (!f->resolvable)
+    f->note = std::string(fault_frequency_label(f->kind)) + " " + fmt(f->envelope_peak.expected_hz, 2) +
+              " Hz is not resolvable in a " + fmt(1.0 / envelope.resolution_hz, 2) + " s window (" +
+              fmt(envelope.resolution_hz, 2) + " Hz bins); a window of at least " +
+              fmt((o.peak_search.noise_exclude_bins + 2) / f->envelope_peak.expected_hz, 1) + " s is needed";
+  else if (lines && !f->impulsive)
+    f->note = "lines without sidebands in a band that is not impulsive (spectral kurtosis " + fmt(band.kurtosis, 2) +
+              " < " + fmt(t.impulsive_band_kurtosis, 1) + "): the varying compliance of a healthy bearing";
+}
+
+void arbitrate_fault_series(const Spectrum& envelope, const BearingFrequencies& freq, const AnalysisOptions& o,
+                            std::vector<FaultIndicator>* faults) {
+  // Series whose lines stand for each other (e.g. outer ring turning: BPFO + f_r lies within
+  // 1 % of BPFI): a series whose fundamental is a line of another's pattern (its fundamental
+  // -+ 0, 1, 2 f_mod) is withdrawn, unless that one's fundamental is a line of its own pattern
+  // as well and the stronger.
+  const FaultKind kinds[] = {FaultKind::OuterRace, FaultKind::InnerRace, FaultKind::Ball};
+  for (FaultKind ka : kinds) {
+    for (FaultKind kb : kinds) {
+      FaultIndicator* a = find(faults, ka);
+      FaultIndicator* b = find(faults, kb);
+      if (ka == kb || !a || !b || !a->suspected || !b->suspected) continue;
+      // b's fundamental is a line of a's pattern; a's is not one of b's, or both are (their
+      // lines overlap, e.g. a modulation too slow to resolve) and a is the stronger.
+      const double df = envelope.resolution_hz;
+      if (!lines_coincide(*a, modulation_frequency_hz(freq, ka), *b, df, o.peak_search)) continue;
+      if (lines_coincide(*b, modulation_frequency_hz(freq, kb), *a, df, o.peak_search) &&
+          a->envelope_peak.snr_db < b->envelope_peak.snr_db)
+        continue;
+      b->suspected = false;
+      b->note = std::string("its fundamental is a line of the stronger ") + fault_frequency_label(ka) + " series (" +
+                fmt(a->envelope_peak.snr_db, 0) + " dB, -+" + fmt(modulation_frequency_hz(freq, ka), 2) +
+                " Hz sidebands)";
+    }
+  }
+  // The cage line beside a race or ball series: with balls of unequal size the impacts (and
+  // the healthy ball-pass excitation) repeat once per cage turn, so that series carries FTF.
+  FaultIndicator* cage = find(faults, FaultKind::Cage);
+  if (!cage || !cage->suspected) return;
+  for (FaultKind k : kinds) {
+    const FaultIndicator* f = find(faults, k);
+    if (!f || !f->suspected) continue;
+    cage->suspected = false;
+    cage->note = std::string("cage-rate modulation of the ") + fault_frequency_label(k) +
+                 " series (balls of unequal size), not a cage defect of its own";
+    return;
+  }
+}
+
+}  // namespace bearing_sim
