@@ -2,22 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
 #include "fault_evidence.hpp"
+#include "fixed_decimals.hpp"
 
 namespace bearing_sim {
 namespace {
-std::string fmt(double v, int decimals) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(decimals);
-  s << v;
-  return s.str();
-}
-
 // Some band of the kurtogram's tree is wide enough and starts high enough: the half band
 // [fs/4, fs/2] is the widest one off DC.
 bool kurtogram_fits(double fs, double highest_fault_hz, double lowest_edge_hz) {
@@ -101,7 +93,7 @@ Diagnosis diagnose(const ConditionIndicators& c, const DiagnosisThresholds& t) {
     std::string text;
   };
   std::vector<Finding> findings;
-  const std::string velocity = "vibration velocity " + fmt(c.velocity_rms_mm_s, 2) + " mm/s RMS (zone " +
+  const std::string velocity = "vibration velocity " + detail::fixed_decimals(c.velocity_rms_mm_s, 2) + " mm/s RMS (zone " +
                                velocity_zone_name(c.zone) + ")";
   if (c.zone >= t.error_zone)
     findings.push_back({HealthLevel::Error, 1e9, velocity + ": damaging vibration, stop and inspect"});
@@ -114,21 +106,21 @@ Diagnosis diagnose(const ConditionIndicators& c, const DiagnosisThresholds& t) {
                                                        : std::string(fault_kind_name(f.kind)) + " defect";
     findings.push_back({HealthLevel::Warn, p.snr_db,
                         what + " suspected: envelope peak at " +
-                            fmt(p.frequency_hz, 1) + " Hz (" + fault_frequency_label(f.kind) + " " +
-                            fmt(p.expected_hz, 1) + " Hz), " + fmt(p.snr_db, 0) + " dB over noise, " +
+                            detail::fixed_decimals(p.frequency_hz, 1) + " Hz (" + fault_frequency_label(f.kind) + " " +
+                            detail::fixed_decimals(p.expected_hz, 1) + " Hz), " + detail::fixed_decimals(p.snr_db, 0) + " dB over noise, " +
                             std::to_string(f.harmonics_found) + " harmonics" +
                             (f.sidebands_required ? ", " + std::to_string(f.sidebands_found) + "/2 sidebands at -+" +
-                                                        fmt(f.modulation_hz, 1) + " Hz"
+                                                        detail::fixed_decimals(f.modulation_hz, 1) + " Hz"
                                                   : std::string())});
   }
   if (t.kurtosis_warn > 0.0 && c.acceleration.kurtosis >= t.kurtosis_warn)
     findings.push_back({HealthLevel::Warn, 0.0,
-                        "impulsive vibration: kurtosis " + fmt(c.acceleration.kurtosis, 1) + " (Gaussian noise 3), "
+                        "impulsive vibration: kurtosis " + detail::fixed_decimals(c.acceleration.kurtosis, 1) + " (Gaussian noise 3), "
                         "typical of a localised defect"});
   Diagnosis d;
   if (findings.empty()) {
-    d.reason = "no defect indication: " + velocity + ", kurtosis " + fmt(c.acceleration.kurtosis, 1) +
-               ", no envelope peak " + fmt(t.fault_snr_db, 0) + " dB over noise at the fault frequencies";
+    d.reason = "no defect indication: " + velocity + ", kurtosis " + detail::fixed_decimals(c.acceleration.kurtosis, 1) +
+               ", no envelope peak " + detail::fixed_decimals(t.fault_snr_db, 0) + " dB over noise at the fault frequencies";
     return d;
   }
   std::stable_sort(findings.begin(), findings.end(), [](const Finding& a, const Finding& b) {
@@ -197,8 +189,8 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
     c.envelope_band_source = "fixed";
   }
   if (!(c.envelope_high_hz <= nyquist) || !(c.envelope_low_hz < c.envelope_high_hz))
-    throw InvalidInputError("analysis: envelope band " + fmt(c.envelope_low_hz, 0) + "-" + fmt(c.envelope_high_hz, 0) +
-                            " Hz does not fit below the Nyquist frequency " + fmt(nyquist, 0) +
+    throw InvalidInputError("analysis: envelope band " + detail::fixed_decimals(c.envelope_low_hz, 0) + "-" + detail::fixed_decimals(c.envelope_high_hz, 0) +
+                            " Hz does not fit below the Nyquist frequency " + detail::fixed_decimals(nyquist, 0) +
                             " Hz (raise the sample rate or give resonance_hz)");
   // The band's impulsiveness, whichever way it was chosen (the evidence rule asks it of a
   // series without sidebands).

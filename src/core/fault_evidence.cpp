@@ -2,19 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <string>
+
+#include "fixed_decimals.hpp"
 
 namespace bearing_sim {
 namespace {
 constexpr int kHarmonics = 3;
-
-std::string fmt(double v, int decimals) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(decimals);
-  s << v;
-  return s.str();
-}
 
 bool line_found(const SpectralPeak& p, double threshold_db) {
   return p.searched && p.local_maximum && p.snr_db >= threshold_db;
@@ -110,13 +104,13 @@ void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& 
   f->impulsive = !f->impulsiveness_required || band.kurtosis >= t.impulsive_band_kurtosis;
   f->suspected = lines && f->impulsive;
   if (!f->resolvable)
-    f->note = std::string(fault_frequency_label(f->kind)) + " " + fmt(f->envelope_peak.expected_hz, 2) +
-              " Hz is not resolvable in a " + fmt(1.0 / envelope.resolution_hz, 2) + " s window (" +
-              fmt(envelope.resolution_hz, 2) + " Hz bins); a window of at least " +
-              fmt((o.peak_search.noise_exclude_bins + 2) / f->envelope_peak.expected_hz, 1) + " s is needed";
+    f->note = std::string(fault_frequency_label(f->kind)) + " " + detail::fixed_decimals(f->envelope_peak.expected_hz, 2) +
+              " Hz is not resolvable in a " + detail::fixed_decimals(1.0 / envelope.resolution_hz, 2) + " s window (" +
+              detail::fixed_decimals(envelope.resolution_hz, 2) + " Hz bins); a window of at least " +
+              detail::fixed_decimals((o.peak_search.noise_exclude_bins + 2) / f->envelope_peak.expected_hz, 1) + " s is needed";
   else if (lines && !f->impulsive)
-    f->note = "lines without sidebands in a band that is not impulsive (spectral kurtosis " + fmt(band.kurtosis, 2) +
-              " < " + fmt(t.impulsive_band_kurtosis, 1) + "): the varying compliance of a healthy bearing";
+    f->note = "lines without sidebands in a band that is not impulsive (spectral kurtosis " + detail::fixed_decimals(band.kurtosis, 2) +
+              " < " + detail::fixed_decimals(t.impulsive_band_kurtosis, 1) + "): the varying compliance of a healthy bearing";
 }
 
 void arbitrate_fault_series(const Spectrum& envelope, const BearingFrequencies& freq, const AnalysisOptions& o,
@@ -140,7 +134,7 @@ void arbitrate_fault_series(const Spectrum& envelope, const BearingFrequencies& 
         continue;
       b->suspected = false;
       b->note = std::string("its fundamental is a line of the stronger ") + fault_frequency_label(ka) + " series (" +
-                fmt(a->envelope_peak.snr_db, 0) + " dB, -+" + fmt(modulation_frequency_hz(freq, ka), 2) +
+                detail::fixed_decimals(a->envelope_peak.snr_db, 0) + " dB, -+" + detail::fixed_decimals(modulation_frequency_hz(freq, ka), 2) +
                 " Hz sidebands)";
     }
   }

@@ -46,20 +46,20 @@ double FlexibleBearing::ring_angle_rad(const RollingPhase& phase) const {
   return model_.config().rotating_ring == RotatingRing::Outer ? phase.outer_ring : phase.inner_ring;
 }
 
-double FlexibleBearing::radial_displacement_m(const Eigen::VectorXd& x, double theta) const {
+double FlexibleBearing::displacement_m(const Eigen::VectorXd& x, double theta, RingModeDirection direction) const {
   double w = 0.0;
   for (std::size_t i = 0; i < modes_.size(); ++i)
-    if (modes_[i].direction == RingModeDirection::Radial)
+    if (modes_[i].direction == direction)
       w += x[5 + 2 * i] * std::cos(modes_[i].order * theta) + x[6 + 2 * i] * std::sin(modes_[i].order * theta);
   return w;
 }
 
+double FlexibleBearing::radial_displacement_m(const Eigen::VectorXd& x, double theta) const {
+  return displacement_m(x, theta, RingModeDirection::Radial);
+}
+
 double FlexibleBearing::axial_displacement_m(const Eigen::VectorXd& x, double theta) const {
-  double u = 0.0;
-  for (std::size_t i = 0; i < modes_.size(); ++i)
-    if (modes_[i].direction == RingModeDirection::Axial)
-      u += x[5 + 2 * i] * std::cos(modes_[i].order * theta) + x[6 + 2 * i] * std::sin(modes_[i].order * theta);
-  return u;
+  return displacement_m(x, theta, RingModeDirection::Axial);
 }
 
 // One pass over the balls: the kinematics of docs/model.md section 5 with the ring's modal

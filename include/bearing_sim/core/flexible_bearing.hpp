@@ -46,6 +46,8 @@ class FlexibleBearing {
   double ring_angle_rad(const RollingPhase& phase) const;
 
  private:
+  // The sum over the modes of one direction of their (cos, sin) coordinates at theta.
+  double displacement_m(const Eigen::VectorXd& x, double theta_rad, RingModeDirection direction) const;
   template <bool kDamped, bool kStiffness>
   void contact_loop(const Eigen::VectorXd& x, const Eigen::VectorXd* x_dot, const RollingPhase& phase,
                     Eigen::VectorXd* force, Eigen::MatrixXd* stiffness, std::vector<BallState>* states) const;
