@@ -602,7 +602,7 @@ void BearingSimRos::publish_health(const HealthReport& report) {
           "peak " + fmt(l.peak_hz, 2) + " Hz, " + fmt(l.snr_db, 1) + " dB over noise" +
               ", " + std::to_string(l.harmonics_found) + " harmonics" +
               (l.sidebands_required ? ", " + std::to_string(l.sidebands_found) + "/2 sidebands" : std::string()) +
-              (l.suspected ? " (suspected)" : ""));
+              (l.suspected ? " (suspected)" : "") + (l.note.empty() ? std::string() : "; " + l.note));
   }
   std::string defects;
   for (const DefectState& d : msg.defects)

@@ -109,7 +109,12 @@ bearing_sim_lcm::envelope_line_t to_lcm(const EnvelopeLine& msg) {
   out.sidebands_required = msg.sidebands_required;
   out.modulation_hz = msg.modulation_hz;
   out.sidebands_found = static_cast<std::int8_t>(msg.sidebands_found);
+  out.resolvable = msg.resolvable;
+  out.impulsiveness_required = msg.impulsiveness_required;
+  out.impulsive = msg.impulsive;
+  out.band_kurtosis = msg.band_kurtosis;
   out.suspected = msg.suspected;
+  out.note = msg.note;
   return out;
 }
 

@@ -60,7 +60,12 @@ void fill_bearing_health(const HealthReport& r, const std::string& signal, doubl
       line.modulation_hz = f.modulation_hz;
       for (const EvidenceLine& s : f.sidebands) line.sideband_snr_db.push_back(s.peak.snr_db);
       line.sidebands_found = static_cast<std::uint8_t>(f.sidebands_found);
+      line.resolvable = f.resolvable;
+      line.impulsiveness_required = f.impulsiveness_required;
+      line.impulsive = f.impulsive;
+      line.band_kurtosis = f.band_kurtosis;
       line.suspected = f.suspected;
+      line.note = f.note;
       msg->faults.push_back(line);
     }
     msg->level = static_cast<std::uint8_t>(c.diagnosis.level);

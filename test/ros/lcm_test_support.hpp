@@ -119,7 +119,12 @@ inline void expect_equal(const bearing_sim::BearingHealth& ros, const bearing_si
     EXPECT_EQ(static_cast<bool>(r.sidebands_required), l.sidebands_required);
     LCM_EXPECT_SAME_DOUBLE(r.modulation_hz, l.modulation_hz);
     EXPECT_EQ(static_cast<int>(r.sidebands_found), static_cast<int>(l.sidebands_found));
+    EXPECT_EQ(static_cast<bool>(r.resolvable), l.resolvable);
+    EXPECT_EQ(static_cast<bool>(r.impulsiveness_required), l.impulsiveness_required);
+    EXPECT_EQ(static_cast<bool>(r.impulsive), l.impulsive);
+    LCM_EXPECT_SAME_DOUBLE(r.band_kurtosis, l.band_kurtosis);
     EXPECT_EQ(static_cast<bool>(r.suspected), l.suspected);
+    EXPECT_EQ(r.note, l.note);
   }
   EXPECT_EQ(ros.level, lcm.level);
   EXPECT_EQ(ros.reason, lcm.reason);

@@ -86,7 +86,12 @@ BearingHealth health(std::size_t faults, std::size_t defects) {
     l.sidebands_required = i % 2 == 1;
     l.modulation_hz = 29.5;
     l.sidebands_found = static_cast<std::uint8_t>(i % 3);
+    l.resolvable = i != 3;
+    l.impulsiveness_required = i % 2 == 0;
+    l.impulsive = i == 2;
+    l.band_kurtosis = 0.25 * static_cast<double>(i) - 0.1;
     l.suspected = i % 2 == 0;
+    l.note = i == 3 ? "FTF 0.50 Hz is not resolvable in a 1 s window: 10 s needed" : "";
     h.faults.push_back(l);
   }
   h.level = BearingHealth::WARN;

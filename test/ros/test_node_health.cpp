@@ -238,6 +238,10 @@ TEST(NodeHealth, InjectedInnerRaceSpallIsDiagnosedAndClearingReturnsToOk) {
   EXPECT_NEAR(l->peak_hz, bpfi, 0.01 * bpfi);
   EXPECT_GE(l->snr_db, 10.0);
   EXPECT_TRUE(l->suspected);
+  // The evidence beside it: BPFI of the CT bearing (~308 Hz) is resolvable in the window.
+  EXPECT_TRUE(l->resolvable);
+  EXPECT_TRUE(!l->impulsiveness_required || l->impulsive);
+  EXPECT_TRUE(std::isfinite(l->band_kurtosis));
   ASSERT_EQ(h.defects.size(), 1u);
   EXPECT_EQ(h.defects[0].surface, "inner_race");
   EXPECT_NEAR(h.defects[0].position_rad, zone_rad, 1e-12);
