@@ -127,6 +127,7 @@ void run(const SimulateOptions& o) {
     r.substeps = o.substeps;
     r.csv = o.csv;
     r.json = o.json;
+    r.allow_long_run = o.allow_long_run;
     run_flexible_simulation(model, r);
     return;
   }

@@ -1,6 +1,7 @@
 #include "flexible_ring_report.hpp"
 
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -9,6 +10,7 @@
 
 #include "bearing_sim/core/flexible_dynamics.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
+#include "job_size.hpp"
 #include "tool_common.hpp"
 
 namespace bearing_sim::tool {
@@ -80,6 +82,19 @@ void print_flexible_ring_static(const nlohmann::json& ring) {
 
 void run_flexible_simulation(const BearingModel& model, const FlexibleSimulationRequest& r) {
   FlexibleDynamics dynamics(FlexibleBearing(model), r.load, r.ring_speed_rad_s, r.rate_hz, r.substeps);
+  const long samples = std::lround(r.duration_s * r.rate_hz);
+  // The flexible ring has no fast path (the CT bearing runs at about a sixth of real time):
+  // its cost from a probe on a copy, before anything is written, as the rigid ring's.
+  if (samples > 1000) {
+    FlexibleDynamics probe = dynamics;
+    constexpr int kProbeSamples = 100;
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 0; i < kProbeSamples; ++i) probe.step();
+    const double per_sample =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / kProbeSamples;
+    check_job_size(static_cast<double>(samples), static_cast<double>(samples) * per_sample, r.allow_long_run,
+                   "simulate", "--allow-long-run");
+  }
   const auto& modes = dynamics.bearing().modes();
   const int n = dynamics.bearing().size();
   std::FILE* csv = nullptr;
@@ -92,7 +107,6 @@ void run_flexible_simulation(const BearingModel& model, const FlexibleSimulation
   }
   // Statistics over the second half (as simulate's rigid ring): mean and RMS of the rigid
   // accelerations and of each modal coordinate.
-  const long samples = std::lround(r.duration_s * r.rate_hz);
   const long first = samples / 2;
   Eigen::VectorXd sum = Eigen::VectorXd::Zero(n), sum_sq = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd acc_sum = Eigen::VectorXd::Zero(5), acc_sq = Eigen::VectorXd::Zero(5);

@@ -26,6 +26,7 @@ struct FlexibleSimulationRequest {
   int substeps = 0;  // 0: from the highest natural frequency
   std::string csv;   // empty: none
   bool json = false;
+  bool allow_long_run = false;  // start a run estimated over an hour (--allow-long-run)
 };
 
 // Runs FlexibleDynamics and prints its summary (tables or JSON); writes the CSV if asked.
