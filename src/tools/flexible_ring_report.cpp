@@ -1,7 +1,6 @@
 #include "flexible_ring_report.hpp"
 
 #include <cerrno>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -87,11 +86,7 @@ void run_flexible_simulation(const BearingModel& model, const FlexibleSimulation
   // its cost from a probe on a copy, before anything is written, as the rigid ring's.
   if (samples > 1000) {
     FlexibleDynamics probe = dynamics;
-    constexpr int kProbeSamples = 100;
-    const auto start = std::chrono::steady_clock::now();
-    for (int i = 0; i < kProbeSamples; ++i) probe.step();
-    const double per_sample =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / kProbeSamples;
+    const double per_sample = measure_seconds_per_step([&probe] { probe.step(); });
     check_job_size(static_cast<double>(samples), static_cast<double>(samples) * per_sample, r.allow_long_run,
                    "simulate", "--allow-long-run");
   }

@@ -41,24 +41,29 @@ int check_integrator_work(const BearingModel& model, const Vector5& load, double
                     ros_node::frequency_text(ros_node::kMaxStiffRateRadS / (2.0 * kPi)));
 }
 
-double measure_seconds_per_sample(const BearingModel& model, const Vector5& load, double ring_speed_rad_s,
-                                  double sample_rate_hz, int substeps, IntegrationMethod method) {
-  BearingDynamics dynamics(model, load, ring_speed_rad_s, DynamicsOptions{sample_rate_hz, substeps, true, method});
+double measure_seconds_per_step(const std::function<void()>& step) {
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = Clock::now();
   int n = 0;
   double elapsed = 0.0;
-  // 200 samples, or 0.2 s of wall time when the samples are slow.
   while (n < 200 && elapsed < 0.2) {
+    step();
+    ++n;
+    elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+  }
+  return elapsed / n;
+}
+
+double measure_seconds_per_sample(const BearingModel& model, const Vector5& load, double ring_speed_rad_s,
+                                  double sample_rate_hz, int substeps, IntegrationMethod method) {
+  BearingDynamics dynamics(model, load, ring_speed_rad_s, DynamicsOptions{sample_rate_hz, substeps, true, method});
+  return measure_seconds_per_step([&dynamics] {
     try {
       dynamics.step();
     } catch (const DivergenceError&) {
       dynamics.reset_to_equilibrium();
     }
-    ++n;
-    elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-  }
-  return elapsed / n;
+  });
 }
 
 void check_job_size(double samples, double estimate_s, bool confirmed, const std::string& what,

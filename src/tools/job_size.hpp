@@ -2,6 +2,7 @@
 // What a dynamic run of bearing_tool will cost, checked before it starts: the integrator's
 // work per sample (a stiff mode from an implausible bearing value) and the wall time of the
 // whole run, estimated from the speed measured on a short probe on this machine.
+#include <functional>
 #include <string>
 
 #include "bearing_sim/core/bearing_dynamics.hpp"
@@ -21,6 +22,10 @@ constexpr double kLongRunLimitS = 3600.0;
 int check_integrator_work(const BearingModel& model, const Vector5& load, double sample_rate_hz,
                           const std::string& bearing_file,
                           IntegrationMethod method = kDefaultIntegrationMethod);
+
+// Wall time per call of `step`, measured on a short probe: 200 calls, or 0.2 s of wall time
+// when the calls are slow.
+double measure_seconds_per_step(const std::function<void()>& step);
 
 // Wall time per output sample of the dynamics alone, measured on a short run (a fraction of a
 // second) from the static equilibrium.
