@@ -7,8 +7,6 @@
 
 #include "harmonic_sums.hpp"
 
-#include <cmath>
-
 HWY_BEFORE_NAMESPACE();
 namespace bearing_sim::detail {
 namespace HWY_NAMESPACE {
@@ -50,12 +48,7 @@ HWY_INLINE void AddGroup(const double* HWY_RESTRICT c, const double* HWY_RESTRIC
     hn::StoreU(hn::IfThenElse(fresh, add(last, offset, load), offset), d, out + last);
     return;
   }
-  for (; b < n; ++b) {  // fewer balls than lanes
-    double sum = 0.0;
-    for (int h = 0; h < kHarmonics; ++h)
-      sum = std::fma(-c[2 * h + 1], terms[(2 * h + 1) * n + b], std::fma(c[2 * h], terms[2 * h * n + b], sum));
-    out[b] += sum;
-  }
+  add_harmonic_sums_scalar(c, kHarmonics, terms, n, out);  // fewer balls than lanes
 }
 
 void AddHarmonicSums(const double* c, int harmonics, const double* terms, int n, double* out) {
