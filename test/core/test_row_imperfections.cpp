@@ -24,6 +24,13 @@ BearingConfig ins_pair(const std::string& extra = "") {
   return bearing_config_from_string(test::read_text(test::bearing_file("ins_618_22_db.yaml")) + extra, "ins.yaml");
 }
 
+// Every ball's imperfection offset at a phase.
+std::vector<double> offsets_at(const BearingModel& model, const RollingPhase& phase) {
+  std::vector<double> offsets(model.ball_count(), 0.0);
+  model.imperfections().add_offsets(phase, offsets.data());
+  return offsets;
+}
+
 // Change of the contact force on the moving ring when spalls are added, at a fixed
 // displacement q and cage angle 0.
 Vector5 force_change(const BearingConfig& config, const Vector5& q, const std::vector<Spall>& spalls) {
@@ -131,9 +138,7 @@ TEST(RowWaviness, AHarmonicOfOneRowChangesOnlyThatRowsBalls) {
   phase.cage = 0.3;
   phase.inner_ring = 1.1;
   const int n = one_row.ball_count(), z = one_row.balls_per_row();
-  std::vector<double> a(n, 0.0), b(n, 0.0);
-  one_row.imperfections().add_offsets(phase, a.data());
-  every_row.imperfections().add_offsets(phase, b.data());
+  const std::vector<double> a = offsets_at(one_row, phase), b = offsets_at(every_row, phase);
   for (int ball = 0; ball < n; ++ball) {
     // Closed form a cos(q theta + p), theta = base + cage - ring (section 9.2).
     const double theta = one_row.base_azimuth_rad(ball) + phase.cage - phase.inner_ring;
@@ -150,10 +155,8 @@ TEST(RowRoughness, RoughnessOfOneRowIsTheSameProfileOnThatRowAndNothingOnTheOthe
   RollingPhase phase;
   phase.cage = 0.7;
   phase.outer_ring = 2.0;
-  const int n = one_row.ball_count(), z = one_row.balls_per_row();
-  std::vector<double> a(n, 0.0), b(n, 0.0);
-  one_row.imperfections().add_offsets(phase, a.data());
-  every_row.imperfections().add_offsets(phase, b.data());
+  const int z = one_row.balls_per_row();
+  const std::vector<double> a = offsets_at(one_row, phase), b = offsets_at(every_row, phase);
   double rms = 0.0;
   for (int ball = 0; ball < z; ++ball) {
     EXPECT_EQ(a[ball], b[ball]) << "row 0 ball " << ball;  // same seed: the same profile
