@@ -167,12 +167,16 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
       Matrix10 predictor = Matrix10::Zero();
       for (int j = i; j < 4; ++j) predictor += kBinomial[j][i] * ab[j];
       const double sign = i % 2 ? -1.0 : 1.0;
-      adams_predictor_.middleCols<5>(5 * i) = sign * h * predictor.rightCols<5>();
+      adams_step_.block<10, 5>(0, 10 + 5 * i) = sign * h * predictor.rightCols<5>();
     }
     // The corrector's weight of r_{n+1}: sum of the AM4 weights (every nabla^j holds r_{n+1}
     // once). The corrector's cubic is the predictor's plus (nabla^4 r_{n+1}) times the cubic
     // that is 1 at t_{n+1} and 0 at t_n, t_{n-1}, t_{n-2}, so y_c = y_p + C0 nabla^4 r_{n+1}.
     adams_corrector_ = h * (am[0] + am[1] + am[2] + am[3]).rightCols<5>();
+    // (y_p, A y_p) = [E P; A E  A P] (y, r, r_-1, r_-2, r_-3): the predicted end's linear
+    // part comes with the predictor, one product per step instead of three.
+    adams_step_.topLeftCorner<10, 10>() = exp_full_;
+    adams_step_.bottomRows<5>() = lin_accel_ * adams_step_.topRows<10>();
   } else {
     Eigen::Matrix<double, 40, 40> x = Eigen::Matrix<double, 40, 40>::Zero();
     x.block<10, 10>(0, 0) = h * balanced;
@@ -416,8 +420,8 @@ bool BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
   // step's end evaluation), the predictor y_p = e^{hL} y + P0 r + P1 r_-1 + P2 r_-2 + P3 r_-3,
   // the remainder r_p at y_p and the step's end, the corrector
   // y_next = e^{hL} y + C0 r_p + C1 r + C2 r_-1 + C3 r_-2 = y_p + C0 nabla^4 r_p. The
-  // remainders are stacked newest first in `stack` = (r_p, r, r_-1, r_-2, r_-3): the
-  // predictor's weights apply to its last four, and a step moves it down by one remainder.
+  // predictor and the linear part of the predicted end, A y_p, are one product of
+  // adams_step_ with x = (y, r, r_-1, r_-2, r_-3); a step moves the remainders down by one.
   using Vector10 = Eigen::Matrix<double, 10, 1>;
   const double h = 1.0 / (options_.sample_rate_hz * substeps_);
   const CageTrig rot = half_step_rotation();
@@ -426,34 +430,35 @@ bool BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
   };
   const bool evaluate_end = options_.method == IntegrationMethod::ExponentialAdams;  // PECE, else PEC
   CageTrig trig{std::cos(phase.cage), std::sin(phase.cage)};
-  Vector10 y;
-  y << q - q_lin_, v;
-  Eigen::Matrix<double, 25, 1> stack;
-  stack.tail<15>() = history.r;
-  stack.segment<5>(5) = a_start - times(lin_accel_, y.data());
+  Eigen::Matrix<double, 30, 1> x;
+  x.head<5>() = q - q_lin_;
+  x.segment<5>(5) = v;
+  x.tail<15>() = history.r;
+  x.segment<5>(10) = a_start - times(lin_accel_, x.data());
   for (int i = 0; i < substeps_; ++i) {
     const RollingPhase end = advanced(phase, h);
     const CageTrig trig_end = rotate(rotate(trig));  // the same rotations as ETDRK4's stages
     if (i > 0 && evaluate_end)
-      stack.segment<5>(5) =
-          acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls, trig) - times(lin_accel_, y.data());
-    const Vector10 e_y = times(exp_full_, y.data());
-    const Vector10 y_p = plus_times(e_y, adams_predictor_, stack.data() + 5);
-    stack.head<5>() =
-        acceleration(q_lin_ + y_p.head<5>(), y_p.tail<5>(), end, balls, trig_end) - times(lin_accel_, y_p.data());
-    const Vector5 fourth_difference = stack.segment<5>(0) - 4.0 * stack.segment<5>(5) + 6.0 * stack.segment<5>(10) -
-                                      4.0 * stack.segment<5>(15) + stack.segment<5>(20);
-    y = plus_times(y_p, adams_corrector_, fourth_difference.data());
-    stack.tail<20>() = stack.head<20>().eval();  // r_p is the next step's r (PEC)
+      x.segment<5>(10) = acceleration(q_lin_ + x.head<5>(), x.segment<5>(5), phase, balls, trig) -
+                         times(lin_accel_, x.data());
+    const Eigen::Matrix<double, 15, 1> predicted = times(adams_step_, x.data());  // (y_p, A y_p)
+    const Vector5 r_p =
+        acceleration(q_lin_ + predicted.head<5>(), predicted.segment<5>(5), end, balls, trig_end) - predicted.tail<5>();
+    const Vector5 fourth_difference =
+        r_p - 4.0 * x.segment<5>(10) + 6.0 * x.segment<5>(15) - 4.0 * x.segment<5>(20) + x.segment<5>(25);
+    const Vector10 y_p = predicted.head<10>();
+    x.head<10>() = plus_times(y_p, adams_corrector_, fourth_difference.data());
+    x.tail<15>() = x.segment<15>(10).eval();
+    x.segment<5>(10) = r_p;  // the next step's r (PEC)
     phase = end;
     trig = trig_end;
   }
-  history.r = stack.tail<15>();
+  history.r = x.tail<15>();
   sample_end_trig_ = trig;
-  q = q_lin_ + y.head<5>();
-  v = y.tail<5>();
+  q = q_lin_ + x.head<5>();
+  v = x.segment<5>(5);
   // PEC: a_p + A (y_c - y_p) = r_p + A y_c (its remainder is then the predicted one again).
-  if (!evaluate_end) *a_end = stack.segment<5>(5) + times(lin_accel_, y.data());
+  if (!evaluate_end) *a_end = x.segment<5>(10) + times(lin_accel_, x.data());
   return !evaluate_end;
 }
 

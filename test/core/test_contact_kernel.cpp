@@ -213,8 +213,7 @@ TEST(ContactKernel, SmallProductsAgreeWithEigen) {
   std::srand(3);  // Eigen's Random()
   for_each_target([&] {
     for (int trial = 0; trial < 20; ++trial) {
-      expect_products_agree<10, 10>();
-      expect_products_agree<10, 20>();
+      expect_products_agree<15, 30>();
       expect_products_agree<10, 5>();
       expect_products_agree<5, 10>();
     }

@@ -217,13 +217,13 @@ class BearingDynamics {
   Matrix10 exp_full_ = Matrix10::Identity(), exp_half_ = Matrix10::Identity();
   Matrix10x5 phi_half_ = Matrix10x5::Zero();  // (h/2) phi1(hL/2)
   Matrix10x5 w1_ = Matrix10x5::Zero(), w2_ = Matrix10x5::Zero(), w3_ = Matrix10x5::Zero();
-  // Adams method: weights of the remainders at the step's start and of the history entries
-  // (predictor), side by side: they apply to four stacked remainders in one product. The
-  // corrector is the predicted end plus the weight of the predicted end's remainder times the
-  // fourth backward difference of the remainders (the two cubics differ by exactly that
-  // term), one 10x5 product instead of a second 10x20 one.
-  using Matrix10x20 = Eigen::Matrix<double, 10, 20>;
-  Matrix10x20 adams_predictor_ = Matrix10x20::Zero();
+  // Adams method: the predictor [E P] (e^{hL} and the weights P of the remainder at the
+  // step's start and of the history entries, side by side) over its linear part A [E P], one
+  // 15x30 product with (y, r, r_-1, r_-2, r_-3) giving y_p and A y_p. The corrector is the
+  // predicted end plus the weight of the predicted end's remainder times the fourth backward
+  // difference of the remainders (the two cubics differ by exactly that term), one 10x5
+  // product.
+  Eigen::Matrix<double, 15, 30> adams_step_ = Eigen::Matrix<double, 15, 30>::Zero();
   Matrix10x5 adams_corrector_ = Matrix10x5::Zero();
   AdamsHistory adams_history_;
   // The cage turn of half an internal step and its cos and sin (recomputed when it changes),
