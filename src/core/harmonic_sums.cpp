@@ -4,8 +4,11 @@
 #define HWY_TARGET_INCLUDE "harmonic_sums.cpp"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
+#include "hwy/contrib/math/math-inl.h"
 
 #include "harmonic_sums.hpp"
+
+#include <cmath>
 
 HWY_BEFORE_NAMESPACE();
 namespace bearing_sim::detail {
@@ -64,6 +67,39 @@ void AddHarmonicSums(const double* c, int harmonics, const double* terms, int n,
   }
 }
 
+// (cos, sin) of a lane of angles with Highway's vector Cos and Sin (a few ulp) where every
+// angle is inside their valid range, else each with std::cos and std::sin.
+void HarmonicCoefficients(const double* amplitude, const double* angle, int harmonics, double* coefficients) {
+  const hn::ScalableTag<double> d;
+  const int lanes = static_cast<int>(hn::Lanes(d));
+  constexpr double kValidRange = 39000.0;  // of hn::Cos and hn::Sin (hwy/contrib/math)
+  constexpr int kMaxLanes = HWY_MAX_BYTES / sizeof(double);
+  HWY_ALIGN double a[kMaxLanes], x[kMaxLanes], c[kMaxLanes], s[kMaxLanes];
+  for (int first = 0; first < harmonics; first += lanes) {
+    const int count = HWY_MIN(lanes, harmonics - first);
+    bool in_range = true;
+    for (int i = 0; i < lanes; ++i) {
+      a[i] = i < count ? amplitude[first + i] : 0.0;
+      x[i] = i < count ? angle[first + i] : 0.0;
+      in_range = in_range && std::abs(x[i]) <= kValidRange;
+    }
+    if (in_range) {
+      const auto v = hn::Load(d, x), amp = hn::Load(d, a);
+      hn::Store(hn::Mul(amp, hn::Cos(d, v)), d, c);
+      hn::Store(hn::Mul(amp, hn::Sin(d, v)), d, s);
+    } else {
+      for (int i = 0; i < count; ++i) {
+        c[i] = a[i] * std::cos(x[i]);
+        s[i] = a[i] * std::sin(x[i]);
+      }
+    }
+    for (int i = 0; i < count; ++i) {
+      coefficients[2 * (first + i)] = c[i];
+      coefficients[2 * (first + i) + 1] = s[i];
+    }
+  }
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace bearing_sim::detail
 HWY_AFTER_NAMESPACE();
@@ -71,6 +107,11 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace bearing_sim::detail {
 HWY_EXPORT(AddHarmonicSums);
+HWY_EXPORT(HarmonicCoefficients);
+
+void harmonic_coefficients(const double* amplitude, const double* angle, int harmonics, double* coefficients) {
+  if (harmonics > 0) HWY_DYNAMIC_DISPATCH(HarmonicCoefficients)(amplitude, angle, harmonics, coefficients);
+}
 
 void add_harmonic_sums(const double* coefficients, int harmonics, const double* terms, int n, double* out) {
   if (harmonics > 0 && n > 0) HWY_DYNAMIC_DISPATCH(AddHarmonicSums)(coefficients, harmonics, terms, n, out);

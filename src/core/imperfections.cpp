@@ -22,6 +22,23 @@ double effective_depth(double width_m, double depth_m, double ball_diameter_m) {
   return std::min(depth_m, width_m * width_m / (4.0 * ball_diameter_m));
 }
 
+// Round to nearest, ties to even: std::nearbyint in the default rounding mode, bit for bit,
+// without its library call (the sum's rounding does it; |x| < 2^51).
+inline double round_to_nearest(double x) {
+  constexpr double kShift = 6755399441055744.0;  // 1.5 * 2^52
+  return (x + kShift) - kShift;
+}
+
+// std::floor and std::ceil of |x| < 2^62, as integers, without their library calls.
+inline long floor_to_long(double x) {
+  const long t = static_cast<long>(x);  // truncates towards zero
+  return static_cast<double>(t) > x ? t - 1 : t;
+}
+inline long ceil_to_long(double x) {
+  const long t = static_cast<long>(x);
+  return static_cast<double>(t) < x ? t + 1 : t;
+}
+
 // Half-sine dip of a spall centred at 0 of angular width w, at angle x (|x| < w/2).
 inline double spall_dip(double x, double angular_width, double depth) {
   return std::abs(x) < 0.5 * angular_width ? depth * std::cos(kPi * x / angular_width) : 0.0;
@@ -330,21 +347,25 @@ void Imperfections::fill_ball_set(const std::vector<int>& balls, BallSet* set) c
 void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, double* out, bool include_spalls) const {
   const int n = static_cast<int>(set.ball.size());
   const double* base = set.base_azimuth.data();
-  // Per harmonic: amplitude * (cos, sin) of its angle now. Race harmonics see the race-frame
-  // angle of ball b, base_b + cage - ring; ball harmonics the spin angle.
-  thread_local std::vector<double> coefficients;
-  coefficients.clear();
-  for (const Harmonic& h : race_waviness_) {
-    const double shift = h.order * (phase.cage - (h.surface == Surface::OuterRace ? phase.outer_ring : phase.inner_ring));
-    coefficients.push_back(h.amplitude_m * std::cos(shift));
-    coefficients.push_back(h.amplitude_m * std::sin(shift));
+  if (!race_waviness_.empty() || !ball_waviness_.empty()) {
+    // Per harmonic: amplitude * (cos, sin) of its angle now. Race harmonics see the race-frame
+    // angle of ball b, base_b + cage - ring; ball harmonics the spin angle.
+    thread_local std::vector<double> amplitudes, angles, coefficients;
+    amplitudes.clear();
+    angles.clear();
+    for (const Harmonic& h : race_waviness_) {
+      amplitudes.push_back(h.amplitude_m);
+      angles.push_back(h.order * (phase.cage - (h.surface == Surface::OuterRace ? phase.outer_ring : phase.inner_ring)));
+    }
+    for (const Harmonic& h : ball_waviness_) {
+      amplitudes.push_back(h.amplitude_m);
+      angles.push_back(h.order * phase.ball_spin);
+    }
+    const int harmonics = static_cast<int>(angles.size());
+    coefficients.resize(2 * angles.size());
+    detail::harmonic_coefficients(amplitudes.data(), angles.data(), harmonics, coefficients.data());
+    detail::add_harmonic_sums(coefficients.data(), harmonics, set.harmonic_terms.data(), n, out);
   }
-  for (const Harmonic& h : ball_waviness_) {
-    coefficients.push_back(h.amplitude_m * std::cos(h.order * phase.ball_spin));
-    coefficients.push_back(h.amplitude_m * std::sin(h.order * phase.ball_spin));
-  }
-  detail::add_harmonic_sums(coefficients.data(), static_cast<int>(coefficients.size() / 2),
-                            set.harmonic_terms.data(), n, out);
   if (has_roughness_) {
     constexpr double kScale = kProfilePoints / kTwoPi;
     constexpr long kMask = kProfilePoints - 1;
@@ -390,22 +411,26 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, d
       const double start = phase.cage - ring - s.position_rad;
       const int z = geometry_.balls_per_row;
       const double* all_base = geometry_.base_azimuth.data();
-      const double pitch = kTwoPi / z;
+      const double pitches_per_rad = z / kTwoPi;
       // Ball j of a row sits within the spacing error of row_phase + j pitch: the spall's
       // half width plus that error, in pitches, either side of its centre. Floor and ceil
       // keep a ball of slack against rounding (two balls to look at for a narrow spall).
-      const double reach = (0.5 * angular_width + max_spacing_error_) / pitch;
+      const double reach = (0.5 * angular_width + max_spacing_error_) * pitches_per_rad;
       {  // the spall's own row only
         const int row = s.row;
-        const double centre = -(start + all_base[row * z]) / pitch;
-        long first = static_cast<long>(std::floor(centre - reach));
-        long last = static_cast<long>(std::ceil(centre + reach));
+        const double centre = -(start + all_base[row * z]) * pitches_per_rad;
+        long first = floor_to_long(centre - reach);
+        long last = ceil_to_long(centre + reach);
         if (last - first + 1 >= z) {  // a spall wider than the row: every ball once
           first = 0;
           last = z - 1;
         }
-        long first_in_row = first % z;  // one division, not two
-        if (first_in_row < 0) first_in_row += z;
+        // first mod z by whole turns: the phases are wrapped every sample, so first lies
+        // within a turn or two of the row (no 64-bit division, ~40 cycles, per call).
+        long first_in_row = first;
+        if (first_in_row < -4L * z || first_in_row > 4L * z) first_in_row %= z;  // unwrapped phases
+        while (first_in_row < 0) first_in_row += z;
+        while (first_in_row >= z) first_in_row -= z;
         int j = static_cast<int>(first_in_row);
         for (long k = first; k <= last; ++k, j = j + 1 == z ? 0 : j + 1) {
           const int entry = set.entry_of_ball[row * z + j];
@@ -413,7 +438,7 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, d
           const double angle = all_base[row * z + j] + start;
           // To [-pi, pi]; the product by 1/(2 pi) can round differently from the quotient
           // only next to +-pi, where no spall reaches (at most a quarter turn wide).
-          const double x = angle - kTwoPi * std::nearbyint(angle * kInverseTwoPi);
+          const double x = angle - kTwoPi * round_to_nearest(angle * kInverseTwoPi);
           out[entry] -= spall_dip(x, angular_width, depth);
         }
       }

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -190,6 +191,31 @@ TEST(ContactKernel, HarmonicSumsAgreeWithTheScalarLoop) {
           ASSERT_NEAR(simd[b], scalar[b], 1e-14 * (bound + 1e-6)) << harmonics << " harmonics, ball " << b << " of " << n;
         // A wrong term (a harmonic or a ball missed) would be >= 1e-8 m off somewhere.
       }
+  });
+}
+
+// The per-call waviness coefficients a (cos, sin)(angle) against std::cos and std::sin:
+// Highway's vector functions are within 3 ulp over +-39000 rad (hwy/contrib/math), so
+// 8 ulp of the amplitude is a bound with margin; angles of a race harmonic of order up to
+// ~5000 (|angle| <= 2 pi order), one beyond the vector range (std::cos for its lanes), and
+// counts that are not multiples of any vector width.
+TEST(ContactKernel, HarmonicCoefficientsAgreeWithStdCosAndSin) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for_each_target([&] {
+    for (int harmonics : {1, 3, 4, 5, 9, 17}) {
+      std::vector<double> amplitude(harmonics), angle(harmonics), c(2 * harmonics);
+      for (int h = 0; h < harmonics; ++h) {
+        amplitude[h] = 1e-8 + 1e-6 * std::abs(u(rng));
+        angle[h] = (h == 2 ? 1e6 : 30000.0) * u(rng);
+      }
+      detail::harmonic_coefficients(amplitude.data(), angle.data(), harmonics, c.data());
+      for (int h = 0; h < harmonics; ++h) {
+        const double tol = 8.0 * std::numeric_limits<double>::epsilon() * amplitude[h];
+        EXPECT_NEAR(c[2 * h], amplitude[h] * std::cos(angle[h]), tol) << "harmonic " << h << " of " << harmonics;
+        EXPECT_NEAR(c[2 * h + 1], amplitude[h] * std::sin(angle[h]), tol) << "harmonic " << h << " of " << harmonics;
+      }
+    }
   });
 }
 
