@@ -68,8 +68,6 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
       balls_.normal_z[b] = nz;
     }
     max_lever_arm_ = std::max(max_lever_arm_, std::hypot(groove_centre_radius_, gz));
-    const std::size_t first = static_cast<std::size_t>(r) * c.balls_per_row;
-    balls_.row_runs.push_back({r, first, first + c.balls_per_row});
   }
 
   Imperfections::Geometry g;
@@ -108,7 +106,6 @@ void BallArrays::clear() {
   generation = ++generations;
   ball.clear();
   row.clear();
-  row_runs.clear();
   base_azimuth.clear();
   cos_base.clear();
   sin_base.clear();
@@ -118,8 +115,6 @@ void BallArrays::clear() {
 }
 
 void BallArrays::push_back(const BallArrays& from, std::size_t i) {
-  if (row_runs.empty() || row_runs.back().row != from.row[i]) row_runs.push_back({from.row[i], ball.size(), ball.size()});
-  ++row_runs.back().end;
   ball.push_back(from.ball[i]);
   row.push_back(from.row[i]);
   base_azimuth.push_back(from.base_azimuth[i]);
@@ -155,10 +150,6 @@ void BallArrays::assign(const BallArrays& from, const int* entries, std::size_t 
   gather(from.groove_centre_z, groove_centre_z);
   gather(from.normal_z, normal_z);
   gather(from.deflection_offset, deflection_offset);
-  const int* r = row.data();
-  for (std::size_t k = 0; k < n; ++k)
-    if (k == 0 || r[k] != r[k - 1]) row_runs.push_back({r[k], k, k});
-  for (std::size_t i = 0; i < row_runs.size(); ++i) row_runs[i].end = i + 1 < row_runs.size() ? row_runs[i + 1].begin : n;
 }
 
 double BearingModel::row_axial_position_m(int row) const {

@@ -32,14 +32,8 @@ struct BallState {
 // Per-ball constants in the structure-of-arrays layout of the vectorized force loop;
 // either every ball of the bearing or a subset of them.
 struct BallArrays {
-  // A stretch of consecutive entries whose balls are all in one row.
-  struct RowRun {
-    int row = 0;
-    std::size_t begin = 0, end = 0;
-  };
   std::vector<int> ball;  // index into the bearing's balls
   std::vector<int> row;
-  std::vector<RowRun> row_runs;
   std::vector<double> base_azimuth;        // azimuth at cage angle 0, rad
   std::vector<double> cos_base, sin_base;  // of base_azimuth
   std::vector<double> groove_centre_z;     // axial coordinate of the moving ring's groove centre
