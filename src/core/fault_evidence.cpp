@@ -53,6 +53,27 @@ bool compliance_series(const BearingFrequencies& freq, FaultKind kind, double re
   const double f = fault_frequency_hz(freq, kind);
   return std::abs(f - vc) <= std::max(o.peak_search.tolerance_rel * f, o.peak_search.tolerance_min_bins * resolution_hz);
 }
+
+// The spacing of the cage-rate comb that series a's envelope carries, as measured, or 0 when
+// a does not repeat at the cage rate (docs/health.md, "Evidence", rule 8). A race standing in
+// the load frame (its ball pass is Z |f_c|, the varying compliance's frequency) is struck by Z
+// balls of unequal size in a pattern that repeats once per cage turn: an impact train of
+// period 1 / |f_c|, whose lines lie at every multiple of |f_c| = its fundamental as found / Z.
+// A spalled ball is carried through the load zone once per cage turn: its impacts are
+// amplitude-modulated at |f_c|, and the modulation itself (the order-0 term of the train,
+// whose first line is the cage line of rule 7) lies at the multiples of |f_c|, as found on
+// the cage line or else as expected. A turning race is modulated at its ring speed instead.
+double cage_comb_spacing_hz(const FaultIndicator& a, const FaultIndicator* cage, const BearingFrequencies& freq,
+                            double resolution_hz, const PeakSearchOptions& o) {
+  const double fc = std::abs(freq.cage_hz), vc = freq.varying_compliance_hz;
+  if (!(fc > 0.0)) return 0.0;
+  if (a.kind == FaultKind::Ball)
+    return cage && !cage->harmonics.empty() && cage->harmonics[0].found ? cage->envelope_peak.frequency_hz : fc;
+  if (a.kind == FaultKind::Cage || !(vc > 0.0)) return 0.0;
+  const double f = fault_frequency_hz(freq, a.kind);
+  if (std::abs(f - vc) > std::max(o.tolerance_rel * f, o.tolerance_min_bins * resolution_hz)) return 0.0;
+  return a.envelope_peak.frequency_hz / std::round(vc / fc);
+}
 }  // namespace
 
 void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& freq, const AnalysisOptions& o,
@@ -136,6 +157,32 @@ void arbitrate_fault_series(const Spectrum& envelope, const BearingFrequencies& 
       b->note = std::string("its fundamental is a line of the stronger ") + fault_frequency_label(ka) + " series (" +
                 detail::fixed_decimals(a->envelope_peak.snr_db, 0) + " dB, -+" + detail::fixed_decimals(modulation_frequency_hz(freq, ka), 2) +
                 " Hz sidebands)";
+    }
+  }
+  // A series on the cage-rate comb of a stronger one (rule 8): a stationary-race or ball
+  // series has a line at every multiple m |f_c| (cage_comb_spacing_hz); a weaker series whose
+  // fundamental as found lies within its search window of one is no evidence of its own
+  // (618/22: BPFO = 8.09 |f_c|, and BPFI = 10 |f_c| on a ball spall's comb). Only where the
+  // comb is resolvable (spacing of at least the resolvable frequency of rule 4, and wider
+  // than the window: beyond 50 |f_c| every frequency lies on it).
+  const FaultIndicator* cage_line = find(faults, FaultKind::Cage);
+  const double min_hz = resolvable_hz(envelope, o);
+  for (FaultKind ka : kinds) {
+    const FaultIndicator* a = find(faults, ka);
+    if (!a || !a->suspected) continue;
+    const double spacing = cage_comb_spacing_hz(*a, cage_line, freq, envelope.resolution_hz, o.peak_search);
+    if (!(spacing >= min_hz)) continue;
+    for (FaultKind kb : kinds) {
+      FaultIndicator* b = find(faults, kb);
+      if (kb == ka || !b || !b->suspected || !(b->envelope_peak.snr_db < a->envelope_peak.snr_db)) continue;
+      const double fb = b->envelope_peak.frequency_hz;
+      const double tol = std::max(o.peak_search.tolerance_rel * fb, o.peak_search.tolerance_min_bins * envelope.resolution_hz);
+      const double m = std::round(fb / spacing);
+      if (m < 1.0 || 2.0 * tol >= spacing || std::abs(fb - m * spacing) > tol) continue;
+      b->suspected = false;
+      b->note = "its fundamental is line " + detail::fixed_decimals(m, 0) + " of the cage-rate comb (" +
+                detail::fixed_decimals(spacing, 2) + " Hz) of the stronger " + fault_frequency_label(ka) + " series (" +
+                detail::fixed_decimals(a->envelope_peak.snr_db, 0) + " dB)";
     }
   }
   // The cage line beside a race or ball series: with balls of unequal size the impacts (and
