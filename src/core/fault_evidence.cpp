@@ -17,8 +17,11 @@ bool line_found(const SpectralPeak& p, double threshold_db) {
 // The lowest frequency told apart from its neighbour in the envelope spectrum: a line there
 // has its search window (+-1 bin) outside the excluded main lobe (+-noise_exclude_bins) of
 // a line at 0 Hz (the envelope's mean) or of its carrier.
+double resolvable_hz_for(double resolution_hz, const AnalysisOptions& o) {
+  return (o.peak_search.noise_exclude_bins + 2) * resolution_hz;
+}
 double resolvable_hz(const Spectrum& envelope, const AnalysisOptions& o) {
-  return (o.peak_search.noise_exclude_bins + 2) * envelope.resolution_hz;
+  return resolvable_hz_for(envelope.resolution_hz, o);
 }
 
 FaultIndicator* find(std::vector<FaultIndicator>* faults, FaultKind kind) {
@@ -74,6 +77,30 @@ double cage_comb_spacing_hz(const FaultIndicator& a, const FaultIndicator* cage,
   if (std::abs(f - vc) > std::max(o.tolerance_rel * f, o.tolerance_min_bins * resolution_hz)) return 0.0;
   return a.envelope_peak.frequency_hz / std::round(vc / fc);
 }
+
+// Whether every line a series was found on lies on the healthy compliance's cage-rate comb:
+// with balls of unequal size the ball-pass excitation repeats once per cage turn, so its
+// lines lie at every m |f_c|, not only at Z |f_c| and the cage line (rule 5). Only where the
+// compliance matters (compliance_max_balls) and the comb can be told (spacing resolvable and
+// wider than each line's search window).
+bool lines_on_compliance_comb(const FaultIndicator& f, const BearingFrequencies& freq, double resolution_hz,
+                              const AnalysisOptions& o) {
+  const double fc = std::abs(freq.cage_hz), vc = freq.varying_compliance_hz;
+  if (!(fc > 0.0) || !(vc > 0.0) || vc / fc > o.thresholds.compliance_max_balls ||
+      fc < resolvable_hz_for(resolution_hz, o))
+    return false;
+  const auto on_comb = [&](const EvidenceLine& l) {
+    const double x = l.peak.frequency_hz;
+    const double tol = std::max(o.peak_search.tolerance_rel * x, o.peak_search.tolerance_min_bins * resolution_hz);
+    const double m = std::round(x / fc);
+    return m >= 1.0 && 2.0 * tol < fc && std::abs(x - m * fc) <= tol;
+  };
+  for (int n = 0; n < f.harmonics_found; ++n)
+    if (!on_comb(f.harmonics[static_cast<std::size_t>(n)])) return false;
+  for (const EvidenceLine& sb : f.sidebands)
+    if (sb.found && !on_comb(sb)) return false;
+  return f.harmonics_found > 0;
+}
 }  // namespace
 
 void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& freq, const AnalysisOptions& o,
@@ -117,10 +144,14 @@ void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& 
   const bool lines = first.found && f->harmonics_found >= 2 && (!f->sidebands_required || f->sidebands_found >= 1);
   // A series at the varying-compliance frequency Z |f_c| (the stationary race's ball pass)
   // without sidebands, or the cage line (balls of unequal size repeat once per cage turn), is
-  // also what a healthy bearing's ball-pass excitation gives: impacts must then show as an
-  // impulsive band (docs/health.md, "Evidence").
-  f->impulsiveness_required = !f->sidebands_required && t.impulsive_band_kurtosis > 0.0 &&
-                              compliance_series(freq, f->kind, envelope.resolution_hz, o);
+  // also what a healthy bearing's ball-pass excitation gives, and so is a series found only on
+  // that excitation's cage-rate comb m |f_c| (e.g. the 6205's 2xBSF = 11.8 |f_c| within 1 %
+  // of 12 |f_c| with cage slip): impacts must then show as an impulsive band (docs/health.md,
+  // "Evidence", rule 5).
+  const bool on_comb = lines && lines_on_compliance_comb(*f, freq, envelope.resolution_hz, o);
+  f->impulsiveness_required = t.impulsive_band_kurtosis > 0.0 &&
+                              ((!f->sidebands_required && compliance_series(freq, f->kind, envelope.resolution_hz, o)) ||
+                               on_comb);
   f->band_kurtosis = band.kurtosis;
   f->impulsive = !f->impulsiveness_required || band.kurtosis >= t.impulsive_band_kurtosis;
   f->suspected = lines && f->impulsive;
@@ -130,8 +161,10 @@ void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& 
               detail::fixed_decimals(envelope.resolution_hz, 2) + " Hz bins); a window of at least " +
               detail::fixed_decimals((o.peak_search.noise_exclude_bins + 2) / f->envelope_peak.expected_hz, 1) + " s is needed";
   else if (lines && !f->impulsive)
-    f->note = "lines without sidebands in a band that is not impulsive (spectral kurtosis " + detail::fixed_decimals(band.kurtosis, 2) +
-              " < " + detail::fixed_decimals(t.impulsive_band_kurtosis, 1) + "): the varying compliance of a healthy bearing";
+    f->note = std::string(f->sidebands_required ? "lines on the cage-rate comb (m x " + detail::fixed_decimals(std::abs(freq.cage_hz), 2) + " Hz)"
+                                                : "lines without sidebands") +
+              " in a band that is not impulsive (spectral kurtosis " + detail::fixed_decimals(band.kurtosis, 2) + " < " +
+              detail::fixed_decimals(t.impulsive_band_kurtosis, 1) + "): the varying compliance of a healthy bearing";
 }
 
 void arbitrate_fault_series(const Spectrum& envelope, const BearingFrequencies& freq, const AnalysisOptions& o,

@@ -258,5 +258,46 @@ TEST(FaultEvidence, StationaryRaceSeriesOnTheCageRateCombOfABallSpallIsNoRaceDef
   EXPECT_EQ(c.diagnosis.reason.find("outer race"), std::string::npos) << c.diagnosis.reason;
 }
 
+// The healthy compliance's cage-rate comb read as a ball series (rule 5, lines on the comb).
+// Balls of unequal size make the ball-pass excitation repeat once per cage turn, so a
+// smooth envelope e = 1 + 0.25 (cos 11 p + cos 12 p + cos 13 p + cos 24 p), p = 2 pi f_c t,
+// f_c = 9.7 Hz, modulates the 3 kHz resonance under a quiet sensor. 2 x the ball spin is
+// 116.6 Hz, 0.2 % from 12 f_c: the ball series finds its fundamental (12 f_c), 2nd harmonic
+// (24 f_c) and both sidebands (11, 13 f_c), all on the comb, and passed the old rule (its
+// sidebands are required, so impulsiveness was not). The band is not impulsive:
+// <e^2> = 1 + 4 x 0.25^2 / 2 = 9/8 and <e^4> = 31/16 (the products 11 + 13 = 12 + 12 = 24 add
+// to it), SK = (31/16) / (81/64) - 2 = -0.469 (-38/81), far below 2: not a ball defect.
+TEST(FaultEvidence, SmoothCageRateCombAtTwiceTheBallSpinIsHealthy) {
+  const double fc = 9.7;
+  BearingFrequencies f = stationary_frequencies();
+  f.ball_pass_outer_race_hz = 9.0 * fc;
+  f.varying_compliance_hz = 9.0 * fc;
+  f.ball_spin_hz = 58.3;  // 2 x = 116.6 Hz
+  f.cage_hz = fc;
+  std::vector<double> x(40000);
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> n(0.0, 0.02);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double t = i / kFs, p = 2.0 * kPi * fc * t;
+    const double e = 1.0 + 0.25 * (std::cos(11.0 * p) + std::cos(12.0 * p) + std::cos(13.0 * p) + std::cos(24.0 * p));
+    x[i] = e * std::sin(2.0 * kPi * 3000.0 * t) + n(rng);
+  }
+  const ConditionIndicators c = analyze_vibration(x, kFs, f, resonance_band());
+  const FaultIndicator& ball = c.faults[2];
+  ASSERT_EQ(ball.kind, FaultKind::Ball);
+  // The lines are there, on the comb ...
+  EXPECT_NEAR(ball.envelope_peak.frequency_hz, 12.0 * fc, 0.2);
+  EXPECT_GE(ball.harmonics_found, 2);
+  EXPECT_TRUE(ball.sidebands_required);
+  EXPECT_EQ(ball.sidebands_found, 2);
+  EXPECT_NEAR(c.envelope_band_kurtosis, -38.0 / 81.0, 0.1);
+  // ... but in a band that is no impact train.
+  EXPECT_TRUE(ball.impulsiveness_required);
+  EXPECT_FALSE(ball.impulsive);
+  EXPECT_FALSE(ball.suspected);
+  EXPECT_NE(ball.note.find("cage-rate comb"), std::string::npos) << ball.note;
+  EXPECT_EQ(c.diagnosis.level, HealthLevel::Ok) << c.diagnosis.reason;
+}
+
 }  // namespace
 }  // namespace bearing_sim
