@@ -218,6 +218,29 @@ void arbitrate_fault_series(const Spectrum& envelope, const BearingFrequencies& 
                 detail::fixed_decimals(a->envelope_peak.snr_db, 0) + " dB)";
     }
   }
+  // A series too close to a stronger one's harmonic (found) to be told from it (rule 9): a line within
+  // (noise_exclude_bins + 2) bins of another is not resolvable from it (rule 4's measure: 5 Hz
+  // in 1 s), and a turning race's harmonics are smeared over a few Hz by the cage slip's
+  // fluctuation (BPFO = Z (f_o - f_c) wanders by Z df_c, n times that at the n-th harmonic).
+  for (FaultKind ka : kinds) {
+    const FaultIndicator* a = find(faults, ka);
+    if (!a || !a->suspected) continue;
+    for (FaultKind kb : kinds) {
+      FaultIndicator* b = find(faults, kb);
+      if (kb == ka || !b || !b->suspected || !(b->envelope_peak.snr_db < a->envelope_peak.snr_db)) continue;
+      for (std::size_t n = 0; n < a->harmonics.size(); ++n) {
+        const EvidenceLine& h = a->harmonics[n];
+        const double line = h.peak.frequency_hz;
+        if (!h.found || std::abs(b->envelope_peak.frequency_hz - line) >= min_hz) continue;
+        b->suspected = false;
+        b->note = "its fundamental lies within " + detail::fixed_decimals(min_hz, 1) + " Hz of harmonic " +
+                  std::to_string(n + 1) + " (" + detail::fixed_decimals(line, 2) + " Hz) of the stronger " +
+                  fault_frequency_label(ka) + " series (" + detail::fixed_decimals(a->envelope_peak.snr_db, 0) +
+                  " dB): not resolvable from it";
+        break;
+      }
+    }
+  }
   // The cage line beside a race or ball series: with balls of unequal size the impacts (and
   // the healthy ball-pass excitation) repeat once per cage turn, so that series carries FTF.
   FaultIndicator* cage = find(faults, FaultKind::Cage);

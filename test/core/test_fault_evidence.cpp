@@ -299,5 +299,54 @@ TEST(FaultEvidence, SmoothCageRateCombAtTwiceTheBallSpinIsHealthy) {
   EXPECT_EQ(c.diagnosis.level, HealthLevel::Ok) << c.diagnosis.reason;
 }
 
+// A series on the skirt of a stronger series' harmonic (rule 9). Outer ring turning at
+// f_r = 25 Hz, an outer-race spall struck in the load zone (gain max(0, cos 2 pi f_r t)^2, as
+// above) whose impact rate wanders as the cage slip fluctuates: phase 2 pi BPFO t +
+// beta sin(2 pi r t), BPFO = 130 Hz, r = 3.5 Hz, beta = 0.25, so the n-th harmonic carries
+// FM sidebands n BPFO -+ j r of relative strength J_j(n beta) / J_0(n beta): -11.8 dB at
+// 2 BPFO + r = 263.5 Hz (J_1(0.5) / J_0(0.5)), -4.8 dB at 4 BPFO + r = 523.5 Hz. 2 x the ball
+// spin is 264.4 Hz: the ball series finds its fundamental at 263.5 Hz (2nd harmonic 523.5
+// Hz), and with f_c = 21.5 Hz its +f_c sideband at 285 Hz = 2 BPFO + f_r, a line of the
+// outer race's load-zone modulation: it passes. In the 1 s window (1 Hz bins) 263.5 Hz is
+// 3.5 bins from the BPFO series' 2nd harmonic, closer than the 5 bins at which two lines are
+// resolvable: the ball series is withdrawn.
+TEST(FaultEvidence, SeriesOnTheSkirtOfAStrongerHarmonicIsNotResolvable) {
+  BearingFrequencies f;
+  f.ball_pass_outer_race_hz = 130.0;
+  f.ball_pass_inner_race_hz = 156.0;
+  f.ball_spin_hz = 132.2;  // 2 x = 264.4 Hz
+  f.cage_hz = 21.5;
+  f.outer_ring_hz = 25.0;
+  f.inner_ring_hz = 0.0;
+  f.relative_ring_hz = 25.0;
+  f.varying_compliance_hz = 156.0;
+  const double wn = 2.0 * kPi * 3000.0, damping = 0.05 * wn, bpfo = 130.0, r = 3.5, beta = 0.25;
+  std::vector<double> x(20000);  // 1 s
+  std::mt19937_64 rng(12);
+  std::normal_distribution<double> noise(0.0, 0.02);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double t = i / kFs;
+    const double cycles = bpfo * t + beta / (2.0 * kPi) * std::sin(2.0 * kPi * r * t);  // impacts so far
+    const double since = (cycles - std::floor(cycles)) / bpfo;
+    const double gain = std::pow(std::max(0.0, std::cos(2.0 * kPi * 25.0 * t)), 2);
+    x[i] = gain * std::exp(-damping * since) * std::sin(wn * since) + noise(rng);
+  }
+  const ConditionIndicators c = analyze_vibration(x, kFs, f, resonance_band());
+  const FaultIndicator& outer = c.faults[0];
+  const FaultIndicator& ball = c.faults[2];
+  EXPECT_TRUE(outer.suspected) << c.diagnosis.reason;
+  ASSERT_GE(outer.harmonics_found, 2);
+  EXPECT_NEAR(outer.harmonics[1].peak.frequency_hz, 2.0 * bpfo, 0.3);
+  // The ball series' own evidence is there ...
+  EXPECT_NEAR(ball.envelope_peak.frequency_hz, 2.0 * bpfo + r, 0.3);
+  EXPECT_GE(ball.harmonics_found, 2);
+  EXPECT_GE(ball.sidebands_found, 1);
+  // ... but 3.5 bins from the stronger series' 2nd harmonic.
+  EXPECT_FALSE(ball.suspected);
+  EXPECT_NE(ball.note.find("harmonic 2"), std::string::npos) << ball.note;
+  EXPECT_NE(ball.note.find("BPFO"), std::string::npos) << ball.note;
+  EXPECT_EQ(c.diagnosis.reason.find("ball"), std::string::npos) << c.diagnosis.reason;
+}
+
 }  // namespace
 }  // namespace bearing_sim
