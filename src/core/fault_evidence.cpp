@@ -17,8 +17,11 @@ bool line_found(const SpectralPeak& p, double threshold_db) {
 // The lowest frequency told apart from its neighbour in the envelope spectrum: a line there
 // has its search window (+-1 bin) outside the excluded main lobe (+-noise_exclude_bins) of
 // a line at 0 Hz (the envelope's mean) or of its carrier.
+double resolvable_hz_for(double resolution_hz, const AnalysisOptions& o) {
+  return (o.peak_search.noise_exclude_bins + 2) * resolution_hz;
+}
 double resolvable_hz(const Spectrum& envelope, const AnalysisOptions& o) {
-  return (o.peak_search.noise_exclude_bins + 2) * envelope.resolution_hz;
+  return resolvable_hz_for(envelope.resolution_hz, o);
 }
 
 FaultIndicator* find(std::vector<FaultIndicator>* faults, FaultKind kind) {
@@ -52,6 +55,51 @@ bool compliance_series(const BearingFrequencies& freq, FaultKind kind, double re
   if (kind == FaultKind::Cage) return true;
   const double f = fault_frequency_hz(freq, kind);
   return std::abs(f - vc) <= std::max(o.peak_search.tolerance_rel * f, o.peak_search.tolerance_min_bins * resolution_hz);
+}
+
+// The spacing of the cage-rate comb that series a's envelope carries, as measured, or 0 when
+// a does not repeat at the cage rate (docs/health.md, "Evidence", rule 8). A race standing in
+// the load frame (its ball pass is Z |f_c|, the varying compliance's frequency) is struck by Z
+// balls of unequal size in a pattern that repeats once per cage turn: an impact train of
+// period 1 / |f_c|, whose lines lie at every multiple of |f_c| = its fundamental as found / Z.
+// A spalled ball is carried through the load zone once per cage turn: its impacts are
+// amplitude-modulated at |f_c|, and the modulation itself (the order-0 term of the train,
+// whose first line is the cage line of rule 7) lies at the multiples of |f_c|, as found on
+// the cage line or else as expected. A turning race is modulated at its ring speed instead.
+double cage_comb_spacing_hz(const FaultIndicator& a, const FaultIndicator* cage, const BearingFrequencies& freq,
+                            double resolution_hz, const PeakSearchOptions& o) {
+  const double fc = std::abs(freq.cage_hz), vc = freq.varying_compliance_hz;
+  if (!(fc > 0.0)) return 0.0;
+  if (a.kind == FaultKind::Ball)
+    return cage && !cage->harmonics.empty() && cage->harmonics[0].found ? cage->envelope_peak.frequency_hz : fc;
+  if (a.kind == FaultKind::Cage || !(vc > 0.0)) return 0.0;
+  const double f = fault_frequency_hz(freq, a.kind);
+  if (std::abs(f - vc) > std::max(o.tolerance_rel * f, o.tolerance_min_bins * resolution_hz)) return 0.0;
+  return a.envelope_peak.frequency_hz / std::round(vc / fc);
+}
+
+// Whether every line a series was found on lies on the healthy compliance's cage-rate comb:
+// with balls of unequal size the ball-pass excitation repeats once per cage turn, so its
+// lines lie at every m |f_c|, not only at Z |f_c| and the cage line (rule 5). Only where the
+// compliance matters (compliance_max_balls) and the comb can be told (spacing resolvable and
+// wider than each line's search window).
+bool lines_on_compliance_comb(const FaultIndicator& f, const BearingFrequencies& freq, double resolution_hz,
+                              const AnalysisOptions& o) {
+  const double fc = std::abs(freq.cage_hz), vc = freq.varying_compliance_hz;
+  if (!(fc > 0.0) || !(vc > 0.0) || vc / fc > o.thresholds.compliance_max_balls ||
+      fc < resolvable_hz_for(resolution_hz, o))
+    return false;
+  const auto on_comb = [&](const EvidenceLine& l) {
+    const double x = l.peak.frequency_hz;
+    const double tol = std::max(o.peak_search.tolerance_rel * x, o.peak_search.tolerance_min_bins * resolution_hz);
+    const double m = std::round(x / fc);
+    return m >= 1.0 && 2.0 * tol < fc && std::abs(x - m * fc) <= tol;
+  };
+  for (int n = 0; n < f.harmonics_found; ++n)
+    if (!on_comb(f.harmonics[static_cast<std::size_t>(n)])) return false;
+  for (const EvidenceLine& sb : f.sidebands)
+    if (sb.found && !on_comb(sb)) return false;
+  return f.harmonics_found > 0;
 }
 }  // namespace
 
@@ -96,10 +144,14 @@ void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& 
   const bool lines = first.found && f->harmonics_found >= 2 && (!f->sidebands_required || f->sidebands_found >= 1);
   // A series at the varying-compliance frequency Z |f_c| (the stationary race's ball pass)
   // without sidebands, or the cage line (balls of unequal size repeat once per cage turn), is
-  // also what a healthy bearing's ball-pass excitation gives: impacts must then show as an
-  // impulsive band (docs/health.md, "Evidence").
-  f->impulsiveness_required = !f->sidebands_required && t.impulsive_band_kurtosis > 0.0 &&
-                              compliance_series(freq, f->kind, envelope.resolution_hz, o);
+  // also what a healthy bearing's ball-pass excitation gives, and so is a series found only on
+  // that excitation's cage-rate comb m |f_c| (e.g. the 6205's 2xBSF = 11.8 |f_c| within 1 %
+  // of 12 |f_c| with cage slip): impacts must then show as an impulsive band (docs/health.md,
+  // "Evidence", rule 5).
+  const bool on_comb = lines && lines_on_compliance_comb(*f, freq, envelope.resolution_hz, o);
+  f->impulsiveness_required = t.impulsive_band_kurtosis > 0.0 &&
+                              ((!f->sidebands_required && compliance_series(freq, f->kind, envelope.resolution_hz, o)) ||
+                               on_comb);
   f->band_kurtosis = band.kurtosis;
   f->impulsive = !f->impulsiveness_required || band.kurtosis >= t.impulsive_band_kurtosis;
   f->suspected = lines && f->impulsive;
@@ -109,8 +161,10 @@ void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& 
               detail::fixed_decimals(envelope.resolution_hz, 2) + " Hz bins); a window of at least " +
               detail::fixed_decimals((o.peak_search.noise_exclude_bins + 2) / f->envelope_peak.expected_hz, 1) + " s is needed";
   else if (lines && !f->impulsive)
-    f->note = "lines without sidebands in a band that is not impulsive (spectral kurtosis " + detail::fixed_decimals(band.kurtosis, 2) +
-              " < " + detail::fixed_decimals(t.impulsive_band_kurtosis, 1) + "): the varying compliance of a healthy bearing";
+    f->note = std::string(f->sidebands_required ? "lines on the cage-rate comb (m x " + detail::fixed_decimals(std::abs(freq.cage_hz), 2) + " Hz)"
+                                                : "lines without sidebands") +
+              " in a band that is not impulsive (spectral kurtosis " + detail::fixed_decimals(band.kurtosis, 2) + " < " +
+              detail::fixed_decimals(t.impulsive_band_kurtosis, 1) + "): the varying compliance of a healthy bearing";
 }
 
 void arbitrate_fault_series(const Spectrum& envelope, const BearingFrequencies& freq, const AnalysisOptions& o,
@@ -136,6 +190,55 @@ void arbitrate_fault_series(const Spectrum& envelope, const BearingFrequencies& 
       b->note = std::string("its fundamental is a line of the stronger ") + fault_frequency_label(ka) + " series (" +
                 detail::fixed_decimals(a->envelope_peak.snr_db, 0) + " dB, -+" + detail::fixed_decimals(modulation_frequency_hz(freq, ka), 2) +
                 " Hz sidebands)";
+    }
+  }
+  // A series on the cage-rate comb of a stronger one (rule 8): a stationary-race or ball
+  // series has a line at every multiple m |f_c| (cage_comb_spacing_hz); a weaker series whose
+  // fundamental as found lies within its search window of one is no evidence of its own
+  // (618/22: BPFO = 8.09 |f_c|, and BPFI = 10 |f_c| on a ball spall's comb). Only where the
+  // comb is resolvable (spacing of at least the resolvable frequency of rule 4, and wider
+  // than the window: beyond 50 |f_c| every frequency lies on it).
+  const FaultIndicator* cage_line = find(faults, FaultKind::Cage);
+  const double min_hz = resolvable_hz(envelope, o);
+  for (FaultKind ka : kinds) {
+    const FaultIndicator* a = find(faults, ka);
+    if (!a || !a->suspected) continue;
+    const double spacing = cage_comb_spacing_hz(*a, cage_line, freq, envelope.resolution_hz, o.peak_search);
+    if (!(spacing >= min_hz)) continue;
+    for (FaultKind kb : kinds) {
+      FaultIndicator* b = find(faults, kb);
+      if (kb == ka || !b || !b->suspected || !(b->envelope_peak.snr_db < a->envelope_peak.snr_db)) continue;
+      const double fb = b->envelope_peak.frequency_hz;
+      const double tol = std::max(o.peak_search.tolerance_rel * fb, o.peak_search.tolerance_min_bins * envelope.resolution_hz);
+      const double m = std::round(fb / spacing);
+      if (m < 1.0 || 2.0 * tol >= spacing || std::abs(fb - m * spacing) > tol) continue;
+      b->suspected = false;
+      b->note = "its fundamental is line " + detail::fixed_decimals(m, 0) + " of the cage-rate comb (" +
+                detail::fixed_decimals(spacing, 2) + " Hz) of the stronger " + fault_frequency_label(ka) + " series (" +
+                detail::fixed_decimals(a->envelope_peak.snr_db, 0) + " dB)";
+    }
+  }
+  // A series too close to a stronger one's harmonic (found) to be told from it (rule 9): a line within
+  // (noise_exclude_bins + 2) bins of another is not resolvable from it (rule 4's measure: 5 Hz
+  // in 1 s), and a turning race's harmonics are smeared over a few Hz by the cage slip's
+  // fluctuation (BPFO = Z (f_o - f_c) wanders by Z df_c, n times that at the n-th harmonic).
+  for (FaultKind ka : kinds) {
+    const FaultIndicator* a = find(faults, ka);
+    if (!a || !a->suspected) continue;
+    for (FaultKind kb : kinds) {
+      FaultIndicator* b = find(faults, kb);
+      if (kb == ka || !b || !b->suspected || !(b->envelope_peak.snr_db < a->envelope_peak.snr_db)) continue;
+      for (std::size_t n = 0; n < a->harmonics.size(); ++n) {
+        const EvidenceLine& h = a->harmonics[n];
+        const double line = h.peak.frequency_hz;
+        if (!h.found || std::abs(b->envelope_peak.frequency_hz - line) >= min_hz) continue;
+        b->suspected = false;
+        b->note = "its fundamental lies within " + detail::fixed_decimals(min_hz, 1) + " Hz of harmonic " +
+                  std::to_string(n + 1) + " (" + detail::fixed_decimals(line, 2) + " Hz) of the stronger " +
+                  fault_frequency_label(ka) + " series (" + detail::fixed_decimals(a->envelope_peak.snr_db, 0) +
+                  " dB): not resolvable from it";
+        break;
+      }
     }
   }
   // The cage line beside a race or ball series: with balls of unequal size the impacts (and

@@ -16,8 +16,10 @@ void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& 
                             const BandKurtosis& band, FaultIndicator* f);
 
 // Decisions between the suspected series (faults in the order outer, inner, ball, cage):
-// a series found only on lines of a better-supported series is withdrawn, and the cage
-// line beside a race or ball series is read as that series' cage-rate modulation.
+// a series found only on lines of a better-supported series (its sidebands, or the cage-rate
+// comb of a stationary-race or ball series) or too close to one of its harmonics to be
+// resolved is withdrawn, and the cage line beside a race or ball series is read as that
+// series' cage-rate modulation.
 void arbitrate_fault_series(const Spectrum& envelope, const BearingFrequencies& freq, const AnalysisOptions& o,
                             std::vector<FaultIndicator>* faults);
 

@@ -303,19 +303,33 @@ SpectralPeak find_peak(const Spectrum& s, double expected_hz, const PeakSearchOp
   long k = lo;
   for (long j = lo; j <= hi; ++j)
     if (s.amplitude[j] > s.amplitude[k]) k = j;
+  const auto is_local_maximum = [&](long j) {
+    return s.amplitude[j] >= s.amplitude[j - 1] && s.amplitude[j] >= s.amplitude[j + 1];
+  };
+  // Gaussian (log-parabolic) interpolation, exact for a Gaussian lobe and within a few
+  // hundredths of a bin for the Hann lobe: the line's position in bins.
+  const auto line_bins = [&](long j) {
+    double offset = 0.0;
+    const double a0 = s.amplitude[j - 1], a1 = s.amplitude[j], a2 = s.amplitude[j + 1];
+    if (a0 > 0.0 && a1 > 0.0 && a2 > 0.0) {
+      const double l0 = std::log(a0), l1 = std::log(a1), l2 = std::log(a2);
+      const double denom = l0 - 2.0 * l1 + l2;
+      if (denom < 0.0) offset = std::clamp(0.5 * (l0 - l2) / denom, -0.5, 0.5);
+    }
+    return static_cast<double>(j) + offset;
+  };
+  // A line within the window whose largest bin lies just outside it (the line between the
+  // window's last bin and the next): the largest bin inside is its flank. The line is the
+  // one searched when its interpolated frequency lies within the window (docs/health.md,
+  // "Envelope analysis", step 4).
+  const long out = k == hi && hi + 1 <= bins - 2 ? hi + 1 : k == lo && lo - 1 >= 1 ? lo - 1 : -1;
+  if (out > 0 && s.amplitude[out] > s.amplitude[k] && is_local_maximum(out) &&
+      std::abs(line_bins(out) - centre) <= half)
+    k = out;
   p.searched = true;
   p.amplitude = s.amplitude[k];
-  p.local_maximum = s.amplitude[k] >= s.amplitude[k - 1] && s.amplitude[k] >= s.amplitude[k + 1];
-  // Gaussian (log-parabolic) interpolation, exact for a Gaussian lobe and within a few
-  // hundredths of a bin for the Hann lobe.
-  double offset = 0.0;
-  const double a0 = s.amplitude[k - 1], a1 = s.amplitude[k], a2 = s.amplitude[k + 1];
-  if (a0 > 0.0 && a1 > 0.0 && a2 > 0.0) {
-    const double l0 = std::log(a0), l1 = std::log(a1), l2 = std::log(a2);
-    const double denom = l0 - 2.0 * l1 + l2;
-    if (denom < 0.0) offset = std::clamp(0.5 * (l0 - l2) / denom, -0.5, 0.5);
-  }
-  p.frequency_hz = (static_cast<double>(k) + offset) * s.resolution_hz;
+  p.local_maximum = is_local_maximum(k);
+  p.frequency_hz = line_bins(k) * s.resolution_hz;
   std::vector<double> neighbours;
   for (long j = std::max(1L, k - o.noise_half_width_bins); j <= std::min(bins - 1, k + o.noise_half_width_bins); ++j)
     if (std::abs(j - k) > o.noise_exclude_bins) neighbours.push_back(s.amplitude[j]);

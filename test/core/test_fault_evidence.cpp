@@ -185,5 +185,168 @@ TEST(FaultEvidence, CageLineBesideAStationaryRaceSeriesIsItsModulation) {
   EXPECT_EQ(c.diagnosis.reason.find("cage"), std::string::npos) << c.diagnosis.reason;
 }
 
+// The cage-rate comb of a stationary-race spall (rule 8). Balls of unequal size strike a
+// stationary outer-race spall in a pattern of 9 strengths g_j that repeats once per cage turn,
+// so the envelope is a train of period 1 / f_c: lines at every m f_c (f_c = 9.7 Hz), of
+// strength |G_(m mod 9)| / G_0 against the BPFO line (G the DFT of g, G_0 = 0.622): -18.1 dB
+// at m = 12 and 24 (k = 3, 6), -16.7 dB at 11, -11.8 dB at 13 (k = 2, 4). 2 x the ball spin
+// is 116.6 Hz, 0.2 % from 12 f_c = 116.4 Hz: the ball series finds its fundamental there, its
+// 2nd harmonic at 24 f_c and its sidebands at -+f_c on 11 and 13 f_c, and passes alone; every
+// one of those lines is the outer race's. (12 is more than 2 lines from 9 and 18 f_c: the ball
+// series' -+2 f_c sidebands do not reach BPFO, which rule 6 would withdraw.) The BPFO line
+// (0 dB) is the stronger: the ball series is withdrawn.
+TEST(FaultEvidence, BallSeriesOnTheCageRateCombOfAStationaryRaceSpallIsNoBallDefect) {
+  const double fc = 9.7, bpfo = 9.0 * fc;
+  BearingFrequencies f = stationary_frequencies();
+  f.ball_pass_outer_race_hz = bpfo;
+  f.varying_compliance_hz = bpfo;
+  f.ball_spin_hz = 58.3;  // 2 x = 116.6 Hz
+  f.cage_hz = fc;
+  const double size_gain[9] = {1.0, 0.4, 0.7, 0.3, 0.9, 0.5, 1.0, 0.2, 0.6};  // per ball
+  const auto x = impact_train(bpfo, [&](int k, double) { return size_gain[k % 9]; }, 0.05, 2.0, 9);
+  const ConditionIndicators c = analyze_vibration(x, kFs, f, resonance_band());
+  const FaultIndicator& outer = c.faults[0];
+  const FaultIndicator& ball = c.faults[2];
+  ASSERT_EQ(ball.kind, FaultKind::Ball);
+  EXPECT_TRUE(outer.suspected) << c.diagnosis.reason;
+  // The ball series' own evidence is there, on the comb ...
+  EXPECT_NEAR(ball.envelope_peak.frequency_hz, 12.0 * fc, 0.2);
+  EXPECT_GE(ball.harmonics_found, 2);
+  EXPECT_TRUE(ball.sidebands_required);
+  EXPECT_GE(ball.sidebands_found, 1);
+  EXPECT_LT(ball.envelope_peak.snr_db, outer.envelope_peak.snr_db);
+  // ... and withdrawn as the stronger outer race series' cage-rate comb.
+  EXPECT_FALSE(ball.suspected);
+  EXPECT_NE(ball.note.find("line 12 of the cage-rate comb"), std::string::npos) << ball.note;
+  EXPECT_NE(ball.note.find("BPFO"), std::string::npos) << ball.note;
+  EXPECT_EQ(c.diagnosis.reason.find("ball"), std::string::npos) << c.diagnosis.reason;
+}
+
+// The cage-rate comb of a ball spall (rule 8). The spalled ball is carried through a load zone
+// of a quarter of the cage turn (impact strength 1 for |cage angle| < 45 deg, 0.1 outside), so
+// its impacts at 2 x the ball spin = 111 Hz are amplitude-modulated by a rectangular wave at
+// f_c = 9.7 Hz, whose m-th harmonic is 0.9 sin(m pi / 4) / (m pi): the envelope carries the
+// modulation itself, lines at m f_c of 0.025 (m = 9) and 0.018 (m = 18) against the mean 0.325
+// (-22, -25 dB). 9 f_c = Z f_c = 87.3 Hz is the stationary outer race's ball pass, whose series
+// needs no sideband and sees an impulsive band (the ball's bursts): it passes alone. Every one
+// of its lines is the ball series': the BPFO series is withdrawn.
+TEST(FaultEvidence, StationaryRaceSeriesOnTheCageRateCombOfABallSpallIsNoRaceDefect) {
+  const double fc = 9.7, bsf2 = 111.0;
+  BearingFrequencies f = stationary_frequencies();
+  f.ball_pass_outer_race_hz = 9.0 * fc;
+  f.varying_compliance_hz = 9.0 * fc;
+  f.ball_spin_hz = bsf2 / 2.0;
+  f.cage_hz = fc;
+  const auto x = impact_train(
+      bsf2, [&](int, double t) { return std::cos(2.0 * kPi * fc * t) > std::cos(kPi / 4.0) ? 1.0 : 0.1; }, 0.01, 2.0,
+      10);
+  const ConditionIndicators c = analyze_vibration(x, kFs, f, resonance_band());
+  const FaultIndicator& outer = c.faults[0];
+  const FaultIndicator& ball = c.faults[2];
+  EXPECT_TRUE(ball.suspected) << c.diagnosis.reason;
+  // The BPFO series' own evidence is there, on the ball's comb (9 and 18 f_c) ...
+  EXPECT_NEAR(outer.envelope_peak.frequency_hz, 9.0 * fc, 0.2);
+  EXPECT_GE(outer.harmonics_found, 2);
+  EXPECT_TRUE(outer.impulsiveness_required);
+  EXPECT_TRUE(outer.impulsive);
+  EXPECT_LT(outer.envelope_peak.snr_db, ball.envelope_peak.snr_db);
+  // ... and withdrawn as the stronger ball series' cage-rate comb.
+  EXPECT_FALSE(outer.suspected);
+  EXPECT_NE(outer.note.find("line 9 of the cage-rate comb"), std::string::npos) << outer.note;
+  EXPECT_NE(outer.note.find("2xBSF"), std::string::npos) << outer.note;
+  EXPECT_EQ(c.diagnosis.reason.rfind("ball defect suspected", 0), 0u) << c.diagnosis.reason;
+  EXPECT_EQ(c.diagnosis.reason.find("outer race"), std::string::npos) << c.diagnosis.reason;
+}
+
+// The healthy compliance's cage-rate comb read as a ball series (rule 5, lines on the comb).
+// Balls of unequal size make the ball-pass excitation repeat once per cage turn, so a
+// smooth envelope e = 1 + 0.25 (cos 11 p + cos 12 p + cos 13 p + cos 24 p), p = 2 pi f_c t,
+// f_c = 9.7 Hz, modulates the 3 kHz resonance under a quiet sensor. 2 x the ball spin is
+// 116.6 Hz, 0.2 % from 12 f_c: the ball series finds its fundamental (12 f_c), 2nd harmonic
+// (24 f_c) and both sidebands (11, 13 f_c), all on the comb, and passed the old rule (its
+// sidebands are required, so impulsiveness was not). The band is not impulsive:
+// <e^2> = 1 + 4 x 0.25^2 / 2 = 9/8 and <e^4> = 31/16 (the products 11 + 13 = 12 + 12 = 24 add
+// to it), SK = (31/16) / (81/64) - 2 = -0.469 (-38/81), far below 2: not a ball defect.
+TEST(FaultEvidence, SmoothCageRateCombAtTwiceTheBallSpinIsHealthy) {
+  const double fc = 9.7;
+  BearingFrequencies f = stationary_frequencies();
+  f.ball_pass_outer_race_hz = 9.0 * fc;
+  f.varying_compliance_hz = 9.0 * fc;
+  f.ball_spin_hz = 58.3;  // 2 x = 116.6 Hz
+  f.cage_hz = fc;
+  std::vector<double> x(40000);
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> n(0.0, 0.02);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double t = i / kFs, p = 2.0 * kPi * fc * t;
+    const double e = 1.0 + 0.25 * (std::cos(11.0 * p) + std::cos(12.0 * p) + std::cos(13.0 * p) + std::cos(24.0 * p));
+    x[i] = e * std::sin(2.0 * kPi * 3000.0 * t) + n(rng);
+  }
+  const ConditionIndicators c = analyze_vibration(x, kFs, f, resonance_band());
+  const FaultIndicator& ball = c.faults[2];
+  ASSERT_EQ(ball.kind, FaultKind::Ball);
+  // The lines are there, on the comb ...
+  EXPECT_NEAR(ball.envelope_peak.frequency_hz, 12.0 * fc, 0.2);
+  EXPECT_GE(ball.harmonics_found, 2);
+  EXPECT_TRUE(ball.sidebands_required);
+  EXPECT_EQ(ball.sidebands_found, 2);
+  EXPECT_NEAR(c.envelope_band_kurtosis, -38.0 / 81.0, 0.1);
+  // ... but in a band that is no impact train.
+  EXPECT_TRUE(ball.impulsiveness_required);
+  EXPECT_FALSE(ball.impulsive);
+  EXPECT_FALSE(ball.suspected);
+  EXPECT_NE(ball.note.find("cage-rate comb"), std::string::npos) << ball.note;
+  EXPECT_EQ(c.diagnosis.level, HealthLevel::Ok) << c.diagnosis.reason;
+}
+
+// A series on the skirt of a stronger series' harmonic (rule 9). Outer ring turning at
+// f_r = 25 Hz, an outer-race spall struck in the load zone (gain max(0, cos 2 pi f_r t)^2, as
+// above) whose impact rate wanders as the cage slip fluctuates: phase 2 pi BPFO t +
+// beta sin(2 pi r t), BPFO = 130 Hz, r = 3.5 Hz, beta = 0.25, so the n-th harmonic carries
+// FM sidebands n BPFO -+ j r of relative strength J_j(n beta) / J_0(n beta): -11.8 dB at
+// 2 BPFO + r = 263.5 Hz (J_1(0.5) / J_0(0.5)), -4.8 dB at 4 BPFO + r = 523.5 Hz. 2 x the ball
+// spin is 264.4 Hz: the ball series finds its fundamental at 263.5 Hz (2nd harmonic 523.5
+// Hz), and with f_c = 21.5 Hz its +f_c sideband at 285 Hz = 2 BPFO + f_r, a line of the
+// outer race's load-zone modulation: it passes. In the 1 s window (1 Hz bins) 263.5 Hz is
+// 3.5 bins from the BPFO series' 2nd harmonic, closer than the 5 bins at which two lines are
+// resolvable: the ball series is withdrawn.
+TEST(FaultEvidence, SeriesOnTheSkirtOfAStrongerHarmonicIsNotResolvable) {
+  BearingFrequencies f;
+  f.ball_pass_outer_race_hz = 130.0;
+  f.ball_pass_inner_race_hz = 156.0;
+  f.ball_spin_hz = 132.2;  // 2 x = 264.4 Hz
+  f.cage_hz = 21.5;
+  f.outer_ring_hz = 25.0;
+  f.inner_ring_hz = 0.0;
+  f.relative_ring_hz = 25.0;
+  f.varying_compliance_hz = 156.0;
+  const double wn = 2.0 * kPi * 3000.0, damping = 0.05 * wn, bpfo = 130.0, r = 3.5, beta = 0.25;
+  std::vector<double> x(20000);  // 1 s
+  std::mt19937_64 rng(12);
+  std::normal_distribution<double> noise(0.0, 0.02);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double t = i / kFs;
+    const double cycles = bpfo * t + beta / (2.0 * kPi) * std::sin(2.0 * kPi * r * t);  // impacts so far
+    const double since = (cycles - std::floor(cycles)) / bpfo;
+    const double gain = std::pow(std::max(0.0, std::cos(2.0 * kPi * 25.0 * t)), 2);
+    x[i] = gain * std::exp(-damping * since) * std::sin(wn * since) + noise(rng);
+  }
+  const ConditionIndicators c = analyze_vibration(x, kFs, f, resonance_band());
+  const FaultIndicator& outer = c.faults[0];
+  const FaultIndicator& ball = c.faults[2];
+  EXPECT_TRUE(outer.suspected) << c.diagnosis.reason;
+  ASSERT_GE(outer.harmonics_found, 2);
+  EXPECT_NEAR(outer.harmonics[1].peak.frequency_hz, 2.0 * bpfo, 0.3);
+  // The ball series' own evidence is there ...
+  EXPECT_NEAR(ball.envelope_peak.frequency_hz, 2.0 * bpfo + r, 0.3);
+  EXPECT_GE(ball.harmonics_found, 2);
+  EXPECT_GE(ball.sidebands_found, 1);
+  // ... but 3.5 bins from the stronger series' 2nd harmonic.
+  EXPECT_FALSE(ball.suspected);
+  EXPECT_NE(ball.note.find("harmonic 2"), std::string::npos) << ball.note;
+  EXPECT_NE(ball.note.find("BPFO"), std::string::npos) << ball.note;
+  EXPECT_EQ(c.diagnosis.reason.find("ball"), std::string::npos) << c.diagnosis.reason;
+}
+
 }  // namespace
 }  // namespace bearing_sim

@@ -117,5 +117,24 @@ TEST(Spectrum, PeakSnrOfAToneInWhiteNoise) {
   EXPECT_FALSE(find_peak(s, 9000.0).searched);
 }
 
+// A line within the +-1 % window whose largest bin lies just outside it (1 Hz bins; expected
+// 1000.7 Hz: window 990.69-1010.71 Hz, bins 991-1010): a tone at 1010.6 Hz has its largest
+// bin at 1011, and bin 1010 inside is its flank. The line's interpolated frequency lies in the
+// window, so it is the line found (a local maximum, at 1010.6 Hz); a tone at 1011.0 Hz, out of
+// the window, is still not found (the search sees its flank at bin 1010).
+TEST(Spectrum, PeakOfALineJustInsideTheWindowWithItsLargestBinOutside) {
+  const double fs = 4096.0;
+  const std::size_t n = 4096;  // 1 Hz bins
+  const SpectralPeak in = find_peak(amplitude_spectrum(tone(n, fs, 1010.6, 1.0), fs), 1000.7);
+  ASSERT_TRUE(in.searched);
+  EXPECT_TRUE(in.local_maximum);
+  EXPECT_NEAR(in.frequency_hz, 1010.6, 0.1);
+  EXPECT_NEAR(in.amplitude, 0.90, 0.02);  // Hann, 0.4 bin off the line: sinc(0.4) / (1 - 0.4^2)
+  const SpectralPeak out = find_peak(amplitude_spectrum(tone(n, fs, 1011.0, 1.0), fs), 1000.7);
+  ASSERT_TRUE(out.searched);
+  EXPECT_FALSE(out.local_maximum);
+  EXPECT_LE(out.frequency_hz, 1010.5 + 1e-9);  // a flank bin, at most half a bin from 1010
+}
+
 }  // namespace
 }  // namespace bearing_sim
