@@ -12,12 +12,10 @@ namespace bearing_sim::detail {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// out = base + m x, two blocks of `lanes` rows at a time, so that each column's broadcast
-// serves both (the loads, not the FMAs, bound these products); the last block overlaps the
-// one before where the rows are not a multiple of the lanes (rows computed twice come out
-// the same), so that every load and store is a full vector. Each block sums its columns in
-// two accumulators (even and odd: half the chain of dependent FMAs). Sizes are constants:
-// the loops unroll.
+// out = base + m x, one block of `lanes` rows at a time; the last block overlaps the one
+// before where the rows are not a multiple of the lanes (rows computed twice come out the
+// same), so that every load and store is a full vector. The columns go into two accumulators
+// (even and odd: half the chain of dependent FMAs). Sizes are constants: the loops unroll.
 template <int kRows, int kCols>
 HWY_INLINE void MultiplyAddFixed(const double* HWY_RESTRICT m, const double* HWY_RESTRICT x,
                                  const double* HWY_RESTRICT base, double* HWY_RESTRICT out) {
@@ -35,26 +33,15 @@ HWY_INLINE void MultiplyAddFixed(const double* HWY_RESTRICT m, const double* HWY
     hn::BlendedStore(hn::Add(even, odd), mask, d, out);
     return;
   }
-  for (int block = 0; block < kRows; block += 2 * lanes) {
-    const int r0 = HWY_MIN(block, kRows - lanes);
-    const bool second = block + lanes < kRows;
-    const int r1 = second ? HWY_MIN(block + lanes, kRows - lanes) : r0;  // without a second: r0 twice
-    V even0 = base ? hn::LoadU(d, base + r0) : hn::Zero(d), odd0 = hn::Zero(d);
-    V even1 = base ? hn::LoadU(d, base + r1) : hn::Zero(d), odd1 = hn::Zero(d);
+  for (int block = 0; block < kRows; block += lanes) {
+    const int r = block + lanes <= kRows ? block : kRows - lanes;
+    V even = base ? hn::LoadU(d, base + r) : hn::Zero(d), odd = hn::Zero(d);
     for (int j = 0; j + 1 < kCols; j += 2) {
-      const V xj = hn::Set(d, x[j]), xk = hn::Set(d, x[j + 1]);
-      even0 = hn::MulAdd(hn::LoadU(d, m + j * kRows + r0), xj, even0);
-      even1 = hn::MulAdd(hn::LoadU(d, m + j * kRows + r1), xj, even1);
-      odd0 = hn::MulAdd(hn::LoadU(d, m + (j + 1) * kRows + r0), xk, odd0);
-      odd1 = hn::MulAdd(hn::LoadU(d, m + (j + 1) * kRows + r1), xk, odd1);
+      even = hn::MulAdd(hn::LoadU(d, m + j * kRows + r), hn::Set(d, x[j]), even);
+      odd = hn::MulAdd(hn::LoadU(d, m + (j + 1) * kRows + r), hn::Set(d, x[j + 1]), odd);
     }
-    if (kCols % 2) {
-      const V xj = hn::Set(d, x[kCols - 1]);
-      even0 = hn::MulAdd(hn::LoadU(d, m + (kCols - 1) * kRows + r0), xj, even0);
-      even1 = hn::MulAdd(hn::LoadU(d, m + (kCols - 1) * kRows + r1), xj, even1);
-    }
-    hn::StoreU(hn::Add(even0, odd0), d, out + r0);
-    if (second) hn::StoreU(hn::Add(even1, odd1), d, out + r1);
+    if (kCols % 2) even = hn::MulAdd(hn::LoadU(d, m + (kCols - 1) * kRows + r), hn::Set(d, x[kCols - 1]), even);
+    hn::StoreU(hn::Add(even, odd), d, out + r);
   }
 }
 
