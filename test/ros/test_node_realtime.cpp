@@ -3,7 +3,7 @@
 // sample's time on one time base; no chunk published before its time, so the stream never
 // runs ahead of the wall clock. How far behind a chunk arrives depends on the machine and
 // its load: lag, overruns and CPU are printed for the record but not asserted (they belong to
-// scripts/soak_node.py and the README).
+// scripts/soak_node.py and docs/performance.md).
 #include <unistd.h>
 
 #include <algorithm>
