@@ -1,4 +1,4 @@
-// scenario_player driving bearing_sim_node (test/ros/scenario_short.yaml), as fast as
+// scenario_player driving bearing_sim_node (test/ros/scenario_short_slow.yaml), as fast as
 // possible (scenario_player.test) and in real time (scenario_player_realtime.test): the
 // labels are the scenario's on one fixed offset of the node's clock; the node's own outputs
 // follow it on that clock: the ring speed measured from the cage angle of ball_loads (the
