@@ -3,7 +3,10 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/bearing_model.hpp"
 #include "bearing_sim/core/condition_indicators.hpp"
 
@@ -47,5 +50,18 @@ const FaultIndicator& fault(const ConditionIndicators& c, FaultKind kind);
 
 // Generalized load vector (Fx, Fy, Fz, Mx, My).
 Vector5 load5(double fx, double fy, double fz, double mx, double my);
+
+// Expects parse() to throw a ConfigError whose message holds every one of `words` (the
+// file's name, the key, the reason); `input` names what was parsed in a failure's message.
+template <typename Parse>
+void expect_config_error(const Parse& parse, const std::vector<std::string>& words, const std::string& input) {
+  try {
+    parse();
+    ADD_FAILURE() << "no ConfigError for " << input;
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    for (const std::string& w : words) EXPECT_NE(what.find(w), std::string::npos) << "'" << w << "' not in: " << what;
+  }
+}
 
 }  // namespace bearing_sim::test

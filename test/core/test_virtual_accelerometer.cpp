@@ -397,14 +397,8 @@ TEST(VirtualAccelerometer, ParsesSensorFile) {
 }
 
 void expect_config_error(const std::string& body, const std::string& key) {
-  try {
-    accelerometer_config_from_string(body, "bad_sensor.yaml");
-    ADD_FAILURE() << "no ConfigError for " << key;
-  } catch (const ConfigError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("bad_sensor.yaml"), std::string::npos) << what;
-    EXPECT_NE(what.find("'" + key + "'"), std::string::npos) << what;
-  }
+  test::expect_config_error([&] { accelerometer_config_from_string(body, "bad_sensor.yaml"); },
+                            {"bad_sensor.yaml", "'" + key + "'"}, key);
 }
 
 TEST(VirtualAccelerometer, BadConfigNamesTheKey) {
