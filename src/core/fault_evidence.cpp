@@ -24,6 +24,21 @@ double resolvable_hz(const Spectrum& envelope, const AnalysisOptions& o) {
   return resolvable_hz_for(envelope.resolution_hz, o);
 }
 
+// Half width of find_peak's search window around f, Hz: +-tolerance_rel, at least
+// tolerance_min_bins bins.
+double search_half_width_hz(double f_hz, double resolution_hz, const PeakSearchOptions& o) {
+  return std::max(o.tolerance_rel * f_hz, o.tolerance_min_bins * resolution_hz);
+}
+
+// The comb line m >= 1 of spacing `spacing_hz` whose search window holds x, or 0 when none
+// does or the comb cannot be told (its spacing not wider than a window: then every
+// frequency lies on it).
+double comb_line(double x_hz, double spacing_hz, double resolution_hz, const PeakSearchOptions& o) {
+  const double tol = search_half_width_hz(x_hz, resolution_hz, o);
+  const double m = std::round(x_hz / spacing_hz);
+  return m >= 1.0 && 2.0 * tol < spacing_hz && std::abs(x_hz - m * spacing_hz) <= tol ? m : 0.0;
+}
+
 FaultIndicator* find(std::vector<FaultIndicator>* faults, FaultKind kind) {
   for (FaultIndicator& f : *faults)
     if (f.kind == kind) return &f;
@@ -36,7 +51,7 @@ FaultIndicator* find(std::vector<FaultIndicator>* faults, FaultKind kind) {
 bool lines_coincide(const FaultIndicator& a, double a_fmod_hz, const FaultIndicator& b, double resolution_hz,
                     const PeakSearchOptions& o) {
   const double fb = b.envelope_peak.frequency_hz;
-  const double tol = std::max(o.tolerance_rel * fb, o.tolerance_min_bins * resolution_hz);
+  const double tol = search_half_width_hz(fb, resolution_hz, o);
   for (int k = 0; k <= 2; ++k)
     for (double sign : {-1.0, 1.0})
       if (std::abs(a.envelope_peak.frequency_hz + sign * k * a_fmod_hz - fb) <= tol) return true;
@@ -54,7 +69,7 @@ bool compliance_series(const BearingFrequencies& freq, FaultKind kind, double re
   if (!(vc > 0.0) || !(cage > 0.0) || vc / cage > o.thresholds.compliance_max_balls) return false;
   if (kind == FaultKind::Cage) return true;
   const double f = fault_frequency_hz(freq, kind);
-  return std::abs(f - vc) <= std::max(o.peak_search.tolerance_rel * f, o.peak_search.tolerance_min_bins * resolution_hz);
+  return std::abs(f - vc) <= search_half_width_hz(f, resolution_hz, o.peak_search);
 }
 
 // The spacing of the cage-rate comb that series a's envelope carries, as measured, or 0 when
@@ -74,7 +89,7 @@ double cage_comb_spacing_hz(const FaultIndicator& a, const FaultIndicator* cage,
     return cage && !cage->harmonics.empty() && cage->harmonics[0].found ? cage->envelope_peak.frequency_hz : fc;
   if (a.kind == FaultKind::Cage || !(vc > 0.0)) return 0.0;
   const double f = fault_frequency_hz(freq, a.kind);
-  if (std::abs(f - vc) > std::max(o.tolerance_rel * f, o.tolerance_min_bins * resolution_hz)) return 0.0;
+  if (std::abs(f - vc) > search_half_width_hz(f, resolution_hz, o)) return 0.0;
   return a.envelope_peak.frequency_hz / std::round(vc / fc);
 }
 
@@ -90,10 +105,7 @@ bool lines_on_compliance_comb(const FaultIndicator& f, const BearingFrequencies&
       fc < resolvable_hz_for(resolution_hz, o))
     return false;
   const auto on_comb = [&](const EvidenceLine& l) {
-    const double x = l.peak.frequency_hz;
-    const double tol = std::max(o.peak_search.tolerance_rel * x, o.peak_search.tolerance_min_bins * resolution_hz);
-    const double m = std::round(x / fc);
-    return m >= 1.0 && 2.0 * tol < fc && std::abs(x - m * fc) <= tol;
+    return comb_line(l.peak.frequency_hz, fc, resolution_hz, o.peak_search) > 0.0;
   };
   for (int n = 0; n < f.harmonics_found; ++n)
     if (!on_comb(f.harmonics[static_cast<std::size_t>(n)])) return false;
@@ -159,7 +171,7 @@ void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& 
     f->note = std::string(fault_frequency_label(f->kind)) + " " + detail::fixed_decimals(f->envelope_peak.expected_hz, 2) +
               " Hz is not resolvable in a " + detail::fixed_decimals(1.0 / envelope.resolution_hz, 2) + " s window (" +
               detail::fixed_decimals(envelope.resolution_hz, 2) + " Hz bins); a window of at least " +
-              detail::fixed_decimals((o.peak_search.noise_exclude_bins + 2) / f->envelope_peak.expected_hz, 1) + " s is needed";
+              detail::fixed_decimals(resolvable_hz_for(1.0, o) / f->envelope_peak.expected_hz, 1) + " s is needed";
   else if (lines && !f->impulsive)
     f->note = std::string(f->sidebands_required ? "lines on the cage-rate comb (m x " + detail::fixed_decimals(std::abs(freq.cage_hz), 2) + " Hz)"
                                                 : "lines without sidebands") +
@@ -208,10 +220,8 @@ void arbitrate_fault_series(const Spectrum& envelope, const BearingFrequencies& 
     for (FaultKind kb : kinds) {
       FaultIndicator* b = find(faults, kb);
       if (kb == ka || !b || !b->suspected || !(b->envelope_peak.snr_db < a->envelope_peak.snr_db)) continue;
-      const double fb = b->envelope_peak.frequency_hz;
-      const double tol = std::max(o.peak_search.tolerance_rel * fb, o.peak_search.tolerance_min_bins * envelope.resolution_hz);
-      const double m = std::round(fb / spacing);
-      if (m < 1.0 || 2.0 * tol >= spacing || std::abs(fb - m * spacing) > tol) continue;
+      const double m = comb_line(b->envelope_peak.frequency_hz, spacing, envelope.resolution_hz, o.peak_search);
+      if (m == 0.0) continue;
       b->suspected = false;
       b->note = "its fundamental is line " + detail::fixed_decimals(m, 0) + " of the cage-rate comb (" +
                 detail::fixed_decimals(spacing, 2) + " Hz) of the stronger " + fault_frequency_label(ka) + " series (" +

@@ -204,6 +204,8 @@ Imperfections::Imperfections(const ImperfectionSpec& spec, const Geometry& g) : 
     peak_to_peak_[surface] += 2.0 * h.amplitude_m;
     (w.surface == Surface::Ball ? ball_waviness_ : race_waviness_).push_back(std::move(h));
   }
+  for (const auto* harmonics : {&race_waviness_, &ball_waviness_})
+    for (const Harmonic& h : *harmonics) waviness_amplitudes_.push_back(h.amplitude_m);
 
   // Roughness: random-phase harmonics of equal amplitude between orders Z and N/4 on each
   // race, scaled to the RMS asked for, tabulated for linear interpolation.
@@ -350,20 +352,14 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, d
   if (!race_waviness_.empty() || !ball_waviness_.empty()) {
     // Per harmonic: amplitude * (cos, sin) of its angle now. Race harmonics see the race-frame
     // angle of ball b, base_b + cage - ring; ball harmonics the spin angle.
-    thread_local std::vector<double> amplitudes, angles, coefficients;
-    amplitudes.clear();
+    thread_local std::vector<double> angles, coefficients;
     angles.clear();
-    for (const Harmonic& h : race_waviness_) {
-      amplitudes.push_back(h.amplitude_m);
+    for (const Harmonic& h : race_waviness_)
       angles.push_back(h.order * (phase.cage - (h.surface == Surface::OuterRace ? phase.outer_ring : phase.inner_ring)));
-    }
-    for (const Harmonic& h : ball_waviness_) {
-      amplitudes.push_back(h.amplitude_m);
-      angles.push_back(h.order * phase.ball_spin);
-    }
+    for (const Harmonic& h : ball_waviness_) angles.push_back(h.order * phase.ball_spin);
     const int harmonics = static_cast<int>(angles.size());
     coefficients.resize(2 * angles.size());
-    detail::harmonic_coefficients(amplitudes.data(), angles.data(), harmonics, coefficients.data());
+    detail::harmonic_coefficients(waviness_amplitudes_.data(), angles.data(), harmonics, coefficients.data());
     detail::add_harmonic_sums(coefficients.data(), harmonics, set.harmonic_terms.data(), n, out);
   }
   if (has_roughness_) {

@@ -154,6 +154,7 @@ class Imperfections {
     std::vector<double> cos_phase, sin_phase;  // per ball
   };
   std::vector<Harmonic> race_waviness_, ball_waviness_;
+  std::vector<double> waviness_amplitudes_;  // of race_waviness_ then ball_waviness_, the order of add_offsets
   bool has_roughness_ = false;
   int roughness_row_ = -1;  // -1: every row
   std::vector<double> roughness_profile_[2];  // 0 outer, 1 inner: radius deviation, m
