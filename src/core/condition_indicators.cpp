@@ -172,6 +172,7 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
   // Well above the fault lines themselves, so that the band holds the resonances they
   // excite rather than the lines (and their low harmonics).
   const double lowest_edge_hz = std::max(500.0, 4.0 * highest_fault_hz);
+  BandKurtosis sk;  // of the chosen band
   if (o.resonance_hz > 0.0) {
     if (!(o.envelope_band_width_hz > 0.0)) throw InvalidInputError("analysis: the envelope band width must be > 0");
     c.envelope_low_hz = std::max(0.0, o.resonance_hz - 0.5 * o.envelope_band_width_hz);
@@ -183,6 +184,7 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
     c.envelope_low_hz = k.best.low_hz;
     c.envelope_high_hz = k.best.high_hz;
     c.envelope_band_source = "kurtogram";
+    sk = BandKurtosis{true, k.best.kurtosis, k.best.independent_samples};
   } else {
     c.envelope_low_hz = lowest_edge_hz;
     c.envelope_high_hz = 0.4 * fs;
@@ -193,8 +195,8 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
                             " Hz does not fit below the Nyquist frequency " + detail::fixed_decimals(nyquist, 0) +
                             " Hz (raise the sample rate or give resonance_hz)");
   // The band's impulsiveness, whichever way it was chosen (the evidence rule asks it of a
-  // series without sidebands).
-  const BandKurtosis sk = band_spectral_kurtosis(x, fs, c.envelope_low_hz, c.envelope_high_hz);
+  // series without sidebands); the kurtogram has it already, by the same computation.
+  if (!sk.valid) sk = band_spectral_kurtosis(x, fs, c.envelope_low_hz, c.envelope_high_hz);
   c.envelope_band_kurtosis = sk.kurtosis;
   c.envelope_band_independent_samples = sk.independent_samples;
   const std::vector<double> envelope = band_envelope(x, fs, c.envelope_low_hz, c.envelope_high_hz);

@@ -242,6 +242,9 @@ bool band_kurtosis(const std::vector<Complex>& spectrum, double fs, double low_h
   *bins = count;
   return true;
 }
+
+// The tapered ends carry no weight: (1 - 2 kTaper) of a band's bins are independent.
+double independent_samples(std::size_t bins) { return static_cast<double>(bins) * (1.0 - 2.0 * kTaper); }
 }  // namespace
 
 BandKurtosis band_spectral_kurtosis(const std::vector<double>& x, double fs, double low_hz, double high_hz) {
@@ -250,8 +253,7 @@ BandKurtosis band_spectral_kurtosis(const std::vector<double>& x, double fs, dou
   BandKurtosis b;
   std::size_t bins = 0;
   b.valid = band_kurtosis(tapered_spectrum(x), fs, low_hz, high_hz, &b.kurtosis, &bins);
-  // The tapered ends carry no weight: (1 - 2 kTaper) of the window's bins are independent.
-  b.independent_samples = static_cast<double>(bins) * (1.0 - 2.0 * kTaper);
+  b.independent_samples = independent_samples(bins);
   return b;
 }
 
@@ -276,6 +278,7 @@ Kurtogram fast_kurtogram(const std::vector<double>& x, double fs, double min_wid
         if (b.low_hz < min_low_hz) continue;
         std::size_t bins = 0;
         if (!band_kurtosis(spectrum, fs, b.low_hz, b.high_hz, &b.kurtosis, &bins)) continue;
+        b.independent_samples = independent_samples(bins);
         k.bands.push_back(b);
         if (!have_best || b.kurtosis > k.best.kurtosis) {
           k.best = b;

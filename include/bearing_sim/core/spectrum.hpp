@@ -61,6 +61,7 @@ struct KurtogramBand {
   int bands_in_level = 1;  // 1, 2, 3, 4, 6, 8, 12, ...: width = (fs/2) / bands_in_level
   double low_hz = 0.0, high_hz = 0.0;
   double kurtosis = 0.0;   // spectral kurtosis of the band's complex envelope
+  double independent_samples = 0.0;  // as in BandKurtosis below
 };
 struct Kurtogram {
   std::vector<KurtogramBand> bands;  // every band evaluated, level by level
