@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <sstream>
 
 #include <unsupported/Eigen/MatrixFunctions>
@@ -44,8 +45,9 @@ BearingDynamics::BearingDynamics(BearingModel model, const Vector5& load, double
   displacement_limit_m_ = 0.25 * model_.config().ball_diameter_m + std::abs(model_.clearance_m());
   set_load(load);
   set_ring_speed(ring_speed_rad_s);
-  substeps_ = options_.substeps > 0 ? options_.substeps
-                                    : choose_substeps(model_, load_, options_.sample_rate_hz, options_.method);
+  step_ratio_ = options_.substeps > 0
+                    ? StepRatio{options_.substeps, 1}
+                    : choose_step_ratio(model_, load_, options_.sample_rate_hz, options_.method);
   substeps_load_norm_ = load_.norm();
   slowest_mode_rad_s_ = natural_frequencies_rad_s(model_, load_).minCoeff();
   reset_to_equilibrium();
@@ -109,6 +111,24 @@ int BearingDynamics::choose_substeps(const BearingModel& model, const Vector5& l
   return std::max(1, static_cast<int>(std::ceil(rate_max * h_sample / step_times_omega_max(method))));
 }
 
+BearingDynamics::StepRatio BearingDynamics::choose_step_ratio(const BearingModel& model, const Vector5& load,
+                                                             double sample_rate_hz, IntegrationMethod method) {
+  if (method != IntegrationMethod::ExponentialAdams && method != IntegrationMethod::ExponentialAdamsPec)
+    return {choose_substeps(model, load, sample_rate_hz, method), 1};
+  const Imperfections& imperfections = model.imperfections();
+  const bool spalls = !imperfections.spalls().empty();
+  const double steps = fastest_rate_rad_s(model, load) / sample_rate_hz /
+                       (spalls ? kAdamsWithSpallStepTimesOmegaMax : kAdamsStepTimesOmegaMax);
+  // A sample within a step takes its acceleration from the cubic through the step's
+  // remainders, which a ball dropping into a spall or a race's roughness (orders up to 4096)
+  // makes rough: there the samples are whole steps apart.
+  if (spalls || imperfections.has_roughness()) return {std::max(1, static_cast<int>(std::ceil(steps))), 1};
+  const int divisions = kAdamsStepSampleDivisions;
+  const int parts = std::max(divisions, static_cast<int>(std::ceil(steps * divisions)));
+  const int common = std::gcd(parts, divisions);
+  return {parts / common, divisions / common};
+}
+
 void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
   Matrix5 stiffness, damping;
   model_.contact_force_and_stiffness(q, phase, &stiffness, &damping);
@@ -131,28 +151,36 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
   const auto unbalance = [&d](const Matrix10& f) -> Matrix10 {
     return d.cwiseInverse().asDiagonal() * f * d.asDiagonal();
   };
-  const double h = 1.0 / (options_.sample_rate_hz * substeps_);
+  // The Adams methods' ETDRK4 weights are for the step backward (their history).
+  const double h = internal_step_s();
+  const double h_etd = adams() ? -h : h;
   {
     Eigen::Matrix<double, 20, 20> x = Eigen::Matrix<double, 20, 20>::Zero();
-    x.block<10, 10>(0, 0) = 0.5 * h * balanced;
+    x.block<10, 10>(0, 0) = 0.5 * h_etd * balanced;
     x.block<10, 10>(0, 10).setIdentity();
     const Eigen::Matrix<double, 20, 20> e = x.exp();
     exp_half_ = unbalance(e.block<10, 10>(0, 0));
-    phi_half_ = 0.5 * h * unbalance(e.block<10, 10>(0, 10)).rightCols<5>();
+    phi_half_ = 0.5 * h_etd * unbalance(e.block<10, 10>(0, 10)).rightCols<5>();
   }
+  // e^{tL} and phi_1..phi_4(tL) from the exponential of [tL I 0 0 0; 0 0 I 0 0; ...; 0].
+  const auto exponential_and_phi = [&](double t, int count) {
+    Eigen::MatrixXd x = Eigen::MatrixXd::Zero(10 * (count + 1), 10 * (count + 1));
+    x.topLeftCorner(10, 10) = t * balanced;
+    for (int k = 0; k < count; ++k) x.block(10 * k, 10 * (k + 1), 10, 10).setIdentity();
+    const Eigen::MatrixXd e = x.exp();
+    std::array<Matrix10, 5> blocks;
+    for (int k = 0; k <= count; ++k) blocks[k] = unbalance(Matrix10(e.block(0, 10 * k, 10, 10)));
+    return blocks;
+  };
   Matrix10 phi1, phi2, phi3;
   if (adams()) {
     // phi_4 as well, from the exponential of the same construction one block larger.
-    Eigen::MatrixXd x = Eigen::MatrixXd::Zero(50, 50);
-    x.topLeftCorner(10, 10) = h * balanced;
-    for (int k = 0; k < 4; ++k) x.block(10 * k, 10 * (k + 1), 10, 10).setIdentity();
-    const Eigen::MatrixXd e = x.exp();
-    const auto block = [&](int k) { return unbalance(Matrix10(e.block(0, 10 * k, 10, 10))); };
-    exp_full_ = block(0);
-    phi1 = block(1);
-    phi2 = block(2);
-    phi3 = block(3);
-    const Matrix10 phi4 = block(4);
+    const std::array<Matrix10, 5> blocks = exponential_and_phi(h, 4);
+    const Matrix10& e_h = blocks[0];
+    phi1 = blocks[1];
+    phi2 = blocks[2];
+    phi3 = blocks[3];
+    const Matrix10& phi4 = blocks[4];
     // Weights of the backward differences nabla^j of the remainder: ETD-AB4 (polynomial
     // through the step's start and the 3 steps before) phi1, phi2, phi3 + phi2/2,
     // phi4 + phi3 + phi2/3; ETD-AM4 (through the step's end and the 3 before) phi1,
@@ -175,11 +203,45 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
     adams_corrector_ = h * (am[0] + am[1] + am[2] + am[3]).rightCols<5>();
     // (y_p, A y_p) = [E P; A E  A P] (y, r, r_-1, r_-2, r_-3): the predicted end's linear
     // part comes with the predictor, one product per step instead of three.
-    adams_step_.topLeftCorner<10, 10>() = exp_full_;
+    adams_step_.topLeftCorner<10, 10>() = e_h;
     adams_step_.bottomRows<5>() = lin_accel_ * adams_step_.topRows<10>();
+    // A sample at theta of a step: y(theta) = e^{theta h L} y_n + h int_0^theta
+    // e^{(theta - s) h L} p(s) ds with p the corrector's cubic through the remainders at
+    // s = 1, 0, -1, -2; for p = s^k the integral is k! theta^(k+1) phi_{k+1}(theta h L). Its
+    // acceleration: A y(theta) + p(theta).
+    Eigen::Matrix4d vandermonde;  // rows: the nodes 1, 0, -1, -2; columns: s^0 .. s^3
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 4; ++k) vandermonde(i, k) = std::pow(1.0 - i, k);
+    const Eigen::Matrix4d monomial = vandermonde.inverse();  // (k, i): s^k coefficient of node i's basis
+    for (int lead = 1; lead < step_ratio_.samples; ++lead) {
+      const double theta = 1.0 - static_cast<double>(lead) / step_ratio_.samples;
+      const std::array<Matrix10, 5> f = exponential_and_phi(theta * h, 4);
+      Eigen::Matrix<double, 15, 30>& d = adams_sample_within_step_[lead - 1];
+      d.setZero();
+      d.topLeftCorner<10, 10>() = f[0];
+      for (int i = 0; i < 4; ++i) {
+        Matrix10 weight = Matrix10::Zero();
+        double basis = 0.0;
+        double factorial = 1.0;
+        for (int k = 0; k < 4; ++k) {
+          if (k > 0) factorial *= k;
+          weight += monomial(k, i) * factorial * std::pow(theta, k + 1) * f[k + 1];
+          basis += monomial(k, i) * std::pow(theta, k);
+        }
+        d.block<10, 5>(0, 10 + 5 * i) = h * weight.rightCols<5>();
+        d.block<5, 5>(10, 10 + 5 * i) = basis * Matrix5::Identity();
+      }
+      d.bottomRows<5>() += lin_accel_ * d.topRows<10>();
+    }
+    // ETDRK4 backward, for the history.
+    const std::array<Matrix10, 5> back = exponential_and_phi(h_etd, 3);
+    exp_full_ = back[0];
+    phi1 = back[1];
+    phi2 = back[2];
+    phi3 = back[3];
   } else {
     Eigen::Matrix<double, 40, 40> x = Eigen::Matrix<double, 40, 40>::Zero();
-    x.block<10, 10>(0, 0) = h * balanced;
+    x.block<10, 10>(0, 0) = h_etd * balanced;
     x.block<10, 10>(0, 10).setIdentity();
     x.block<10, 10>(10, 20).setIdentity();
     x.block<10, 10>(20, 30).setIdentity();
@@ -191,19 +253,19 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
   }
   // Cox-Matthews weights of the four remainders (the remainder has no displacement part,
   // so only the right half of each matrix is kept).
-  w1_ = h * (phi1 - 3.0 * phi2 + 4.0 * phi3).rightCols<5>();
-  w2_ = 2.0 * h * (phi2 - 2.0 * phi3).rightCols<5>();
-  w3_ = h * (4.0 * phi3 - phi2).rightCols<5>();
-  linearized_substeps_ = substeps_;
+  w1_ = h_etd * (phi1 - 3.0 * phi2 + 4.0 * phi3).rightCols<5>();
+  w2_ = 2.0 * h_etd * (phi2 - 2.0 * phi3).rightCols<5>();
+  w3_ = h_etd * (4.0 * phi3 - phi2).rightCols<5>();
+  linearized_step_s_ = h;
   samples_since_linearization_ = 0;
   ++linearizations_;
-  adams_history_.size = 0;  // the remainder is relative to the linearization
+  adams_.started = false;  // the remainder is relative to the linearization
 }
 
 void BearingDynamics::update_substeps() {
   if (options_.substeps > 0) return;
   try {
-    substeps_ = choose_substeps(model_, load_, options_.sample_rate_hz, options_.method);
+    step_ratio_ = choose_step_ratio(model_, load_, options_.sample_rate_hz, options_.method);
     substeps_load_norm_ = load_.norm();
   } catch (const LoadNotCarriedError&) {
     // Keep the step: the caller learns of the load when it resets to the equilibrium.
@@ -215,19 +277,36 @@ void BearingDynamics::set_load(const Vector5& load) { set_load(load, load); }
 void BearingDynamics::set_load(const Vector5& load, const Vector5& load_at_sample_end) {
   if (!load.allFinite()) throw InvalidInputError("load is not finite");
   if (!load_at_sample_end.allFinite()) throw InvalidInputError("load at the sample's end is not finite");
-  sample_end_load_ = load_at_sample_end;
+  // The straight line through the mid value at the sample's middle and the end value at its end.
+  const double half_sample_s = 0.5 / options_.sample_rate_hz;
+  change_load(load, (load_at_sample_end - load) / half_sample_s, phase_.time_s + half_sample_s);
+}
+
+Vector5 BearingDynamics::load_at(double time_s) const {
+  return LoadLine{load_, load_rate_, load_mid_time_s_}.at(time_s);
+}
+
+void BearingDynamics::change_load(const Vector5& load, const Vector5& rate, double mid_time_s) {
+  const LoadLine before{load_, load_rate_, load_mid_time_s_};
+  load_ = load;
+  load_rate_ = rate;
+  load_mid_time_s_ = mid_time_s;
   // The contact forces do not depend on the external load: the current acceleration moves
   // by the change over the mass, and stays the first RK4 stage of the next sample. The ball
   // split stays too (inputs may change every sample, e.g. a rotating unbalance): a ball that
   // the new load brings into contact is caught by the check after the sample.
-  current_.acceleration += inverse_mass_ * (load - load_in_current_acceleration_);
-  load_in_current_acceleration_ = load;
-  const Vector5 load_change_acceleration = inverse_mass_ * (load - load_);
-  // So do the Adams method's past remainders: as if the new load had always been there
-  // (it holds over the whole next step).
-  for (int i = 0; i < adams_history_.size; ++i)
-    adams_history_.r.segment<5>(5 * i) += load_change_acceleration;
-  load_ = load;
+  const Vector5 load_now = load_at(phase_.time_s);
+  current_.acceleration += inverse_mass_ * (load_now - load_in_current_acceleration_);
+  load_in_current_acceleration_ = load_now;
+  // So do the Adams method's remainders, each at its time: as if the new load had always
+  // been there (it holds from the method's time, less than one step past the sample).
+  if (adams_.started) {
+    const double h = internal_step_s();
+    for (int k = 0; k < 4; ++k) {
+      const double t = phase_.time_s + adams_lead_s(adams_) - k * h;
+      adams_.x.segment<5>(10 + 5 * k) += inverse_mass_ * (load_at(t) - before.at(t));
+    }
+  }
   // The contact stiffness grows with the load (as F^(1/3)): check the step again when
   // the load has changed a lot since it was chosen.
   if (substeps_load_norm_ > 0.0 &&
@@ -272,7 +351,7 @@ void BearingDynamics::set_model(BearingModel model) {
   displacement_limit_m_ = 0.25 * model_.config().ball_diameter_m + std::abs(model_.clearance_m());
   update_cage_speed();
   update_substeps();  // clearance and damping change the fastest mode
-  linearized_substeps_ = 0;  // and the linearized contacts: again before the next sample
+  linearized_step_s_ = 0.0;  // and the linearized contacts: again before the next sample
   acceleration_current_ = false;
   samples_since_split_ = 0;  // the contact margin depends on the inputs
 }
@@ -281,15 +360,17 @@ void BearingDynamics::add_spall(Spall spall) {
   spall.created_at_s = phase_.time_s;
   model_.add_spall(spall);
   acceleration_current_ = false;
-  adams_history_.size = 0;  // the remainder jumps: start again
+  adams_.started = false;  // the remainder jumps: start again
   samples_since_split_ = 0;
+  update_substeps();  // the Adams step is shorter with a spall
 }
 
 void BearingDynamics::clear_spalls() {
   model_.clear_spalls();
   acceleration_current_ = false;
-  adams_history_.size = 0;
+  adams_.started = false;
   samples_since_split_ = 0;
+  update_substeps();
 }
 
 void BearingDynamics::reset_to_equilibrium() {
@@ -299,7 +380,7 @@ void BearingDynamics::reset_to_equilibrium() {
   current_.displacement = s.displacement;
   current_.velocity.setZero();
   current_.acceleration = acceleration(current_.displacement, current_.velocity, phase_, model_.balls());
-  load_in_current_acceleration_ = load_;
+  load_in_current_acceleration_ = load_at(phase_.time_s);
   acceleration_current_ = true;
   samples_since_split_ = 0;
   if (exponential()) linearize(s.displacement, phase_);
@@ -307,12 +388,12 @@ void BearingDynamics::reset_to_equilibrium() {
 
 Vector5 BearingDynamics::acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
                                       const BallArrays& balls) const {
-  return inverse_mass_ * (load_ + model_.contact_force(q, q_dot, phase, balls));
+  return inverse_mass_ * (load_at(phase.time_s) + model_.contact_force(q, q_dot, phase, balls));
 }
 
 Vector5 BearingDynamics::acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
                                       const BallArrays& balls, const CageTrig& trig) const {
-  return inverse_mass_ * (load_ + model_.contact_force(q, q_dot, phase, balls, trig.c, trig.s));
+  return inverse_mass_ * (load_at(phase.time_s) + model_.contact_force(q, q_dot, phase, balls, trig.c, trig.s));
 }
 
 double BearingDynamics::slipping_cage_speed() const {
@@ -345,18 +426,20 @@ double BearingDynamics::contact_margin_m(const Vector5& q, const Vector5& v, con
 }
 
 bool BearingDynamics::integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
-                                       const BallArrays& balls, AdamsHistory& history, Vector5* a_end) const {
-  if (adams() && history.size == AdamsHistory::kLength)
-    return integrate_sample_adams(q, v, phase, a_start, balls, history, a_end);
+                                       const BallArrays& balls, AdamsState& adams_state, Vector5* a_end) const {
+  if (adams()) {
+    integrate_sample_adams(q, v, phase, a_start, balls, adams_state, a_end);
+    return true;
+  }
   if (exponential())
-    integrate_sample_exponential(q, v, phase, a_start, balls, adams() ? &history : nullptr);
+    integrate_sample_exponential(q, v, phase, a_start, balls);
   else
     integrate_sample_rk4(q, v, phase, a_start, balls);
   return false;
 }
 
 BearingDynamics::CageTrig BearingDynamics::half_step_rotation() const {
-  const double half_turn = slipping_cage_speed() * (0.5 / (options_.sample_rate_hz * substeps_));
+  const double half_turn = slipping_cage_speed() * (0.5 * internal_step_s());
   if (half_turn != half_step_turn_) {
     half_step_turn_ = half_turn;
     half_step_rotation_ = CageTrig{std::cos(half_turn), std::sin(half_turn)};
@@ -364,108 +447,142 @@ BearingDynamics::CageTrig BearingDynamics::half_step_rotation() const {
   return half_step_rotation_;
 }
 
+namespace {
+// The cage's cos and sin carried through the stages by rotation (they differ from sincos of
+// each stage's angle by a few ulp), instead of a sincos at every stage.
+template <typename Trig>
+Trig rotated(const Trig& t, const Trig& r) {
+  return Trig{t.c * r.c - t.s * r.s, t.s * r.c + t.c * r.s};
+}
+}  // namespace
+
+BearingDynamics::Vector10 BearingDynamics::etdrk4_step(const Vector10& y, const Vector5& r1, const RollingPhase& phase,
+                                                       const CageTrig& trig, double h, const CageTrig& rotation,
+                                                       const BallArrays& balls) const {
+  // Cox-Matthews ETDRK4 on y = (q - q_lin, v): y' = L y + (0, r(y, t)). The products are
+  // small and fixed-size: coefficient-based (lazyProduct), not Eigen's general
+  // matrix-vector routine, which for these sizes costs more than the arithmetic.
+  const auto remainder = [&](const Vector10& u, const RollingPhase& p, const CageTrig& t) {
+    return Vector5(acceleration(q_lin_ + u.head<5>(), u.tail<5>(), p, balls, t) - lin_accel_.lazyProduct(u));
+  };
+  const RollingPhase mid = advanced(phase, 0.5 * h), end = advanced(phase, h);
+  const CageTrig trig_mid = rotated(trig, rotation), trig_end = rotated(trig_mid, rotation);
+  const Vector10 e_half_y = exp_half_.lazyProduct(y);
+  const Vector10 y2 = e_half_y + phi_half_.lazyProduct(r1);
+  const Vector5 r2 = remainder(y2, mid, trig_mid);
+  const Vector10 y3 = e_half_y + phi_half_.lazyProduct(r2);
+  const Vector5 r3 = remainder(y3, mid, trig_mid);
+  const Vector10 y4 = exp_half_.lazyProduct(y2) + phi_half_.lazyProduct(Vector5(2.0 * r3 - r1));
+  const Vector5 r4 = remainder(y4, end, trig_end);
+  return exp_full_.lazyProduct(y) + w1_.lazyProduct(r1) + w2_.lazyProduct(Vector5(r2 + r3)) + w3_.lazyProduct(r4);
+}
+
 void BearingDynamics::integrate_sample_exponential(Vector5& q, Vector5& v, RollingPhase& phase,
-                                                   const Vector5& a_start, const BallArrays& balls,
-                                                   AdamsHistory* history) const {
-  // Cox-Matthews ETDRK4 on y = (q - q_lin, v): y' = L y + (0, r(y, t)).
-  using Vector10 = Eigen::Matrix<double, 10, 1>;
-  const double h = 1.0 / (options_.sample_rate_hz * substeps_);
-  const auto state = [this](const Vector10& y, Vector5* qq, Vector5* vv) {
-    *qq = q_lin_ + y.head<5>();
-    *vv = y.tail<5>();
-  };
-  // The products are small and fixed-size: coefficient-based (lazyProduct), not Eigen's
-  // general matrix-vector routine, which for these sizes costs more than the arithmetic.
-  const auto remainder = [&](const Vector10& y, const RollingPhase& p, const CageTrig& t) {
-    Vector5 qq, vv;
-    state(y, &qq, &vv);
-    return Vector5(acceleration(qq, vv, p, balls, t) - lin_accel_.lazyProduct(y));
-  };
-  // The cage turns by the same angle every half step: its cos and sin are carried along by
-  // rotation from one sincos per sample (they differ from sincos of the stage's angle by a
-  // few ulp), instead of a sincos at every stage.
+                                                   const Vector5& a_start, const BallArrays& balls) const {
+  const double h = internal_step_s();
   const CageTrig rot = half_step_rotation();
-  const auto rotate = [&rot](const CageTrig& t) {
-    return CageTrig{t.c * rot.c - t.s * rot.s, t.s * rot.c + t.c * rot.s};
-  };
   CageTrig trig{std::cos(phase.cage), std::sin(phase.cage)};
   Vector10 y;
   y << q - q_lin_, v;
-  for (int i = 0; i < substeps_; ++i) {
-    const RollingPhase mid = advanced(phase, 0.5 * h), end = advanced(phase, h);
-    const CageTrig trig_mid = rotate(trig), trig_end = rotate(trig_mid);
+  for (int i = 0; i < step_ratio_.steps; ++i) {
     const Vector5 r1 = (i == 0 ? a_start : acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls, trig)) -
                        lin_accel_.lazyProduct(y);
-    const Vector10 e_half_y = exp_half_.lazyProduct(y);
-    if (history) history->push(r1);
-    const Vector10 y2 = e_half_y + phi_half_.lazyProduct(r1);
-    const Vector5 r2 = remainder(y2, mid, trig_mid);
-    const Vector10 y3 = e_half_y + phi_half_.lazyProduct(r2);
-    const Vector5 r3 = remainder(y3, mid, trig_mid);
-    const Vector10 y4 = exp_half_.lazyProduct(y2) + phi_half_.lazyProduct(Vector5(2.0 * r3 - r1));
-    const Vector5 r4 = remainder(y4, end, trig_end);
-    const Vector10 y_next =  // a temporary: lazy products do not guard against aliasing
-        exp_full_.lazyProduct(y) + w1_.lazyProduct(r1) + w2_.lazyProduct(Vector5(r2 + r3)) + w3_.lazyProduct(r4);
-    y = y_next;
-    phase = end;
-    trig = trig_end;
+    y = etdrk4_step(y, r1, phase, trig, h, rot, balls);
+    phase = advanced(phase, h);
+    trig = rotated(rotated(trig, rot), rot);
   }
   sample_end_trig_ = trig;
-  state(y, &q, &v);
+  q = q_lin_ + y.head<5>();
+  v = y.tail<5>();
 }
 
-bool BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
-                                             const BallArrays& balls, AdamsHistory& history, Vector5* a_end) const {
+void BearingDynamics::start_adams(AdamsState& adams, const RollingPhase& start, const BallArrays& balls) const {
+  // The remainders one, two and three steps before, from ETDRK4 steps backward in time along
+  // the trajectory through the start (its weights are stored for -h): the history the
+  // extrapolation needs, as smooth as the motion, from 12 evaluations.
+  const double h = internal_step_s();
+  const CageTrig forward = half_step_rotation();
+  const CageTrig backward{forward.c, -forward.s};
+  Vector10 y = adams.x.head<10>();
+  Vector5 r = adams.x.segment<5>(10);
+  RollingPhase phase = start;
+  CageTrig trig{std::cos(phase.cage), std::sin(phase.cage)};
+  for (int k = 1; k <= 3; ++k) {
+    y = etdrk4_step(y, r, phase, trig, -h, backward, balls);
+    phase = advanced(phase, -h);
+    trig = rotated(rotated(trig, backward), backward);
+    r = acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls, trig) - lin_accel_.lazyProduct(y);
+    adams.x.segment<5>(10 + 5 * k) = r;
+  }
+  adams.lead = 0;
+  adams.started = true;
+}
+
+void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
+                                             const BallArrays& balls, AdamsState& adams, Vector5* a_end) const {
   // y = (q - q_lin, v) as in ETDRK4. Per step: the remainder r at the start (the previous
   // step's end evaluation), the predictor y_p = e^{hL} y + P0 r + P1 r_-1 + P2 r_-2 + P3 r_-3,
   // the remainder r_p at y_p and the step's end, the corrector
   // y_next = e^{hL} y + C0 r_p + C1 r + C2 r_-1 + C3 r_-2 = y_p + C0 nabla^4 r_p. The
   // predictor and the linear part of the predicted end, A y_p, are one product of
   // adams_step_ with x = (y, r, r_-1, r_-2, r_-3); a step moves the remainders down by one.
-  using Vector10 = Eigen::Matrix<double, 10, 1>;
-  const double h = 1.0 / (options_.sample_rate_hz * substeps_);
+  // The method runs until it reaches or passes the sample's end (lead >= 0); a sample
+  // within its last step comes from that step's start and the four remainders.
+  const double h = internal_step_s();
   const CageTrig rot = half_step_rotation();
-  const auto rotate = [&rot](const CageTrig& t) {
-    return CageTrig{t.c * rot.c - t.s * rot.s, t.s * rot.c + t.c * rot.s};
-  };
   const bool evaluate_end = options_.method == IntegrationMethod::ExponentialAdams;  // PECE, else PEC
-  CageTrig trig{std::cos(phase.cage), std::sin(phase.cage)};
-  Eigen::Matrix<double, 30, 1> x;
-  x.head<5>() = q - q_lin_;
-  x.segment<5>(5) = v;
-  x.tail<15>() = history.r;
-  x.segment<5>(10) = a_start - times(lin_accel_, x.data());
-  for (int i = 0; i < substeps_; ++i) {
-    const RollingPhase end = advanced(phase, h);
-    const CageTrig trig_end = rotate(rotate(trig));  // the same rotations as ETDRK4's stages
-    if (i > 0 && evaluate_end)
-      x.segment<5>(10) = acceleration(q_lin_ + x.head<5>(), x.segment<5>(5), phase, balls, trig) -
-                         times(lin_accel_, x.data());
+  Eigen::Matrix<double, 30, 1>& x = adams.x;
+  if (!adams.started) {
+    x.head<5>() = q - q_lin_;
+    x.segment<5>(5) = v;
+    x.segment<5>(10) = a_start - times(lin_accel_, x.data());
+    start_adams(adams, phase, balls);
+  }
+  RollingPhase method_phase = advanced(phase, adams_lead_s(adams));
+  CageTrig trig{std::cos(method_phase.cage), std::sin(method_phase.cage)};
+  adams.lead -= step_ratio_.steps;
+  while (adams.lead < 0) {
+    const RollingPhase end = advanced(method_phase, h);
+    const CageTrig trig_end = rotated(rotated(trig, rot), rot);  // the same rotations as ETDRK4's stages
     const Eigen::Matrix<double, 15, 1> predicted = times(adams_step_, x.data());  // (y_p, A y_p)
     const Vector5 r_p =
         acceleration(q_lin_ + predicted.head<5>(), predicted.segment<5>(5), end, balls, trig_end) - predicted.tail<5>();
     const Vector5 fourth_difference =
         r_p - 4.0 * x.segment<5>(10) + 6.0 * x.segment<5>(15) - 4.0 * x.segment<5>(20) + x.segment<5>(25);
     const Vector10 y_p = predicted.head<10>();
+    adams.y_last_start = x.head<10>();
     x.head<10>() = plus_times(y_p, adams_corrector_, fourth_difference.data());
     x.tail<15>() = x.segment<15>(10).eval();
-    x.segment<5>(10) = r_p;  // the next step's r (PEC)
-    phase = end;
+    // The next step's r: the predicted end's (PEC) or the corrected end's (PECE).
+    x.segment<5>(10) = evaluate_end ? Vector5(acceleration(q_lin_ + x.head<5>(), x.segment<5>(5), end, balls,
+                                                           trig_end) -
+                                              times(lin_accel_, x.data()))
+                                    : r_p;
+    method_phase = end;
     trig = trig_end;
+    adams.lead += step_ratio_.samples;
   }
-  history.r = x.tail<15>();
-  sample_end_trig_ = trig;
-  q = q_lin_ + x.head<5>();
-  v = x.segment<5>(5);
-  // PEC: a_p + A (y_c - y_p) = r_p + A y_c (its remainder is then the predicted one again).
-  if (!evaluate_end) *a_end = x.segment<5>(10) + times(lin_accel_, x.data());
-  return !evaluate_end;
+  phase = advanced(phase, 1.0 / options_.sample_rate_hz);  // as without steps: the same for any step
+  if (adams.lead == 0) {
+    // PEC: a_p + A (y_c - y_p) = r_p + A y_c (its remainder is then the predicted one again).
+    q = q_lin_ + x.head<5>();
+    v = x.segment<5>(5);
+    *a_end = x.segment<5>(10) + times(lin_accel_, x.data());
+    return;
+  }
+  Eigen::Matrix<double, 30, 1> z;
+  z.head<10>() = adams.y_last_start;
+  z.tail<20>() = x.tail<20>();
+  const Eigen::Matrix<double, 15, 1> sample = times(adams_sample_within_step_[adams.lead - 1], z.data());
+  q = q_lin_ + sample.head<5>();
+  v = sample.segment<5>(5);
+  *a_end = sample.tail<5>();
 }
 
 void BearingDynamics::integrate_sample_rk4(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
                                            const BallArrays& balls) const {
-  const double h = 1.0 / (options_.sample_rate_hz * substeps_);
-  for (int i = 0; i < substeps_; ++i) {
+  const double h = internal_step_s();
+  for (int i = 0; i < step_ratio_.steps; ++i) {
     const RollingPhase mid = advanced(phase, 0.5 * h), end = advanced(phase, h);
     const Vector5 a1 = i == 0 ? a_start : acceleration(q, v, phase, balls);
     const Vector5 v2 = v + 0.5 * h * a1, q2 = q + 0.5 * h * v;
@@ -483,11 +600,9 @@ void BearingDynamics::integrate_sample_rk4(Vector5& q, Vector5& v, RollingPhase&
 DynamicSample BearingDynamics::step() {
   const Vector5& q0 = current_.displacement;
   const Vector5& v0 = current_.velocity;
-  // The last sample's acceleration is the first stage, unless an input changed since.
-  // The last sample's acceleration is reported with its end load; the integration holds load_.
-  Vector5 a_start = acceleration_current_ ? current_.acceleration : acceleration(q0, v0, phase_, model_.balls());
-  if (acceleration_current_ && load_in_current_acceleration_ != load_)
-    a_start += inverse_mass_ * (load_ - load_in_current_acceleration_);
+  // The last sample's acceleration is the first stage, unless the model changed since (a
+  // new load has already moved it).
+  const Vector5 a_start = acceleration_current_ ? current_.acceleration : acceleration(q0, v0, phase_, model_.balls());
   // Only the balls that can touch during the next kSamplesPerBallSplit samples take part
   // in the integration; the others carry no load now, so a_start holds for either set.
   if (samples_since_split_ == 0) {
@@ -502,7 +617,7 @@ DynamicSample BearingDynamics::step() {
   // input changing every sample cannot make every sample pay for a linearization.
   ++samples_since_linearization_;
   if (exponential() &&
-      (linearized_substeps_ != substeps_ ||
+      (linearized_step_s_ != internal_step_s() ||
        (samples_since_linearization_ >= kSamplesPerLinearization &&
         (load_ - load_lin_).norm() > kRelinearizeLoadChange * load_lin_.norm()))) {
     // About the equilibrium of the current load (the ring vibrates about it), or about the
@@ -517,9 +632,9 @@ DynamicSample BearingDynamics::step() {
   const BallArrays* balls = &active_balls_;
   Vector5 q = q0, v = v0;
   RollingPhase phase = phase_;
-  AdamsHistory history = adams_history_;  // kept only when the sample is
+  AdamsState adams_state = adams_;  // kept only when the sample is
   Vector5 a_end = Vector5::Zero();
-  bool end_known = integrate_sample(q, v, phase, a_start, *balls, history, &a_end);
+  bool end_known = integrate_sample(q, v, phase, a_start, *balls, adams_state, &a_end);
   // The skipped balls are checked ball by ball only when the bound of clear_deflection_bound_m
   // does not already show them all clear (it almost always does: the split's margin is twice
   // the bound's growth over kSamplesPerBallSplit samples).
@@ -536,8 +651,8 @@ DynamicSample BearingDynamics::step() {
     q = q0;
     v = v0;
     phase = phase_;
-    history = adams_history_;
-    end_known = integrate_sample(q, v, phase, a_start, *balls, history, &a_end);
+    adams_state = adams_;
+    end_known = integrate_sample(q, v, phase, a_start, *balls, adams_state, &a_end);
   }
   // The exponential integrators left cos and sin of the end's cage angle.
   const DynamicSample sample = commit_sample(q, v,
@@ -545,7 +660,9 @@ DynamicSample BearingDynamics::step() {
                                              : exponential() ? acceleration(q, v, phase, *balls, sample_end_trig_)
                                                              : acceleration(q, v, phase, *balls),
                                              phase);
-  adams_history_ = history;
+  if (adams()) adams_ = adams_state;
+  // A load line is for one sample: from its end on the load holds the end value.
+  if (!load_rate_.isZero()) change_load(load_at(phase_.time_s), Vector5::Zero(), phase_.time_s);
   return sample;
 }
 
@@ -597,10 +714,8 @@ DynamicSample BearingDynamics::commit_sample(const Vector5& q, const Vector5& v,
   current_.ring_angle_rad = model_.config().rotating_ring == RotatingRing::Outer ? phase_.outer_ring : phase_.inner_ring;
   current_.displacement = q;
   current_.velocity = v;
-  current_.acceleration = a;
-  if (sample_end_load_ != load_) current_.acceleration += inverse_mass_ * (sample_end_load_ - load_);
-  load_in_current_acceleration_ = sample_end_load_;
-  sample_end_load_ = load_;  // an end load is for one sample
+  current_.acceleration = a;  // with the load at its time
+  load_in_current_acceleration_ = load_at(phase_.time_s);
   acceleration_current_ = true;
   return current_;
 }

@@ -188,7 +188,7 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
   speed_sub_ = nh_.subscribe("speed", 10, &BearingSimRos::on_speed, this);
   ring_temperature_sub_ =
       nh_.subscribe("ring_temperature_difference_K", 10, &BearingSimRos::on_ring_temperature, this);
-  ROS_INFO("bearing_sim_node: '%s', %d balls, %.0f Hz dynamics, %d %s substeps per sample, %s; "
+  ROS_INFO("bearing_sim_node: '%s', %d balls, %.0f Hz dynamics, %g %s steps per sample, %s; "
            "vibration: %s at %.0f Hz",
            model.config().name.c_str(), model.ball_count(), sample_rate_hz_, substeps_,
            integration_method_name(method),

@@ -142,7 +142,7 @@ void NodeDiagnostics::model_task(diagnostic_updater::DiagnosticStatusWrapper& st
   status.addf("ring temperature difference (K)", "%.4g", model_.ring_temperature_difference_K);
   status.addf("operating clearance (um)", "%.4g", model_.operating_clearance_m * 1e6);
   status.addf("contact damping (N*s/m)", "%.6g", model_.contact_damping_Ns_per_m);
-  status.add("integrator substeps per sample", model_.substeps);
+  status.add("integrator steps per sample", model_.substeps);
   status.addf("varying-compliance frequency (Hz)", "%.4f", model_.varying_compliance_hz);
   status.addf("static max contact pressure (MPa)", "%.1f", model_.static_max_contact_pressure_Pa * 1e-6);
   status.add("divergences", divergences_);

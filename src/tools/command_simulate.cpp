@@ -203,7 +203,7 @@ void run(const SimulateOptions& o) {
   KeyValueList run_info;
   run_info.add("samples", std::to_string(s.samples) + " at " + general(o.rate_hz, 6) + " Hz (" +
                               general(o.duration_s, 6) + " s)");
-  run_info.add("integration", std::to_string(s.substeps) + " " + o.integrator + " steps per sample, step " +
+  run_info.add("integration", general(s.substeps, 4) + " " + o.integrator + " steps per sample, step " +
                                   general(s.internal_step_s * 1e6, 4) + " us");
   run_info.add("realtime factor", general(s.realtime_factor, 4) + " (simulated s per wall s, " + cpu_model_name() +
                                        ", SIMD " + simd_target_name() + ")");

@@ -413,8 +413,8 @@ TEST_F(ToolTest, SimulateCsvHasOneRowPerSampleAndMeanIsTheStaticDisplacement) {
   EXPECT_NEAR(j["L_dB"].get<double>(), 20 * std::log10(a_rms / 9.81e-3), 1e-9);
   EXPECT_GT(j["L_dB"].get<double>(), -60.0);
   EXPECT_LT(j["L_dB"].get<double>(), -20.0);
-  EXPECT_GE(j["substeps"].get<int>(), 1);
-  EXPECT_NEAR(j["internal_step_s"].get<double>(), 1.0 / (rate * j["substeps"].get<int>()), 1e-15);
+  EXPECT_GE(j["substeps"].get<double>(), 1.0);  // steps per sample, a multiple of 1/4 for the Adams methods
+  EXPECT_NEAR(j["internal_step_s"].get<double>(), 1.0 / (rate * j["substeps"].get<double>()), 1e-15);
   EXPECT_GT(j["realtime_factor"].get<double>(), 0.0);
 }
 

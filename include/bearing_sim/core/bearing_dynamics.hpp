@@ -32,8 +32,9 @@ enum class IntegrationMethod {
   // Exponential Adams predictor-corrector around the same linearization: the remainder
   // over a step is the cubic through its values at the starts of the last steps (ETD-AB4
   // predictor, ETD-AM4 corrector at the predicted end, PECE): 2 force evaluations per
-  // internal step. ETDRK4 steps until it has that history (at the start, after a new
-  // linearization, model or defect).
+  // internal step. The step need not divide the sample: the samples between step ends come
+  // from the corrector's cubic. Its history is made by three ETDRK4 steps backward in time
+  // (at the start, after a new linearization, model or defect).
   ExponentialAdams,
   // The same without the evaluation at the corrected end (PEC): 1 force evaluation per
   // internal step. The end's acceleration is the predicted end's moved by the linear part,
@@ -54,7 +55,7 @@ std::vector<std::string> integration_method_names();
 struct DynamicsOptions {
   double sample_rate_hz = 10000.0;
   // Internal steps per output sample; 0 chooses them from the highest natural
-  // frequency at the static equilibrium (see choose_substeps).
+  // frequency at the static equilibrium (see choose_step_ratio).
   int substeps = 0;
   // Integrate only the balls within a safe margin of contact (results unchanged, since
   // a sample in which an excluded ball touches is redone with all balls).
@@ -71,10 +72,11 @@ class BearingDynamics {
   // New inputs take effect from the next sample. Throw InvalidInputError if not finite.
   void set_load(const Vector5& load);
   // A load that moves within the next sample (a ramp, a rotating unbalance): the integration
-  // holds `load_over_sample` (a driver passes the mid-sample value, exact for the impulse of a
-  // linear change), and the sample's reported acceleration is that of its end time, with
-  // `load_at_sample_end`. Holding the mid value for it would add M^-1 dF/dt h/2, a spurious
-  // line proportional to the step (docs/model.md 7.5).
+  // follows the straight line through `load_over_sample` at the sample's middle (a driver
+  // passes the mid-sample value) and `load_at_sample_end` at its end, so the sample's
+  // reported acceleration is that of its end time. Holding the mid value for it would add
+  // M^-1 dF/dt h/2, a spurious line proportional to the step (docs/model.md 7.5). After the
+  // sample the load holds its end value until the next call.
   void set_load(const Vector5& load_over_sample, const Vector5& load_at_sample_end);
   void set_ring_speed(double ring_speed_rad_s);
   // Replace the bearing (clearance, damping, defects) keeping the state.
@@ -97,9 +99,11 @@ class BearingDynamics {
   double ring_speed_rad_s() const { return ring_speed_; }
   double cage_speed_rad_s() const { return cage_speed_; }
   double sample_rate_hz() const { return options_.sample_rate_hz; }
-  int substeps() const { return substeps_; }
+  // Internal steps per output sample: an integer, or for the Adams methods in automatic mode
+  // a multiple of 1/4 (e.g. 1.25: five steps per four samples).
+  double substeps() const { return static_cast<double>(step_ratio_.steps) / step_ratio_.samples; }
   IntegrationMethod method() const { return options_.method; }
-  double internal_step_s() const { return 1.0 / (options_.sample_rate_hz * substeps_); }
+  double internal_step_s() const { return step_ratio_.samples / (options_.sample_rate_hz * step_ratio_.steps); }
   std::uint64_t sample_index() const { return sample_index_; }
   // Balls integrated in the last sample, and how often a sample had to be redone with
   // every ball because one outside the contact margin touched.
@@ -115,13 +119,28 @@ class BearingDynamics {
   // again (in automatic mode) when the model or the load changes a lot.
   static int choose_substeps(const BearingModel& model, const Vector5& load, double sample_rate_hz,
                              IntegrationMethod method = IntegrationMethod::Rk4);
+  // `steps` internal steps per `samples` output samples. The Adams methods give the samples
+  // between step ends from the corrector's cubic, so their step need not divide the sample:
+  // the smallest multiple of 1/4 step per sample (at least 1) within the limit, e.g. 5 steps
+  // per 4 samples instead of 2 per sample for the CT bearing (|lambda| h = 0.84 per sample).
+  // With a spall or roughness (a remainder rough within a step) whole steps per sample.
+  // The other methods: choose_substeps steps per sample.
+  struct StepRatio {
+    int steps = 1, samples = 1;
+  };
+  static StepRatio choose_step_ratio(const BearingModel& model, const Vector5& load, double sample_rate_hz,
+                                     IntegrationMethod method);
+  static constexpr int kAdamsStepSampleDivisions = 4;
   static constexpr double kStepTimesOmegaMax = 0.5;
   static constexpr double kExponentialStepTimesOmegaMax = 1.0;
-  // The Adams methods extrapolate the remainder from past steps, which a ball entering or
-  // leaving a spall makes rough within a step. On the 6205 with a 1 mm x 20 um outer-race
-  // spall PEC is 2.2 % off in a_rms at |lambda| h = 0.90, 1.2 % at 0.80, 0.8 % at 0.75 and
-  // 0.2 % at 0.60 (docs/model.md, 10.5): 0.7 keeps every studied case within 1 %.
+  // The Adams methods extrapolate the remainder from past steps. Without spalls it is smooth
+  // (varying compliance, waviness): at 0.7 every studied case is within 0.6 % of converged
+  // RK4 in a_rms. A ball entering or leaving a spall makes it rough within a step: the
+  // shipped 6205 with a 1 mm x 20 um outer-race spall is 2.2 % off at |lambda| h = 0.70,
+  // 1.2 % at 0.63 and 0.2 % at 0.51; at 0.55 every studied spall is within 0.8 %
+  // (docs/model.md, 10.3 and 10.5).
   static constexpr double kAdamsStepTimesOmegaMax = 0.7;
+  static constexpr double kAdamsWithSpallStepTimesOmegaMax = 0.55;
   static double step_times_omega_max(IntegrationMethod method);
   // Linearizations of the exponential integrator since construction (it is redone when
   // the load has moved by more than kRelinearizeLoadChange of its size, at most every
@@ -137,33 +156,44 @@ class BearingDynamics {
   struct CageTrig {
     double c = 1.0, s = 0.0;
   };
-  // Remainders at the starts of the last internal steps (newest first) for the Adams
-  // method, relative to the current linearization; `size` of them valid.
-  // Stacked (r_-1, r_-2, r_-3): the Adams step multiplies them with its weights in one product.
-  struct AdamsHistory {
-    static constexpr int kLength = 3;
-    Eigen::Matrix<double, 5 * kLength, 1> r = Eigen::Matrix<double, 5 * kLength, 1>::Zero();
-    int size = 0;
-    void push(const Vector5& newest) {
-      r.tail<5 * (kLength - 1)>() = r.head<5 * (kLength - 1)>().eval();
-      r.head<5>() = newest;
-      size = size < kLength ? size + 1 : kLength;
-    }
+  using Vector10 = Eigen::Matrix<double, 10, 1>;
+  // The Adams method's own state, which runs ahead of the output samples by less than one
+  // internal step: x = (y, r, r_-1, r_-2, r_-3) at its time, y = (q - q_lin, v), r the
+  // remainder there and at the three step ends before (relative to the current
+  // linearization; the step multiplies them with its weights in one product), y at the
+  // start of the last step (the samples within it come from it) and how far it is ahead of
+  // the last sample, in 1/steps of a sample (step_ratio_). Its rolling phase is the
+  // sample's advanced by the lead, so that the samples' phases do not depend on the step.
+  struct AdamsState {
+    Eigen::Matrix<double, 30, 1> x = Eigen::Matrix<double, 30, 1>::Zero();
+    Vector10 y_last_start = Vector10::Zero();
+    int lead = 0;
+    bool started = false;  // else it starts from the next sample's start
   };
   Vector5 acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase, const BallArrays& balls,
                        const CageTrig& trig) const;
   RollingPhase advanced(const RollingPhase& phase, double dt) const;
   double slipping_cage_speed() const;
-  // One output sample, in substeps_ steps, from the acceleration a_start.
-  // The Adams method reads and extends `history` (ETDRK4 steps record their remainders in it).
-  // Returns true when it gives the end's acceleration in *a_end (PEC) instead of leaving its
-  // evaluation to the caller.
+  // One output sample from the acceleration a_start: q, v and phase from the sample's start
+  // to its end. The Adams methods advance `adams` past the sample's end and give the end's
+  // acceleration in *a_end (returning true); the others leave its evaluation to the caller.
   bool integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
-                        const BallArrays& balls, AdamsHistory& history, Vector5* a_end) const;
+                        const BallArrays& balls, AdamsState& adams, Vector5* a_end) const;
   void integrate_sample_rk4(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
                             const BallArrays& balls) const;
   void integrate_sample_exponential(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
-                                    const BallArrays& balls, AdamsHistory* history = nullptr) const;
+                                    const BallArrays& balls) const;
+  // One ETDRK4 step of the stored weights' step (h, or -h for the Adams method's history)
+  // from y with the remainder r1 at its start; `rotation`: the cage's turn in half of it.
+  Vector10 etdrk4_step(const Vector10& y, const Vector5& r1, const RollingPhase& phase, const CageTrig& trig,
+                       double h, const CageTrig& rotation, const BallArrays& balls) const;
+  // The Adams method's history at the start: three ETDRK4 steps backward from x's y and r
+  // at `phase`.
+  void start_adams(AdamsState& adams, const RollingPhase& phase, const BallArrays& balls) const;
+  // How far the Adams method is ahead of the last sample, s.
+  double adams_lead_s(const AdamsState& adams) const {
+    return adams.lead / (options_.sample_rate_hz * step_ratio_.steps);
+  }
   // Linear part of the exponential integrator at displacement q: stiffness and damping of
   // the contacts there, its matrix exponential and phi functions for the internal step.
   void linearize(const Vector5& q, const RollingPhase& phase);
@@ -172,8 +202,8 @@ class BearingDynamics {
     return options_.method == IntegrationMethod::ExponentialAdams ||
            options_.method == IntegrationMethod::ExponentialAdamsPec;
   }
-  bool integrate_sample_adams(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
-                              const BallArrays& balls, AdamsHistory& history, Vector5* a_end) const;
+  void integrate_sample_adams(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
+                              const BallArrays& balls, AdamsState& adams, Vector5* a_end) const;
   // cos and sin of the cage's turn in half an internal step (cached while it stays the same).
   CageTrig half_step_rotation() const;
   double contact_margin_m(const Vector5& q, const Vector5& v, const Vector5& a) const;
@@ -193,22 +223,32 @@ class BearingDynamics {
   double slip_fluctuation_ = 0.0;
   std::mt19937_64 slip_rng_;
   std::normal_distribution<double> slip_noise_{0.0, 1.0};
-  int substeps_ = 1;
+  StepRatio step_ratio_;
   double substeps_load_norm_ = 0.0;  // |load| when the substeps were chosen
   double displacement_limit_m_ = 0.0;
   double slowest_mode_rad_s_ = 0.0;  // for the contact margin
   std::uint64_t sample_index_ = 0;
   DynamicSample current_;
   bool acceleration_current_ = false;
-  // The load the next sample's end acceleration is reported with, and the load that
-  // current_.acceleration holds (the two differ only after a set_load with an end load).
-  Vector5 sample_end_load_ = Vector5::Zero();
+  // The external load in time: load_ + load_rate_ (t - load_mid_time_s_) (a rate only within
+  // a sample given an end load), and the load that current_.acceleration holds.
+  Vector5 load_rate_ = Vector5::Zero();
+  double load_mid_time_s_ = 0.0;
   Vector5 load_in_current_acceleration_ = Vector5::Zero();
+  struct LoadLine {
+    Vector5 load, rate;
+    double mid_time_s;
+    Vector5 at(double time_s) const { return load + rate * (time_s - mid_time_s); }
+  };
+  Vector5 load_at(double time_s) const;
+  // Replaces the load line, moving the current acceleration and the Adams remainders with it.
+  void change_load(const Vector5& load, const Vector5& rate, double mid_time_s);
   BallArrays active_balls_, clear_balls_;  // per sample: near contact / clear by the margin
   std::uint64_t full_sample_retries_ = 0;
   // Exponential integrator: y = (q - q_lin, v), y' = L y + (0, r), L = [0 I; A], the
-  // remainder r = a(q, v, t) - A y. Stored: e^{hL}, e^{hL/2}, the phi-function blocks that
-  // multiply the remainder, for the internal step h.
+  // remainder r = a(q, v, t) - A y. Stored for ETDRK4: e^{hL}, e^{hL/2}, the phi-function
+  // blocks that multiply the remainder, for the internal step h (for -h with the Adams
+  // methods, whose history they make backward in time).
   using Matrix10 = Eigen::Matrix<double, 10, 10>;
   using Matrix10x5 = Eigen::Matrix<double, 10, 5>;
   Vector5 q_lin_ = Vector5::Zero();
@@ -225,13 +265,17 @@ class BearingDynamics {
   // product.
   Eigen::Matrix<double, 15, 30> adams_step_ = Eigen::Matrix<double, 15, 30>::Zero();
   Matrix10x5 adams_corrector_ = Matrix10x5::Zero();
-  AdamsHistory adams_history_;
+  // A sample at theta of the last step (0 < theta < 1; entry lead - 1 for theta = 1 - lead /
+  // step_ratio_.samples): (y, A y + r)(theta) = D (y_last_start, r_end, r, r_-1, r_-2) from
+  // the corrector's cubic through the four remainders, exact in the linear part.
+  std::array<Eigen::Matrix<double, 15, 30>, kAdamsStepSampleDivisions - 1> adams_sample_within_step_{};
+  AdamsState adams_;
   // The cage turn of half an internal step and its cos and sin (recomputed when it changes),
   // and cos and sin of the cage angle at the end of the last integrated sample.
   mutable double half_step_turn_ = std::numeric_limits<double>::quiet_NaN();
   mutable CageTrig half_step_rotation_;
   mutable CageTrig sample_end_trig_;
-  int linearized_substeps_ = 0;
+  double linearized_step_s_ = 0.0;
   int samples_since_linearization_ = 0;
   std::uint64_t linearizations_ = 0;
   static constexpr int kSamplesPerBallSplit = 16;

@@ -104,6 +104,7 @@ class Imperfections {
   bool time_varying() const {
     return !race_waviness_.empty() || has_roughness_ || !ball_waviness_.empty() || !spalls_.empty();
   }
+  bool has_roughness() const { return has_roughness_; }
   // Constant per-ball deflection change (ball diameter variation), m.
   const std::vector<double>& ball_diameter_deviation() const { return ball_diameter_deviation_; }
   // The per-ball terms add_offsets reads, gathered for a set of balls (every ball, or the

@@ -18,7 +18,7 @@ struct SimulationRequest {
 
 struct SimulationSummary {
   std::size_t samples = 0;
-  int substeps = 0;
+  double substeps = 0.0;  // internal steps per sample (e.g. 1.25: five per four samples)
   double internal_step_s = 0.0;
   // Over the second half of the run (the start-up transient excluded), mean removed.
   double a_rms_x = 0.0;  // m/s^2

@@ -131,7 +131,7 @@ class BearingSimRos : private PipelineSink {
   Vector5 accepted_load_ = Vector5::Zero();
   double accepted_speed_rad_s_ = 0.0;
   double accepted_max_pressure_Pa_ = 0.0;
-  int substeps_ = 0;
+  double substeps_ = 0.0;  // internal steps per sample
 
   // Priority inheritance: the ROS callbacks (normal priority) hold it while the SCHED_FIFO
   // simulation thread may wait for it.

@@ -31,7 +31,7 @@ struct ModelState {
   double ring_temperature_difference_K = 0.0;
   double operating_clearance_m = 0.0;  // what the model uses
   double contact_damping_Ns_per_m = 0.0;
-  int substeps = 0;
+  double substeps = 0.0;  // internal steps per sample
   double varying_compliance_hz = 0.0;
   double static_max_contact_pressure_Pa = 0.0;
 };
