@@ -174,8 +174,27 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
   };
   Matrix10 phi1, phi2, phi3;
   if (adams()) {
-    // phi_4 as well, from the exponential of the same construction one block larger.
-    const std::array<Matrix10, 5> blocks = exponential_and_phi(h, 4);
+    // phi_4 as well, from the same construction one block larger, W = [hL I 0 0 0; 0 0 I 0 0;
+    // ...; 0], for every theta = j/m of a step that samples fall on (m = step_ratio_.samples):
+    // the first block row of e^{theta W} is (e^{theta h L}, theta phi_1(theta h L), ...,
+    // theta^4 phi_4(theta h L)), and that of e^{(j+1) W/m} is that of e^{j W/m} times e^{W/m}.
+    // One exponential for all of them.
+    using Matrix50 = Eigen::Matrix<double, 50, 50>;
+    const int m = step_ratio_.samples;
+    Matrix50 w = Matrix50::Zero();
+    w.topLeftCorner<10, 10>() = (h / m) * balanced;
+    for (int k = 0; k < 4; ++k) w.block<10, 10>(10 * k, 10 * (k + 1)) = Matrix10::Identity() / m;
+    const Matrix50 part = w.exp();
+    Eigen::Matrix<double, 10, 50> row = part.topRows<10>();
+    std::vector<std::array<Matrix10, 5>> phi_at(m);  // at theta = (j + 1)/m: e, phi_1 .. phi_4
+    for (int j = 0; j < m; ++j) {
+      const double theta = static_cast<double>(j + 1) / m;
+      double power = 1.0;
+      for (int k = 0; k <= 4; ++k, power *= theta)
+        phi_at[j][k] = unbalance(Matrix10(row.block<10, 10>(0, 10 * k))) / power;
+      if (j + 1 < m) row = (row * part).eval();
+    }
+    const std::array<Matrix10, 5>& blocks = phi_at[m - 1];
     const Matrix10& e_h = blocks[0];
     phi1 = blocks[1];
     phi2 = blocks[2];
@@ -214,8 +233,8 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
       for (int k = 0; k < 4; ++k) vandermonde(i, k) = std::pow(1.0 - i, k);
     const Eigen::Matrix4d monomial = vandermonde.inverse();  // (k, i): s^k coefficient of node i's basis
     for (int lead = 1; lead < step_ratio_.samples; ++lead) {
-      const double theta = 1.0 - static_cast<double>(lead) / step_ratio_.samples;
-      const std::array<Matrix10, 5> f = exponential_and_phi(theta * h, 4);
+      const double theta = 1.0 - static_cast<double>(lead) / m;
+      const std::array<Matrix10, 5>& f = phi_at[m - lead - 1];
       Eigen::Matrix<double, 15, 30>& d = adams_sample_within_step_[lead - 1];
       d.setZero();
       d.topLeftCorner<10, 10>() = f[0];

@@ -1,7 +1,8 @@
 #pragma once
-// 5-DOF dynamics of the moving ring on its Hertz contacts, integrated by an exponential
-// fourth-order Runge-Kutta scheme (ETDRK4) around the linearized contacts, or by classical
-// RK4, with an internal step no longer than the output sample period.
+// 5-DOF dynamics of the moving ring on its Hertz contacts, integrated around the linearized
+// contacts by an exponential Adams method (the default; its step need not divide the output
+// sample) or exponential RK4 (ETDRK4), or by classical RK4, with an internal step no longer
+// than the output sample period.
 #include <array>
 #include <cstdint>
 #include <limits>
