@@ -221,6 +221,20 @@ struct Exponential {
   Vector5 accel(const System& sys, const Vector10& u, const RollingPhase& p) const {
     return sys.acceleration(lin.q_eq + u.head<5>(), u.tail<5>(), p);
   }
+  // One ETDRK4 step (Cox and Matthews) of h = the step `full` and `half` are for, from u at
+  // phase p with the remainder nu there.
+  Vector10 etdrk4_step(const System& sys, const Vector10& u, const Vector10& nu, const RollingPhase& p,
+                       double h) const {
+    const RollingPhase mid = sys.advanced(p, 0.5 * h), end = sys.advanced(p, h);
+    const Vector10 a = half.e * u + 0.5 * h * half.phi1 * nu;
+    const Vector10 na = remainder(a, accel(sys, a, mid));
+    const Vector10 b = half.e * u + 0.5 * h * half.phi1 * na;
+    const Vector10 nb = remainder(b, accel(sys, b, mid));
+    const Vector10 c = half.e * a + 0.5 * h * half.phi1 * (2 * nb - nu);
+    const Vector10 nc = remainder(c, accel(sys, c, end));
+    return full.e * u + h * ((full.phi1 - 3 * full.phi2 + 4 * full.phi3) * nu +
+                             2 * (full.phi2 - 2 * full.phi3) * (na + nb) + (4 * full.phi3 - full.phi2) * nc);
+  }
 };
 
 // Exponential Euler (ETD1), 1 evaluation per step.
@@ -255,21 +269,9 @@ Stepper etd2rk(const Exponential& x, int n) {
 Stepper etdrk4(const Exponential& x, int n) {
   return [x, n](const System& sys, State& s, double H) {
     const double h = H / n;
-    const Matrix10 f1 = x.full.phi1 - 3 * x.full.phi2 + 4 * x.full.phi3;
-    const Matrix10 f2 = x.full.phi2 - 2 * x.full.phi3;
-    const Matrix10 f3 = -x.full.phi2 + 4 * x.full.phi3;
     for (int i = 0; i < n; ++i) {
       const Vector10 u = x.y(s);
-      const RollingPhase mid = sys.advanced(s.phase, 0.5 * h), end = sys.advanced(s.phase, h);
-      const Vector10 nu = x.remainder(u, s.a);
-      const Vector10 a = x.half.e * u + 0.5 * h * x.half.phi1 * nu;
-      const Vector10 na = x.remainder(a, x.accel(sys, a, mid));
-      const Vector10 b = x.half.e * u + 0.5 * h * x.half.phi1 * na;
-      const Vector10 nb = x.remainder(b, x.accel(sys, b, mid));
-      const Vector10 c = x.half.e * a + 0.5 * h * x.half.phi1 * (2 * nb - nu);
-      const Vector10 nc = x.remainder(c, x.accel(sys, c, end));
-      const Vector10 un = x.full.e * u + h * (f1 * nu + 2 * f2 * (na + nb) + f3 * nc);
-      x.store(sys, s, un, end);
+      x.store(sys, s, x.etdrk4_step(sys, u, x.remainder(u, s.a), s.phase, h), sys.advanced(s.phase, h));
     }
   };
 }
@@ -297,9 +299,6 @@ Stepper etd_adams(const Exponential& x, const Matrix10& phi4, int n, int order, 
   const PhiFunctions& f = x.full;
   std::vector<Matrix10> ab = {f.phi1, f.phi2, f.phi3 + 0.5 * f.phi2, phi4 + f.phi3 + f.phi2 / 3.0};
   std::vector<Matrix10> am = {f.phi1, f.phi2 - f.phi1, f.phi3 - 0.5 * f.phi2, phi4 - f.phi2 / 6.0};
-  const Matrix10 f1 = x.full.phi1 - 3 * x.full.phi2 + 4 * x.full.phi3;
-  const Matrix10 f2 = x.full.phi2 - 2 * x.full.phi3;
-  const Matrix10 f3 = -x.full.phi2 + 4 * x.full.phi3;
   auto history = std::make_shared<std::vector<Vector10>>();  // remainders, newest first
   return [=](const System& sys, State& s, double H) {
     const double h = H / n;
@@ -321,14 +320,7 @@ Stepper etd_adams(const Exponential& x, const Matrix10& phi4, int n, int order, 
       if (static_cast<int>(history->size()) > order) history->pop_back();
       const RollingPhase end = sys.advanced(s.phase, h);
       if (static_cast<int>(history->size()) < order) {
-        const RollingPhase mid = sys.advanced(s.phase, 0.5 * h);
-        const Vector10 a = x.half.e * u + 0.5 * h * x.half.phi1 * nu;
-        const Vector10 na = x.remainder(a, x.accel(sys, a, mid));
-        const Vector10 b = x.half.e * u + 0.5 * h * x.half.phi1 * na;
-        const Vector10 nb = x.remainder(b, x.accel(sys, b, mid));
-        const Vector10 c = x.half.e * a + 0.5 * h * x.half.phi1 * (2 * nb - nu);
-        const Vector10 nc = x.remainder(c, x.accel(sys, c, end));
-        x.store(sys, s, x.full.e * u + h * (f1 * nu + 2 * f2 * (na + nb) + f3 * nc), end);
+        x.store(sys, s, x.etdrk4_step(sys, u, nu, s.phase, h), end);
         continue;
       }
       const Vector10 eu = x.full.e * u;
@@ -390,9 +382,6 @@ Stepper etd_pec_dense(const Exponential& x0, int n, int m, double H) {
   const PhiFunctions& f = x.full;
   const std::vector<Matrix10> ab = {f.phi1, f.phi2, f.phi3 + 0.5 * f.phi2, phi4 + f.phi3 + f.phi2 / 3.0};
   const std::vector<Matrix10> am = {f.phi1, f.phi2 - f.phi1, f.phi3 - 0.5 * f.phi2, phi4 - f.phi2 / 6.0};
-  const Matrix10 f1 = f.phi1 - 3 * f.phi2 + 4 * f.phi3;
-  const Matrix10 f2 = f.phi2 - 2 * f.phi3;
-  const Matrix10 f3 = -f.phi2 + 4 * f.phi3;
   // Monomial coefficients of the Lagrange cubic through s = 1, 0, -1, -2.
   Eigen::Matrix4d vandermonde;
   const double nodes[4] = {1, 0, -1, -2};
@@ -429,14 +418,7 @@ Stepper etd_pec_dense(const Exponential& x0, int n, int m, double H) {
       d.phase_prev = d.phase;
       const RollingPhase end = sys.advanced(d.phase, h);
       if (d.history.size() < 4) {
-        const RollingPhase mid = sys.advanced(d.phase, 0.5 * h);
-        const Vector10 a = x.half.e * u + 0.5 * h * x.half.phi1 * nu;
-        const Vector10 na = x.remainder(a, x.accel(sys, a, mid));
-        const Vector10 b = x.half.e * u + 0.5 * h * x.half.phi1 * na;
-        const Vector10 nb = x.remainder(b, x.accel(sys, b, mid));
-        const Vector10 c = x.half.e * a + 0.5 * h * x.half.phi1 * (2 * nb - nu);
-        const Vector10 nc = x.remainder(c, x.accel(sys, c, end));
-        d.y = x.full.e * u + h * (f1 * nu + 2 * f2 * (na + nb) + f3 * nc);
+        d.y = x.etdrk4_step(sys, u, nu, d.phase, h);
         d.a = x.accel(sys, d.y, end);
       } else {
         const Vector10 eu = x.full.e * u;
