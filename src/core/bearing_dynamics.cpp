@@ -47,9 +47,9 @@ BearingDynamics::BearingDynamics(BearingModel model, const Vector5& load, double
   set_ring_speed(ring_speed_rad_s);
   step_ratio_ = options_.substeps > 0
                     ? StepRatio{options_.substeps, 1}
-                    : choose_step_ratio(model_, load_, options_.sample_rate_hz, options_.method);
-  substeps_load_norm_ = load_.norm();
-  slowest_mode_rad_s_ = natural_frequencies_rad_s(model_, load_).minCoeff();
+                    : choose_step_ratio(model_, load_line_.load, options_.sample_rate_hz, options_.method);
+  substeps_load_norm_ = load_line_.load.norm();
+  slowest_mode_rad_s_ = natural_frequencies_rad_s(model_, load_line_.load).minCoeff();
   reset_to_equilibrium();
 }
 
@@ -133,7 +133,7 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
   Matrix5 stiffness, damping;
   model_.contact_force_and_stiffness(q, phase, &stiffness, &damping);
   q_lin_ = q;
-  load_lin_ = load_;
+  load_lin_ = load_line_.load;
   lin_accel_.leftCols<5>() = -(inverse_mass_ * stiffness);
   lin_accel_.rightCols<5>() = -(inverse_mass_ * damping);
   // The exponential of [hL I 0 0; 0 0 I 0; 0 0 0 I; 0 0 0 0] holds e^{hL} and
@@ -172,7 +172,6 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
     for (int k = 0; k <= count; ++k) blocks[k] = unbalance(Matrix10(e.block(0, 10 * k, 10, 10)));
     return blocks;
   };
-  Matrix10 phi1, phi2, phi3;
   if (adams()) {
     // phi_4 as well, from the same construction one block larger, W = [hL I 0 0 0; 0 0 I 0 0;
     // ...; 0], for every theta = j/m of a step that samples fall on (m = step_ratio_.samples):
@@ -194,12 +193,7 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
         phi_at[j][k] = unbalance(Matrix10(row.block<10, 10>(0, 10 * k))) / power;
       if (j + 1 < m) row = (row * part).eval();
     }
-    const std::array<Matrix10, 5>& blocks = phi_at[m - 1];
-    const Matrix10& e_h = blocks[0];
-    phi1 = blocks[1];
-    phi2 = blocks[2];
-    phi3 = blocks[3];
-    const Matrix10& phi4 = blocks[4];
+    const auto& [e_h, phi1, phi2, phi3, phi4] = phi_at[m - 1];
     // Weights of the backward differences nabla^j of the remainder: ETD-AB4 (polynomial
     // through the step's start and the 3 steps before) phi1, phi2, phi3 + phi2/2,
     // phi4 + phi3 + phi2/3; ETD-AM4 (through the step's end and the 3 before) phi1,
@@ -252,26 +246,13 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
       }
       d.bottomRows<5>() += lin_accel_ * d.topRows<10>();
     }
-    // ETDRK4 backward, for the history.
-    const std::array<Matrix10, 5> back = exponential_and_phi(h_etd, 3);
-    exp_full_ = back[0];
-    phi1 = back[1];
-    phi2 = back[2];
-    phi3 = back[3];
-  } else {
-    Eigen::Matrix<double, 40, 40> x = Eigen::Matrix<double, 40, 40>::Zero();
-    x.block<10, 10>(0, 0) = h_etd * balanced;
-    x.block<10, 10>(0, 10).setIdentity();
-    x.block<10, 10>(10, 20).setIdentity();
-    x.block<10, 10>(20, 30).setIdentity();
-    const Eigen::Matrix<double, 40, 40> e = x.exp();
-    exp_full_ = unbalance(e.block<10, 10>(0, 0));
-    phi1 = unbalance(e.block<10, 10>(0, 10));
-    phi2 = unbalance(e.block<10, 10>(0, 20));
-    phi3 = unbalance(e.block<10, 10>(0, 30));
   }
-  // Cox-Matthews weights of the four remainders (the remainder has no displacement part,
-  // so only the right half of each matrix is kept).
+  // ETDRK4 (backward with the Adams methods, for their history): Cox-Matthews weights of the
+  // four remainders (the remainder has no displacement part, so only the right half of each
+  // matrix is kept).
+  const std::array<Matrix10, 5> etd = exponential_and_phi(h_etd, 3);
+  const Matrix10 &phi1 = etd[1], &phi2 = etd[2], &phi3 = etd[3];
+  exp_full_ = etd[0];
   w1_ = h_etd * (phi1 - 3.0 * phi2 + 4.0 * phi3).rightCols<5>();
   w2_ = 2.0 * h_etd * (phi2 - 2.0 * phi3).rightCols<5>();
   w3_ = h_etd * (4.0 * phi3 - phi2).rightCols<5>();
@@ -284,8 +265,8 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
 void BearingDynamics::update_substeps() {
   if (options_.substeps > 0) return;
   try {
-    step_ratio_ = choose_step_ratio(model_, load_, options_.sample_rate_hz, options_.method);
-    substeps_load_norm_ = load_.norm();
+    step_ratio_ = choose_step_ratio(model_, load_line_.load, options_.sample_rate_hz, options_.method);
+    substeps_load_norm_ = load_line_.load.norm();
   } catch (const LoadNotCarriedError&) {
     // Keep the step: the caller learns of the load when it resets to the equilibrium.
   }
@@ -298,23 +279,17 @@ void BearingDynamics::set_load(const Vector5& load, const Vector5& load_at_sampl
   if (!load_at_sample_end.allFinite()) throw InvalidInputError("load at the sample's end is not finite");
   // The straight line through the mid value at the sample's middle and the end value at its end.
   const double half_sample_s = 0.5 / options_.sample_rate_hz;
-  change_load(load, (load_at_sample_end - load) / half_sample_s, phase_.time_s + half_sample_s);
+  change_load(LoadLine{load, (load_at_sample_end - load) / half_sample_s, phase_.time_s + half_sample_s});
 }
 
-Vector5 BearingDynamics::load_at(double time_s) const {
-  return LoadLine{load_, load_rate_, load_mid_time_s_}.at(time_s);
-}
-
-void BearingDynamics::change_load(const Vector5& load, const Vector5& rate, double mid_time_s) {
-  const LoadLine before{load_, load_rate_, load_mid_time_s_};
-  load_ = load;
-  load_rate_ = rate;
-  load_mid_time_s_ = mid_time_s;
+void BearingDynamics::change_load(const LoadLine& line) {
+  const LoadLine before = load_line_;
+  load_line_ = line;
   // The contact forces do not depend on the external load: the current acceleration moves
   // by the change over the mass, and stays the first RK4 stage of the next sample. The ball
   // split stays too (inputs may change every sample, e.g. a rotating unbalance): a ball that
   // the new load brings into contact is caught by the check after the sample.
-  const Vector5 load_now = load_at(phase_.time_s);
+  const Vector5 load_now = load_line_.at(phase_.time_s);
   current_.acceleration += inverse_mass_ * (load_now - load_in_current_acceleration_);
   load_in_current_acceleration_ = load_now;
   // So do the Adams method's remainders, each at its time: as if the new load had always
@@ -323,13 +298,13 @@ void BearingDynamics::change_load(const Vector5& load, const Vector5& rate, doub
     const double h = internal_step_s();
     for (int k = 0; k < 4; ++k) {
       const double t = phase_.time_s + adams_lead_s(adams_) - k * h;
-      adams_.x.segment<5>(10 + 5 * k) += inverse_mass_ * (load_at(t) - before.at(t));
+      adams_.x.segment<5>(10 + 5 * k) += inverse_mass_ * (load_line_.at(t) - before.at(t));
     }
   }
   // The contact stiffness grows with the load (as F^(1/3)): check the step again when
   // the load has changed a lot since it was chosen.
   if (substeps_load_norm_ > 0.0 &&
-      (load_.norm() > 1.5 * substeps_load_norm_ || load_.norm() < substeps_load_norm_ / 1.5)) {
+      (load_line_.load.norm() > 1.5 * substeps_load_norm_ || load_line_.load.norm() < substeps_load_norm_ / 1.5)) {
     update_substeps();
     samples_since_split_ = 0;
   }
@@ -395,11 +370,11 @@ void BearingDynamics::clear_spalls() {
 void BearingDynamics::reset_to_equilibrium() {
   const Vector5 guess = current_.displacement;
   const bool have_guess = sample_index_ > 0 && guess.allFinite();
-  const StaticSolution s = solve_static(model_, load_, phase_, {}, have_guess ? &guess : nullptr);
+  const StaticSolution s = solve_static(model_, load_line_.load, phase_, {}, have_guess ? &guess : nullptr);
   current_.displacement = s.displacement;
   current_.velocity.setZero();
   current_.acceleration = acceleration(current_.displacement, current_.velocity, phase_, model_.balls());
-  load_in_current_acceleration_ = load_at(phase_.time_s);
+  load_in_current_acceleration_ = load_line_.at(phase_.time_s);
   acceleration_current_ = true;
   samples_since_split_ = 0;
   if (exponential()) linearize(s.displacement, phase_);
@@ -407,12 +382,12 @@ void BearingDynamics::reset_to_equilibrium() {
 
 Vector5 BearingDynamics::acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
                                       const BallArrays& balls) const {
-  return inverse_mass_ * (load_at(phase.time_s) + model_.contact_force(q, q_dot, phase, balls));
+  return inverse_mass_ * (load_line_.at(phase.time_s) + model_.contact_force(q, q_dot, phase, balls));
 }
 
 Vector5 BearingDynamics::acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
                                       const BallArrays& balls, const CageTrig& trig) const {
-  return inverse_mass_ * (load_at(phase.time_s) + model_.contact_force(q, q_dot, phase, balls, trig.c, trig.s));
+  return inverse_mass_ * (load_line_.at(phase.time_s) + model_.contact_force(q, q_dot, phase, balls, trig.c, trig.s));
 }
 
 double BearingDynamics::slipping_cage_speed() const {
@@ -638,12 +613,12 @@ DynamicSample BearingDynamics::step() {
   if (exponential() &&
       (linearized_step_s_ != internal_step_s() ||
        (samples_since_linearization_ >= kSamplesPerLinearization &&
-        (load_ - load_lin_).norm() > kRelinearizeLoadChange * load_lin_.norm()))) {
+        (load_line_.load - load_lin_).norm() > kRelinearizeLoadChange * load_lin_.norm()))) {
     // About the equilibrium of the current load (the ring vibrates about it), or about the
     // current displacement when there is none.
     Vector5 q_eq = q0;
     try {
-      q_eq = solve_static(model_, load_, phase_, {}, &q0).displacement;
+      q_eq = solve_static(model_, load_line_.load, phase_, {}, &q0).displacement;
     } catch (const LoadNotCarriedError&) {
     }
     linearize(q_eq, phase_);
@@ -681,7 +656,7 @@ DynamicSample BearingDynamics::step() {
                                              phase);
   if (adams()) adams_ = adams_state;
   // A load line is for one sample: from its end on the load holds the end value.
-  if (!load_rate_.isZero()) change_load(load_at(phase_.time_s), Vector5::Zero(), phase_.time_s);
+  if (!load_line_.rate.isZero()) change_load(LoadLine{load_line_.at(phase_.time_s), Vector5::Zero(), phase_.time_s});
   return sample;
 }
 
@@ -734,7 +709,7 @@ DynamicSample BearingDynamics::commit_sample(const Vector5& q, const Vector5& v,
   current_.displacement = q;
   current_.velocity = v;
   current_.acceleration = a;  // with the load at its time
-  load_in_current_acceleration_ = load_at(phase_.time_s);
+  load_in_current_acceleration_ = load_line_.at(phase_.time_s);
   acceleration_current_ = true;
   return current_;
 }

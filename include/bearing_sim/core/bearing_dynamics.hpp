@@ -96,7 +96,7 @@ class BearingDynamics {
   const DynamicSample& current() const { return current_; }
   const RollingPhase& phase() const { return phase_; }
   const BearingModel& model() const { return model_; }
-  const Vector5& load() const { return load_; }
+  const Vector5& load() const { return load_line_.load; }
   double ring_speed_rad_s() const { return ring_speed_; }
   double cage_speed_rad_s() const { return cage_speed_; }
   double sample_rate_hz() const { return options_.sample_rate_hz; }
@@ -215,7 +215,6 @@ class BearingDynamics {
 
   BearingModel model_;
   DynamicsOptions options_;
-  Vector5 load_ = Vector5::Zero();
   Matrix5 inverse_mass_ = Matrix5::Zero();  // of BearingModel::mass_matrix (full with a carried body)
   double ring_speed_ = 0.0;
   double cage_speed_ = 0.0, inner_speed_ = 0.0, outer_speed_ = 0.0, spin_speed_ = 0.0;
@@ -231,19 +230,18 @@ class BearingDynamics {
   std::uint64_t sample_index_ = 0;
   DynamicSample current_;
   bool acceleration_current_ = false;
-  // The external load in time: load_ + load_rate_ (t - load_mid_time_s_) (a rate only within
-  // a sample given an end load), and the load that current_.acceleration holds.
-  Vector5 load_rate_ = Vector5::Zero();
-  double load_mid_time_s_ = 0.0;
-  Vector5 load_in_current_acceleration_ = Vector5::Zero();
+  // The external load in time: load + rate (t - mid_time_s) (a rate only within a sample
+  // given an end load; `load` is what the step choice, the linearization and the statics
+  // use), and the load that current_.acceleration holds.
   struct LoadLine {
-    Vector5 load, rate;
-    double mid_time_s;
+    Vector5 load = Vector5::Zero(), rate = Vector5::Zero();
+    double mid_time_s = 0.0;
     Vector5 at(double time_s) const { return load + rate * (time_s - mid_time_s); }
   };
-  Vector5 load_at(double time_s) const;
+  LoadLine load_line_;
+  Vector5 load_in_current_acceleration_ = Vector5::Zero();
   // Replaces the load line, moving the current acceleration and the Adams remainders with it.
-  void change_load(const Vector5& load, const Vector5& rate, double mid_time_s);
+  void change_load(const LoadLine& line);
   BallArrays active_balls_, clear_balls_;  // per sample: near contact / clear by the margin
   std::uint64_t full_sample_retries_ = 0;
   // Exponential integrator: y = (q - q_lin, v), y' = L y + (0, r), L = [0 I; A], the
@@ -280,7 +278,7 @@ class BearingDynamics {
   int samples_since_linearization_ = 0;
   std::uint64_t linearizations_ = 0;
   static constexpr int kSamplesPerBallSplit = 16;
-  int samples_since_split_ = 0;  // current_.acceleration matches load_ and model_
+  int samples_since_split_ = 0;  // current_.acceleration matches the load and model_
   // Since the last split: its displacement, the largest deflection (spalls left out) of a
   // clear ball then, and the rolling travel (|cage|, |cage - outer|, |cage - inner|, |spin|, rad).
   Vector5 split_displacement_ = Vector5::Zero();
