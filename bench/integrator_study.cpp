@@ -286,12 +286,24 @@ Stepper etdrk4(const Exponential& x, int n) {
 // The first steps (too little history) are ETDRK4 steps. PEC: the corrector without the
 // end's evaluation, 1 evaluation per step: the end's acceleration is the predicted one moved
 // by the linear part, a_p + A (y_c - y_p), and the next step's remainder is the predicted one.
-Matrix10 phi4_function(const Matrix10& L, double h) {
+// e^{hL} and phi_1..phi_4(hL): the first block row of the exponential of
+// [hL I 0 0 0; 0 0 I 0 0; ...; 0].
+struct PhiAll {
+  Matrix10 e, phi[4];
+};
+
+PhiAll phi_all(const Matrix10& L, double h) {
   Eigen::Matrix<double, 50, 50> w = Eigen::Matrix<double, 50, 50>::Zero();
   w.block<10, 10>(0, 0) = h * L;
   for (int k = 0; k < 4; ++k) w.block<10, 10>(10 * k, 10 * (k + 1)).setIdentity();
-  return w.exp().block<10, 10>(0, 40);
+  const Eigen::Matrix<double, 50, 50> x = w.exp();
+  PhiAll p;
+  p.e = x.block<10, 10>(0, 0);
+  for (int k = 0; k < 4; ++k) p.phi[k] = x.block<10, 10>(0, 10 * (k + 1));
+  return p;
 }
+
+Matrix10 phi4_function(const Matrix10& L, double h) { return phi_all(L, h).phi[3]; }
 
 enum class AdamsMode { Explicit, Pece, Pec };
 
@@ -349,21 +361,6 @@ Stepper etd_adams(const Exponential& x, const Matrix10& phi4, int n, int order, 
 // (h = m H / n), the output at the sample times from the corrector's interpolant within the
 // step that holds them: y(t_n + theta h) = e^{theta h L} y_n + h int_0^theta e^{(theta - s) h L} p(s) ds,
 // p the cubic through the remainders at s = 1, 0, -1, -2, and a = A y + p(theta).
-struct PhiAll {
-  Matrix10 e, phi[4];
-};
-
-PhiAll phi_all(const Matrix10& L, double h) {
-  Eigen::Matrix<double, 50, 50> w = Eigen::Matrix<double, 50, 50>::Zero();
-  w.block<10, 10>(0, 0) = h * L;
-  for (int k = 0; k < 4; ++k) w.block<10, 10>(10 * k, 10 * (k + 1)).setIdentity();
-  const Eigen::Matrix<double, 50, 50> x = w.exp();
-  PhiAll p;
-  p.e = x.block<10, 10>(0, 0);
-  for (int k = 0; k < 4; ++k) p.phi[k] = x.block<10, 10>(0, 10 * (k + 1));
-  return p;
-}
-
 Stepper etd_pec_dense(const Exponential& x0, int n, int m, double H) {
   struct Dense {
     bool started = false;
