@@ -101,9 +101,13 @@ void BearingModel::clear_spalls() {
   stamp_ = next_stamp();
 }
 
-void BallArrays::clear() {
+void BallArrays::next_generation() {
   static std::atomic<std::uint64_t> generations{0};
   generation = ++generations;
+}
+
+void BallArrays::clear() {
+  next_generation();
   ball.clear();
   row.clear();
   base_azimuth.clear();
@@ -126,7 +130,9 @@ void BallArrays::push_back(const BallArrays& from, std::size_t i) {
 }
 
 void BallArrays::assign(const BallArrays& from, const int* entries, std::size_t n) {
-  clear();
+  // Resized, not cleared first: a cleared vector's resize zero-fills all n entries before
+  // the gather overwrites them.
+  next_generation();
   ball.resize(n);
   row.resize(n);
   base_azimuth.resize(n);

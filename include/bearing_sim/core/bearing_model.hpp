@@ -46,6 +46,9 @@ struct BallArrays {
   void push_back(const BallArrays& from, std::size_t i);
   // The entries from[entries[0..n)] (ascending), replacing the content (a new generation).
   void assign(const BallArrays& from, const int* entries, std::size_t n);
+
+ private:
+  void next_generation();
 };
 
 class BearingModel {
