@@ -162,16 +162,6 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
     exp_half_ = unbalance(e.block<10, 10>(0, 0));
     phi_half_ = 0.5 * h_etd * unbalance(e.block<10, 10>(0, 10)).rightCols<5>();
   }
-  // e^{tL} and phi_1..phi_4(tL) from the exponential of [tL I 0 0 0; 0 0 I 0 0; ...; 0].
-  const auto exponential_and_phi = [&](double t, int count) {
-    Eigen::MatrixXd x = Eigen::MatrixXd::Zero(10 * (count + 1), 10 * (count + 1));
-    x.topLeftCorner(10, 10) = t * balanced;
-    for (int k = 0; k < count; ++k) x.block(10 * k, 10 * (k + 1), 10, 10).setIdentity();
-    const Eigen::MatrixXd e = x.exp();
-    std::array<Matrix10, 5> blocks;
-    for (int k = 0; k <= count; ++k) blocks[k] = unbalance(Matrix10(e.block(0, 10 * k, 10, 10)));
-    return blocks;
-  };
   if (adams()) {
     // phi_4 as well, from the same construction one block larger, W = [hL I 0 0 0; 0 0 I 0 0;
     // ...; 0], for every theta = j/m of a step that samples fall on (m = step_ratio_.samples):
@@ -250,12 +240,18 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
   // ETDRK4 (backward with the Adams methods, for their history): Cox-Matthews weights of the
   // four remainders (the remainder has no displacement part, so only the right half of each
   // matrix is kept).
-  const std::array<Matrix10, 5> etd = exponential_and_phi(h_etd, 3);
-  const Matrix10 &phi1 = etd[1], &phi2 = etd[2], &phi3 = etd[3];
-  exp_full_ = etd[0];
-  w1_ = h_etd * (phi1 - 3.0 * phi2 + 4.0 * phi3).rightCols<5>();
-  w2_ = 2.0 * h_etd * (phi2 - 2.0 * phi3).rightCols<5>();
-  w3_ = h_etd * (4.0 * phi3 - phi2).rightCols<5>();
+  {
+    Eigen::Matrix<double, 40, 40> x = Eigen::Matrix<double, 40, 40>::Zero();
+    x.block<10, 10>(0, 0) = h_etd * balanced;
+    for (int k = 0; k < 3; ++k) x.block<10, 10>(10 * k, 10 * (k + 1)).setIdentity();
+    const Eigen::Matrix<double, 40, 40> e = x.exp();
+    exp_full_ = unbalance(e.block<10, 10>(0, 0));
+    const Matrix10 phi1 = unbalance(e.block<10, 10>(0, 10)), phi2 = unbalance(e.block<10, 10>(0, 20)),
+                   phi3 = unbalance(e.block<10, 10>(0, 30));
+    w1_ = h_etd * (phi1 - 3.0 * phi2 + 4.0 * phi3).rightCols<5>();
+    w2_ = 2.0 * h_etd * (phi2 - 2.0 * phi3).rightCols<5>();
+    w3_ = h_etd * (4.0 * phi3 - phi2).rightCols<5>();
+  }
   linearized_step_s_ = h;
   samples_since_linearization_ = 0;
   ++linearizations_;
