@@ -41,7 +41,7 @@ BearingDynamics::BearingDynamics(BearingModel model, const Vector5& load, double
   if (options_.substeps < 0) throw InvalidInputError("substeps must be >= 0 (0: automatic)");
   if (model_.config().flexible_ring.present)
     throw ConfigError(model_.config().name + ": key 'flexible_ring': " + kFlexibleRingOfflineOnly);
-  inverse_mass_ = model_.mass_matrix().inverse();
+  set_inverse_mass(model_.mass_matrix().inverse());
   displacement_limit_m_ = 0.25 * model_.config().ball_diameter_m + std::abs(model_.clearance_m());
   set_load(load);
   set_ring_speed(ring_speed_rad_s);
@@ -337,7 +337,7 @@ void BearingDynamics::set_model(BearingModel model) {
     throw ConfigError(model.config().name + ": key 'flexible_ring': " + kFlexibleRingOfflineOnly);
   const Matrix5 inverse_mass = model.mass_matrix().inverse();
   model_ = std::move(model);
-  inverse_mass_ = inverse_mass;
+  set_inverse_mass(inverse_mass);
   displacement_limit_m_ = 0.25 * model_.config().ball_diameter_m + std::abs(model_.clearance_m());
   update_cage_speed();
   update_substeps();  // clearance and damping change the fastest mode
@@ -376,14 +376,28 @@ void BearingDynamics::reset_to_equilibrium() {
   if (exponential()) linearize(s.displacement, phase_);
 }
 
+void BearingDynamics::set_inverse_mass(const Matrix5& inverse_mass) {
+  inverse_mass_ = inverse_mass;
+  inverse_mass_is_diagonal_ = inverse_mass.isDiagonal(0.0);
+  inverse_mass_diagonal_ = inverse_mass.diagonal();
+}
+
+Vector5 BearingDynamics::divided_by_mass(const Vector5& force) const {
+  // A bare ring's mass matrix is diagonal: 5 products instead of 25 (the same values: the
+  // other 20 add exact zeros), in every force evaluation.
+  if (inverse_mass_is_diagonal_) return inverse_mass_diagonal_.cwiseProduct(force);
+  return inverse_mass_ * force;
+}
+
 Vector5 BearingDynamics::acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
                                       const BallArrays& balls) const {
-  return inverse_mass_ * (load_line_.at(phase.time_s) + model_.contact_force(q, q_dot, phase, balls));
+  return divided_by_mass(load_line_.at(phase.time_s) + model_.contact_force(q, q_dot, phase, balls));
 }
 
 Vector5 BearingDynamics::acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
                                       const BallArrays& balls, const CageTrig& trig) const {
-  return inverse_mass_ * (load_line_.at(phase.time_s) + model_.contact_force(q, q_dot, phase, balls, trig.c, trig.s));
+  return divided_by_mass(load_line_.at(phase.time_s) +
+                         model_.contact_force(q, q_dot, phase, balls, trig.c, trig.s));
 }
 
 double BearingDynamics::slipping_cage_speed() const {

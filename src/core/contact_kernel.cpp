@@ -5,6 +5,8 @@
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
 
+#include "dispatch.hpp"
+
 #include "contact_kernel.hpp"
 
 #include <cmath>
@@ -120,7 +122,7 @@ namespace bearing_sim::detail {
 HWY_EXPORT(ContactSumsAll);
 HWY_EXPORT(TargetName);
 
-ContactSums contact_sums_simd(const ContactKernelInput& in) { return HWY_DYNAMIC_DISPATCH(ContactSumsAll)(in); }
+ContactSums contact_sums_simd(const ContactKernelInput& in) { return BEARING_SIM_DISPATCH(ContactSumsAll)(in); }
 
 const char* contact_kernel_target_name() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }
 

@@ -4,6 +4,8 @@
 #define HWY_TARGET_INCLUDE "harmonic_sums.cpp"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
+
+#include "dispatch.hpp"
 #include "hwy/contrib/math/math-inl.h"
 
 #include "harmonic_sums.hpp"
@@ -110,11 +112,11 @@ HWY_EXPORT(AddHarmonicSums);
 HWY_EXPORT(HarmonicCoefficients);
 
 void harmonic_coefficients(const double* amplitude, const double* angle, int harmonics, double* coefficients) {
-  if (harmonics > 0) HWY_DYNAMIC_DISPATCH(HarmonicCoefficients)(amplitude, angle, harmonics, coefficients);
+  if (harmonics > 0) BEARING_SIM_DISPATCH(HarmonicCoefficients)(amplitude, angle, harmonics, coefficients);
 }
 
 void add_harmonic_sums(const double* coefficients, int harmonics, const double* terms, int n, double* out) {
-  if (harmonics > 0 && n > 0) HWY_DYNAMIC_DISPATCH(AddHarmonicSums)(coefficients, harmonics, terms, n, out);
+  if (harmonics > 0 && n > 0) BEARING_SIM_DISPATCH(AddHarmonicSums)(coefficients, harmonics, terms, n, out);
 }
 
 void add_harmonic_sums_scalar(const double* c, int harmonics, const double* terms, int n, double* out) {

@@ -5,6 +5,8 @@
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
 
+#include "dispatch.hpp"
+
 #include "small_products.hpp"
 
 HWY_BEFORE_NAMESPACE();
@@ -102,15 +104,15 @@ HWY_EXPORT(MultiplyAdd15x30);
 
 template <>
 void multiply_add<10, 5>(const double* m, const double* x, const double* base, double* out) {
-  HWY_DYNAMIC_DISPATCH(MultiplyAdd10x5)(m, x, base, out);
+  BEARING_SIM_DISPATCH(MultiplyAdd10x5)(m, x, base, out);
 }
 template <>
 void multiply_add<15, 30>(const double* m, const double* x, const double* base, double* out) {
-  HWY_DYNAMIC_DISPATCH(MultiplyAdd15x30)(m, x, base, out);
+  BEARING_SIM_DISPATCH(MultiplyAdd15x30)(m, x, base, out);
 }
 template <>
 void multiply_add<5, 10>(const double* m, const double* x, const double* base, double* out) {
-  HWY_DYNAMIC_DISPATCH(MultiplyAdd5x10)(m, x, base, out);
+  BEARING_SIM_DISPATCH(MultiplyAdd5x10)(m, x, base, out);
 }
 }  // namespace bearing_sim::detail
 #endif  // HWY_ONCE

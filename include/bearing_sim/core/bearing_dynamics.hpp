@@ -216,6 +216,10 @@ class BearingDynamics {
   BearingModel model_;
   DynamicsOptions options_;
   Matrix5 inverse_mass_ = Matrix5::Zero();  // of BearingModel::mass_matrix (full with a carried body)
+  bool inverse_mass_is_diagonal_ = false;
+  Vector5 inverse_mass_diagonal_ = Vector5::Zero();
+  void set_inverse_mass(const Matrix5& inverse_mass);
+  Vector5 divided_by_mass(const Vector5& force) const;  // M^-1 force
   double ring_speed_ = 0.0;
   double cage_speed_ = 0.0, inner_speed_ = 0.0, outer_speed_ = 0.0, spin_speed_ = 0.0;
   RollingPhase phase_;
