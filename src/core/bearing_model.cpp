@@ -83,7 +83,15 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
     throw ConfigError(c.name + ": " + e.what());
   }
   balls_.deflection_offset = imperfections_.ball_diameter_deviation();
+  for (int r = 1; r < c.rows; ++r)
+    if (balls_.groove_centre_z[r * c.balls_per_row] == balls_.groove_centre_z[0]) rows_apart_axially_ = false;
+  update_race_spalls_in_kernel();
   stamp_ = next_stamp();
+}
+
+void BearingModel::update_race_spalls_in_kernel() {
+  race_spalls_in_kernel_ = imperfections_.has_race_spalls() && !imperfections_.offsets_vary_without_race_spalls() &&
+                           rows_apart_axially_;
 }
 
 std::uint64_t BearingModel::next_stamp() {
@@ -93,11 +101,13 @@ std::uint64_t BearingModel::next_stamp() {
 
 void BearingModel::add_spall(const Spall& spall) {
   imperfections_.add_spall(spall);
+  update_race_spalls_in_kernel();
   stamp_ = next_stamp();
 }
 
 void BearingModel::clear_spalls() {
   imperfections_.clear_spalls();
+  update_race_spalls_in_kernel();
   stamp_ = next_stamp();
 }
 
@@ -231,7 +241,8 @@ inline Kinematics kinematics(double cphi, double sphi, double gz, double nz, dou
 }
 }  // namespace
 
-const double* BearingModel::offsets_at(const RollingPhase& phase, const BallArrays& balls, bool include_spalls) const {
+const double* BearingModel::offsets_at(const RollingPhase& phase, const BallArrays& balls, bool include_spalls,
+                                       bool race_spalls) const {
   if (!imperfections_.time_varying()) return balls.deflection_offset.data();
   // The RK4 stages of a sample share phases (the mid stages, a step's end and the next
   // step's start), and a sample uses a few sets of balls (those integrated, those checked
@@ -242,7 +253,7 @@ const double* BearingModel::offsets_at(const RollingPhase& phase, const BallArra
     std::uint64_t generation = 0;
     Imperfections::BallSet terms;  // of this set of balls
     RollingPhase phase;
-    bool include_spalls = false;
+    bool include_spalls = false, race_spalls = false;
     bool has_values = false;
     std::vector<double> values;
     std::uint64_t last_use = 0;
@@ -263,14 +274,16 @@ const double* BearingModel::offsets_at(const RollingPhase& phase, const BallArra
   }
   entry->last_use = ++uses;
   const RollingPhase& p = entry->phase;
-  const bool same = entry->has_values && entry->include_spalls == include_spalls && p.cage == phase.cage &&
+  const bool same = entry->has_values && entry->include_spalls == include_spalls &&
+                    entry->race_spalls == race_spalls && p.cage == phase.cage &&
                     p.inner_ring == phase.inner_ring && p.outer_ring == phase.outer_ring &&
                     p.ball_spin == phase.ball_spin && p.time_s == phase.time_s;
   if (!same) {
     entry->values = balls.deflection_offset;
-    imperfections_.add_offsets(phase, entry->terms, entry->values.data(), include_spalls);
+    imperfections_.add_offsets(phase, entry->terms, entry->values.data(), include_spalls, race_spalls);
     entry->phase = phase;
     entry->include_spalls = include_spalls;
+    entry->race_spalls = race_spalls;
     entry->has_values = true;
   }
   return entry->values.data();
@@ -292,7 +305,22 @@ Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, cons
                                     const BallArrays& balls, double cos_cage, double sin_cage,
                                     ContactKernel kernel) const {
   // All balls in one kernel call, whatever their row (each carries its groove centre's z
-  // and normal slope): one call per force evaluation keeps small bearings cheap.
+  // and normal slope): one call per force evaluation keeps small bearings cheap. When only
+  // race spalls vary, they go into the kernel as windows and the constant offsets need no
+  // per-call lookup, copy and sum (on a 9-ball bearing those cost as much as the kernel).
+  constexpr int kWindows = 4;
+  Imperfections::SpallWindow windows[kWindows];
+  int window_count = 0;
+  const double* offsets = nullptr;
+  if (race_spalls_in_kernel_) window_count = imperfections_.spall_windows(phase, windows, kWindows);
+  if (window_count > 0) {
+    for (int i = 0; i < window_count; ++i)
+      windows[i].row_groove_centre_z = balls_.groove_centre_z[windows[i].row * config_.balls_per_row];
+    offsets = balls.deflection_offset.data();
+  } else {
+    window_count = 0;
+    offsets = offsets_at(phase, balls);
+  }
   const detail::ContactKernelInput in{cos_cage,
                                       sin_cage,
                                       groove_centre_radius_,
@@ -308,8 +336,10 @@ Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, cons
                                       balls.sin_base.data(),
                                       balls.groove_centre_z.data(),
                                       balls.normal_z.data(),
-                                      offsets_at(phase, balls),
-                                      static_cast<int>(balls.size())};
+                                      offsets,
+                                      static_cast<int>(balls.size()),
+                                      windows,
+                                      window_count};
   const detail::ContactSums s =
       kernel == ContactKernel::Fastest ? detail::contact_sums_simd(in) : detail::contact_sums_scalar(in);
   // force = sign sum s v; moment = sign sum s (p x v) with p = (rho cphi, rho sphi, z).

@@ -6,6 +6,7 @@
 #include "hwy/highway.h"
 
 #include "dispatch.hpp"
+#include "hwy/contrib/math/math-inl.h"
 
 #include "contact_kernel.hpp"
 
@@ -23,7 +24,18 @@ namespace bearing_sim::detail {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-ContactSums ContactSumsAll(const ContactKernelInput& in) {
+// The dip of the balls of `inside` (asin and cos only here, out of line: a vector rarely holds a
+// ball in a spall, and inline they would crowd the kernel's registers).
+template <class D, class V, class M>
+HWY_NOINLINE V WindowDip(D d, V sin_x, M inside, double depth, double pi_over_width) {
+  return hn::IfThenElseZero(
+      inside, hn::Mul(hn::Set(d, depth), hn::Cos(d, hn::Mul(hn::Asin(d, sin_x), hn::Set(d, pi_over_width)))));
+}
+
+// kWindows: the balls may be under race spalls' windows (a separate variant, so that the
+// kernel of a bearing without them carries none of their code).
+template <bool kWindows>
+HWY_INLINE ContactSums Sums(const ContactKernelInput& in) {
   const hn::ScalableTag<double> d;
   using V = hn::Vec<decltype(d)>;
   const std::size_t N = hn::Lanes(d);
@@ -47,9 +59,30 @@ ContactSums ContactSumsAll(const ContactKernelInput& in) {
   V sx = zero, sy = zero, sz = zero, szc = zero, szs = zero, sxz = zero, syz = zero;
   // `valid`: the lanes that hold a ball not yet summed (the overlapping tail vector).
   using M = decltype(hn::FirstN(d, 0));
+  // A race spall's window: x = phi - psi from its sine and cosine; within the window (cos x
+  // > 0, |x| < w/2 <= pi/4) x = asin(sin x). Few vectors hold a ball in a spall: only those
+  // pay for Asin and Cos. The first window's constants are set once per call.
+  const Imperfections::SpallWindow* w0 = in.spalls;
+  const V cw0 = hn::Set(d, kWindows ? w0->cos_centre : 0.0), sw0 = hn::Set(d, kWindows ? w0->sin_centre : 0.0);
+  const V half0 = hn::Set(d, kWindows ? w0->sin_half_width : 0.0);
+  const V row0 = hn::Set(d, kWindows ? w0->row_groove_centre_z : 0.0);
+  auto dip = [&](V cphi, V sphi, V pz, V cw, V sw, V half, V row, const Imperfections::SpallWindow& w) HWY_ATTR {
+    const V sin_x = hn::MulSub(sphi, cw, hn::Mul(cphi, sw));
+    const V cos_x = hn::MulAdd(cphi, cw, hn::Mul(sphi, sw));
+    const auto inside = hn::And(hn::And(hn::Gt(cos_x, zero), hn::Lt(hn::Abs(sin_x), half)), hn::Eq(pz, row));
+    return hn::AllFalse(d, inside) ? zero : WindowDip(d, sin_x, inside, w.depth, w.pi_over_width);
+  };
   auto balls = [&](V cb, V sb, V pz, V nz, V off, M valid) HWY_ATTR {
     const V cphi = hn::MulSub(cc, cb, hn::Mul(sc, sb));
     const V sphi = hn::MulAdd(sc, cb, hn::Mul(cc, sb));
+    if constexpr (kWindows) {
+      off = hn::Sub(off, dip(cphi, sphi, pz, cw0, sw0, half0, row0, *w0));
+      for (int i = 1; i < in.spall_count; ++i) {
+        const Imperfections::SpallWindow& w = in.spalls[i];
+        off = hn::Sub(off, dip(cphi, sphi, pz, hn::Set(d, w.cos_centre), hn::Set(d, w.sin_centre),
+                               hn::Set(d, w.sin_half_width), hn::Set(d, w.row_groove_centre_z), w));
+      }
+    }
     const V vx = hn::MulAdd(a_ca, cphi, hn::MulAdd(ms_q4, pz, ms_q0));
     const V vy = hn::MulAdd(a_ca, sphi, hn::NegMulAdd(ms_q3, pz, ms_q1));
     const V vz = hn::MulAdd(vz_s, sphi, hn::MulAdd(vz_c, cphi, hn::MulAdd(a_v, nz, ms_q2)));
@@ -111,6 +144,9 @@ ContactSums ContactSumsAll(const ContactKernelInput& in) {
                      hn::GetLane(hn::SumOfLanes(d, syz))};
 }
 
+ContactSums ContactSumsAll(const ContactKernelInput& in) { return Sums<false>(in); }
+ContactSums ContactSumsWithWindows(const ContactKernelInput& in) { return Sums<true>(in); }
+
 const char* TargetName() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
@@ -120,9 +156,13 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace bearing_sim::detail {
 HWY_EXPORT(ContactSumsAll);
+HWY_EXPORT(ContactSumsWithWindows);
 HWY_EXPORT(TargetName);
 
-ContactSums contact_sums_simd(const ContactKernelInput& in) { return BEARING_SIM_DISPATCH(ContactSumsAll)(in); }
+ContactSums contact_sums_simd(const ContactKernelInput& in) {
+  if (in.spall_count > 0) return BEARING_SIM_DISPATCH(ContactSumsWithWindows)(in);
+  return BEARING_SIM_DISPATCH(ContactSumsAll)(in);
+}
 
 const char* contact_kernel_target_name() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }
 
@@ -142,11 +182,19 @@ ContactSums contact_sums_scalar(const ContactKernelInput& in) {
     const double pz = in.groove_centre_z[b], nz = in.normal_z[b];
     const double cphi = cc * in.cos_base[b] - sc * in.sin_base[b];
     const double sphi = sc * in.cos_base[b] + cc * in.sin_base[b];
+    double offset = in.offset[b];
+    for (int i = 0; i < in.spall_count; ++i) {
+      const Imperfections::SpallWindow& w = in.spalls[i];
+      const double sin_x = sphi * w.cos_centre - cphi * w.sin_centre;
+      const double cos_x = cphi * w.cos_centre + sphi * w.sin_centre;
+      if (cos_x > 0.0 && std::abs(sin_x) < w.sin_half_width && pz == w.row_groove_centre_z)
+        offset -= w.depth * std::cos(std::asin(sin_x) * w.pi_over_width);
+    }
     const double vx = A * in.cos_a0 * cphi - sg * (q[0] + q[4] * pz);
     const double vy = A * in.cos_a0 * sphi - sg * (q[1] - q[3] * pz);
     const double vz = A * nz - sg * (q[2] + q[3] * rho * sphi - q[4] * rho * cphi);
     const double norm = std::sqrt(vx * vx + vy * vy + vz * vz);
-    const double deflection = norm - (A + in.clearance) + in.offset[b];
+    const double deflection = norm - (A + in.clearance) + offset;
     if (deflection <= 0.0) continue;
     // d(delta)/dt = -e . du/dt, with w = sign du/dt.
     const double wx = sg * (qd[0] + qd[4] * pz);

@@ -26,8 +26,12 @@ struct ContactKernelInput {
   const double* sin_base;
   const double* groove_centre_z;  // per ball (of its row); groove centre of the moving ring
   const double* normal_z;         // per ball (of its row)
-  const double* offset;
+  const double* offset;  // deflection offsets, the race spalls left out
   int n;
+  // The race spalls (in the kernel, so that a bearing whose offsets vary only under them
+  // needs no per-call offsets: docs/model.md 10.7).
+  const Imperfections::SpallWindow* spalls;
+  int spall_count;
 };
 
 // Sums over the balls of s_b v_b (s_b = Q_b / |v_b|), of s_b v_bz cos(phi_b), s_b v_bz sin(phi_b),

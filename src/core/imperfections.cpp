@@ -291,9 +291,54 @@ void Imperfections::add_spall(const Spall& spall) {
   SpallShape shape;
   // Without growth the size does not depend on time (grown_size is then min(size, limit)).
   shape.fixed = spall.width_growth_m_per_s == 0.0 && spall.depth_growth_m_per_s == 0.0;
-  if (shape.fixed) spall_size(spall, spall.created_at_s, &shape.angular_width, &shape.depth);
+  if (shape.fixed) {
+    spall_size(spall, spall.created_at_s, &shape.angular_width, &shape.depth);
+    shape.sin_half_width = std::sin(0.5 * shape.angular_width);
+    shape.pi_over_width = kPi / shape.angular_width;
+  }
   spalls_.push_back(spall);
   spall_shapes_.push_back(shape);
+  if (spall.surface != Surface::Ball) ++race_spall_count_;
+}
+
+int Imperfections::spall_windows(const RollingPhase& phase, SpallWindow* windows, int capacity) const {
+  if (race_spall_count_ > capacity) return -1;
+  // The centre's cos and sin, kept while the ring does not turn (a fixed ring's spall).
+  constexpr int kKept = 4;
+  thread_local double kept_centre[kKept] = {}, kept_cos[kKept] = {1.0, 1.0, 1.0, 1.0}, kept_sin[kKept] = {};
+  int count = 0;
+  for (std::size_t i = 0; i < spalls_.size(); ++i) {
+    const Spall& s = spalls_[i];
+    if (s.surface == Surface::Ball) continue;
+    const SpallShape& shape = spall_shapes_[i];
+    SpallWindow& w = windows[count];
+    w.depth = shape.depth;
+    w.sin_half_width = shape.sin_half_width;
+    w.pi_over_width = shape.pi_over_width;
+    if (!shape.fixed) {
+      double angular_width = 0.0;
+      spall_size(s, phase.time_s, &angular_width, &w.depth);
+      w.sin_half_width = std::sin(0.5 * angular_width);
+      w.pi_over_width = kPi / angular_width;
+    }
+    const double centre = (s.surface == Surface::OuterRace ? phase.outer_ring : phase.inner_ring) + s.position_rad;
+    if (count < kKept && kept_centre[count] == centre) {
+      w.cos_centre = kept_cos[count];
+      w.sin_centre = kept_sin[count];
+    } else {
+      w.cos_centre = std::cos(centre);
+      w.sin_centre = std::sin(centre);
+      if (count < kKept) {
+        kept_centre[count] = centre;
+        kept_cos[count] = w.cos_centre;
+        kept_sin[count] = w.sin_centre;
+      }
+    }
+    w.row = s.row;
+    w.row_groove_centre_z = 0.0;
+    ++count;
+  }
+  return count;
 }
 
 void Imperfections::spall_size(const Spall& s, double time_s, double* angular_width, double* depth) const {
@@ -346,7 +391,8 @@ void Imperfections::fill_ball_set(const std::vector<int>& balls, BallSet* set) c
     }
 }
 
-void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, double* out, bool include_spalls) const {
+void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, double* out, bool include_spalls,
+                                bool race_spalls) const {
   const int n = static_cast<int>(set.ball.size());
   const double* base = set.base_azimuth.data();
   if (!race_waviness_.empty() || !ball_waviness_.empty()) {
@@ -400,7 +446,7 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, d
       if (entry < 0) continue;
       const double x = std::remainder(phase.ball_spin + ball_phase_[s.ball] - s.position_rad, kPi);
       out[entry] -= spall_dip(x, angular_width, depth);
-    } else {
+    } else if (race_spalls) {
       // Only the few balls within half a width of the spall centre: find them by index,
       // since the balls of a row are evenly spaced.
       const double ring = s.surface == Surface::OuterRace ? phase.outer_ring : phase.inner_ring;

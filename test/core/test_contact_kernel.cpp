@@ -83,8 +83,8 @@ TEST(ContactKernel, SimdAndScalarLoopsAgreeForAPreloadedInnerRingBearing) {
 
 // Random ball sets straight into the kernel (balls of two rows mixed), with the edge cases
 // placed on purpose: balls just touching and just leaving (deflection +-1e-12 m), inside a
-// spall (offset -1 mm), damping pulling a touching ball's load negative, and set sizes that
-// are not multiples of any vector width.
+// spall (offset -1 mm, and under a race spall's window of either row), damping pulling a
+// touching ball's load negative, and set sizes that are not multiples of any vector width.
 TEST(ContactKernel, SimdAndScalarKernelsAgreeOnRandomBallsWithEdgeCases) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -110,8 +110,19 @@ TEST(ContactKernel, SimdAndScalarKernelsAgreeOnRandomBallsWithEdgeCases) {
           gz[b] = row0 ? row_z : -row_z;
           nz[b] = (row0 ? 1.0 : -1.0) * std::sin(a0);
         }
+        // Two race spalls, one per row, each centred within 0.02 rad of a ball of its row
+        // (so that its ball, and for the wider ones a neighbour, is in it), 0.01-0.6 rad wide.
+        std::vector<Imperfections::SpallWindow> windows;
+        for (int k = 0; k < 2; ++k) {
+          const int b = (2 * k + 4 * (trial % 3)) % n;
+          const double width = 0.01 + 0.59 * std::abs(u(rng));
+          const double centre = cage + std::atan2(sb[b], cb[b]) + 0.02 * u(rng);
+          windows.push_back({std::cos(centre), std::sin(centre), std::sin(0.5 * width), 3.141592653589793 / width,
+                             2e-5 * std::abs(u(rng)), k, k == 0 ? row_z : -row_z});
+        }
         const detail::ContactKernelInput in{std::cos(cage), std::sin(cage), rho, std::cos(a0), A, g0, sg, kn, cn,
-                                            q, qd, cb.data(), sb.data(), gz.data(), nz.data(), off.data(), n};
+                                            q, qd, cb.data(), sb.data(), gz.data(), nz.data(), off.data(), n,
+                                            windows.data(), static_cast<int>(windows.size())};
         // Place each ball's deflection: the bare one (no offset) from a one-ball scalar
         // run's geometry, |v| - A - g0.
         for (int b = 0; b < n; ++b) {
@@ -130,7 +141,7 @@ TEST(ContactKernel, SimdAndScalarKernelsAgreeOnRandomBallsWithEdgeCases) {
           }
           if (b % 5 == 3) {
             const detail::ContactKernelInput one{in.cos_cage, in.sin_cage, rho, in.cos_a0, A, g0, sg, kn, cn, q, qd,
-                                                 &cb[b], &sb[b], &gz[b], &nz[b], &off[b], 1};
+                                                 &cb[b], &sb[b], &gz[b], &nz[b], &off[b], 1, nullptr, 0};
             const detail::ContactSums s = detail::contact_sums_scalar(one);
             if (s.x == 0.0 && s.y == 0.0 && s.z == 0.0) ++pulled_negative;
           }
@@ -159,6 +170,52 @@ TEST(ContactKernel, SimdAndScalarKernelsAgreeOnRandomBallsWithEdgeCases) {
   });
   // The damping case must really occur, or the test would not cover it.
   EXPECT_GT(pulled_negative, 0);
+}
+
+// The race spalls' windows in the kernel against the offsets' dips (Imperfections::add_offsets,
+// the path of the stiffness and of every bearing with waviness): the same force at zero
+// velocity, with balls entering, inside and leaving an outer-race spall (fixed ring) and an
+// inner-race spall (rotating ring) of the 6205, and on one row of a double-row bearing.
+// Only the rounding of the ball's angle from the window's centre differs (asin of a sine
+// against a difference of angles: ~1e-16 rad, ~1e-16 of the depth), 1e-9 of the load.
+void expect_windows_match_dips(const BearingModel& model, const Vector5& load, double width_rad) {
+  const Vector5 q = solve_static(model, load).displacement;
+  const double scale = load.head<3>().norm() + load.tail<2>().norm() / model.pitch_radius_m();
+  const double pitch = 6.283185307179586 / model.balls_per_row();
+  int changed = 0;
+  Vector5 previous = Vector5::Zero();
+  for (int k = 0; k <= 40; ++k) {
+    // The cage from a ball half a width before the spall's centre to half a width past it.
+    const RollingPhase phase{(k / 40.0 - 0.5) * (width_rad + 0.1 * pitch), 0.37, 0.0, 0.0, 0.0};
+    const Vector5 kernel = model.contact_force(q, Vector5::Zero(), phase, model.balls(), BearingModel::ContactKernel::Scalar);
+    const Vector5 fastest = model.contact_force(q, Vector5::Zero(), phase, model.balls());
+    const Vector5 dips = model.contact_force_and_stiffness(q, phase, nullptr, nullptr);
+    for (const Vector5& f : {kernel, fastest}) {
+      Vector5 d = f - dips;
+      d.tail<2>() /= model.pitch_radius_m();
+      EXPECT_LT(d.norm(), 1e-9 * scale) << "cage at " << phase.cage << " rad";
+    }
+    if (k > 0 && (dips - previous).norm() > 1e-6 * scale) ++changed;
+    previous = dips;
+  }
+  EXPECT_GT(changed, 3) << "no ball went through the spall";
+}
+
+TEST(ContactKernel, RaceSpallWindowsGiveTheOffsetsDips) {
+  for_each_target([&] {
+    for (const Surface surface : {Surface::OuterRace, Surface::InnerRace}) {
+      BearingModel model = test::bearing_6205();
+      // Centred on ball 0's azimuth at cage angle 0 in the race's frame (the inner ring at 0.37 rad).
+      Spall spall{surface, surface == Surface::InnerRace ? -0.37 : 0.0, 0, 1.5e-3, 20e-6};
+      model.add_spall(spall);
+      expect_windows_match_dips(model, test::load5(1000.0, 0.0, 0.0, 0.0, 0.0), 1.5e-3 / 0.02);
+    }
+    // The CT bearing: row 0's ball nearest 180 deg, in the load zone of its 6800 N.
+    BearingModel ct(test::ct_bearing());
+    const int ball = ct.balls_per_row() / 2;
+    ct.add_spall(Spall{Surface::InnerRace, ct.base_azimuth_rad(ball) - 0.37, 0, 2e-3, 20e-6});
+    expect_windows_match_dips(ct, test::ct_load(), 2e-3 / 0.55);
+  });
 }
 
 // The waviness sums against the scalar loop: random phases and amplitudes of 0.01-1 um, 1-9

@@ -120,7 +120,29 @@ class Imperfections {
   void fill_ball_set(const std::vector<int>& balls, BallSet* set) const;  // reusing set's storage
   // Adds the time-varying deflection change of each ball of the set to out[0..set size).
   // Spalls only ever remove deflection, so leaving them out gives an upper bound.
-  void add_offsets(const RollingPhase& phase, const BallSet& set, double* out, bool include_spalls = true) const;
+  // race_spalls = false leaves out the race spalls only (the force kernel takes them as
+  // spall_windows).
+  void add_offsets(const RollingPhase& phase, const BallSet& set, double* out, bool include_spalls = true,
+                   bool race_spalls = true) const;
+  // A race spall at one rolling phase as the force kernel takes it: a ball of its row
+  // whose azimuth phi is within half the width w of the centre psi loses
+  // depth cos(pi (phi - psi) / w) of deflection (the dip of add_offsets).
+  struct SpallWindow {
+    double cos_centre, sin_centre;  // psi, in the bearing frame
+    double sin_half_width;          // sin(w / 2); w <= pi / 2
+    double pi_over_width, depth;    // rad^-1, m
+    int row;
+    double row_groove_centre_z;     // set by the model: the row's balls are the ones at this z
+  };
+  // The race spalls at `phase` into windows[0..count), count returned; -1 when there are
+  // more than `capacity`.
+  int spall_windows(const RollingPhase& phase, SpallWindow* windows, int capacity) const;
+  bool has_race_spalls() const { return race_spall_count_ > 0; }
+  // Whether anything but race spalls moves the offsets (waviness, roughness, ball spalls).
+  bool offsets_vary_without_race_spalls() const {
+    return !race_waviness_.empty() || has_roughness_ || !ball_waviness_.empty() ||
+           spalls_.size() > static_cast<std::size_t>(race_spall_count_);
+  }
   // Same, for every ball of the bearing.
   void add_offsets(const RollingPhase& phase, double* out, bool include_spalls = true) const {
     add_offsets(phase, all_balls_, out, include_spalls);
@@ -130,6 +152,7 @@ class Imperfections {
   void clear_spalls() {
     spalls_.clear();
     spall_shapes_.clear();
+    race_spall_count_ = 0;
   }
   const std::vector<Spall>& spalls() const { return spalls_; }
   const ImperfectionSpec& spec() const { return spec_; }
@@ -166,9 +189,10 @@ class Imperfections {
   // at every rolling phase.
   struct SpallShape {
     bool fixed = false;
-    double angular_width = 0.0, depth = 0.0;
+    double angular_width = 0.0, depth = 0.0, sin_half_width = 0.0, pi_over_width = 0.0;
   };
   std::vector<SpallShape> spall_shapes_;
+  int race_spall_count_ = 0;
   BallSet all_balls_;
   double max_spacing_error_ = 0.0;  // largest deviation of a ball from even spacing, rad
   // Per surface (outer race, inner race, ball): largest slope (m/rad) and largest
