@@ -301,44 +301,57 @@ void Imperfections::add_spall(const Spall& spall) {
   if (spall.surface != Surface::Ball) ++race_spall_count_;
 }
 
+namespace {
+// cos and sin of a spall's centre, kept per slot while the centre stays (a fixed ring's
+// spall: no sincos per force evaluation).
+struct CentreTrig {
+  double centre = 0.0, c = 1.0, s = 0.0;
+};
+constexpr int kKeptCentres = 4;
+thread_local CentreTrig kept_centres[kKeptCentres];
+
+__attribute__((noinline)) void centre_trig(double centre, int slot, double* c, double* s) {
+  *c = std::cos(centre);
+  *s = std::sin(centre);
+  if (slot < kKeptCentres) kept_centres[slot] = CentreTrig{centre, *c, *s};
+}
+}  // namespace
+
 int Imperfections::spall_windows(const RollingPhase& phase, SpallWindow* windows, int capacity) const {
   if (race_spall_count_ > capacity) return -1;
-  // The centre's cos and sin, kept while the ring does not turn (a fixed ring's spall).
-  constexpr int kKept = 4;
-  thread_local double kept_centre[kKept] = {}, kept_cos[kKept] = {1.0, 1.0, 1.0, 1.0}, kept_sin[kKept] = {};
   int count = 0;
-  for (std::size_t i = 0; i < spalls_.size(); ++i) {
+  const std::size_t n = spalls_.size();
+  for (std::size_t i = 0; i < n; ++i) {
     const Spall& s = spalls_[i];
     if (s.surface == Surface::Ball) continue;
     const SpallShape& shape = spall_shapes_[i];
     SpallWindow& w = windows[count];
-    w.depth = shape.depth;
-    w.sin_half_width = shape.sin_half_width;
-    w.pi_over_width = shape.pi_over_width;
-    if (!shape.fixed) {
-      double angular_width = 0.0;
-      spall_size(s, phase.time_s, &angular_width, &w.depth);
-      w.sin_half_width = std::sin(0.5 * angular_width);
-      w.pi_over_width = kPi / angular_width;
+    if (shape.fixed) {
+      w.depth = shape.depth;
+      w.sin_half_width = shape.sin_half_width;
+      w.pi_over_width = shape.pi_over_width;
+    } else {
+      grown_window(s, phase.time_s, &w);
     }
     const double centre = (s.surface == Surface::OuterRace ? phase.outer_ring : phase.inner_ring) + s.position_rad;
-    if (count < kKept && kept_centre[count] == centre) {
-      w.cos_centre = kept_cos[count];
-      w.sin_centre = kept_sin[count];
+    if (count < kKeptCentres && kept_centres[count].centre == centre) {
+      w.cos_centre = kept_centres[count].c;
+      w.sin_centre = kept_centres[count].s;
     } else {
-      w.cos_centre = std::cos(centre);
-      w.sin_centre = std::sin(centre);
-      if (count < kKept) {
-        kept_centre[count] = centre;
-        kept_cos[count] = w.cos_centre;
-        kept_sin[count] = w.sin_centre;
-      }
+      centre_trig(centre, count, &w.cos_centre, &w.sin_centre);
     }
     w.row = s.row;
     w.row_groove_centre_z = 0.0;
     ++count;
   }
   return count;
+}
+
+void Imperfections::grown_window(const Spall& s, double time_s, SpallWindow* w) const {
+  double angular_width = 0.0;
+  spall_size(s, time_s, &angular_width, &w->depth);
+  w->sin_half_width = std::sin(0.5 * angular_width);
+  w->pi_over_width = kPi / angular_width;
 }
 
 void Imperfections::spall_size(const Spall& s, double time_s, double* angular_width, double* depth) const {

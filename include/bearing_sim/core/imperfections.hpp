@@ -165,6 +165,8 @@ class Imperfections {
   void validate(const Spall& s) const;
   // Width and effective depth of a spall at time t.
   void spall_size(const Spall& s, double time_s, double* angular_width, double* depth) const;
+  // A growing spall's window terms at time t (spall_windows).
+  void grown_window(const Spall& s, double time_s, SpallWindow* w) const;
 
   ImperfectionSpec spec_;
   Geometry geometry_;
