@@ -541,9 +541,20 @@ void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
     x.segment<5>(5) = v;
     x.segment<5>(10) = a_start - times(lin_accel_, x.data());
     start_adams(adams, phase, balls);
+    adams.trig_samples = 0;
   }
   RollingPhase method_phase = advanced(phase, adams_lead_s(adams));
-  CageTrig trig{std::cos(method_phase.cage), std::sin(method_phase.cage)};
+  CageTrig trig = adams.trig;
+  // The last sample's end, where the carried cos and sin belong, unless the phase was set
+  // anew (its angle is wrapped once per sample: the same angle up to 2 pi).
+  constexpr double kTwoPi = 6.28318530717958647692;
+  const double gap = std::abs(method_phase.cage - adams.trig_cage);
+  if (adams.trig_samples > 0 && (gap < 1e-9 || std::abs(gap - kTwoPi) < 1e-9)) {
+    --adams.trig_samples;
+  } else {
+    trig = CageTrig{std::cos(method_phase.cage), std::sin(method_phase.cage)};
+    adams.trig_samples = kSamplesPerCageTrig - 1;
+  }
   adams.lead -= step_ratio_.steps;
   while (adams.lead < 0) {
     const RollingPhase end = advanced(method_phase, h);
@@ -553,10 +564,10 @@ void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
         acceleration(q_lin_ + predicted.head<5>(), predicted.segment<5>(5), end, balls, trig_end) - predicted.tail<5>();
     const Vector5 fourth_difference =
         r_p - 4.0 * x.segment<5>(10) + 6.0 * x.segment<5>(15) - 4.0 * x.segment<5>(20) + x.segment<5>(25);
-    const Vector10 y_p = predicted.head<10>();
     adams.y_last_start = x.head<10>();
-    x.head<10>() = plus_times(y_p, adams_corrector_, fourth_difference.data());
-    x.tail<15>() = x.segment<15>(10).eval();
+    // y_c = y_p + C nabla^4 r_p straight into x (y_p is the head of `predicted`).
+    detail::multiply_add<10, 5>(adams_corrector_.data(), fourth_difference.data(), predicted.data(), x.data());
+    for (int i = 29; i >= 15; --i) x[i] = x[i - 5];  // the history one place down
     // The next step's r: the predicted end's (PEC) or the corrected end's (PECE).
     x.segment<5>(10) = evaluate_end ? Vector5(acceleration(q_lin_ + x.head<5>(), x.segment<5>(5), end, balls,
                                                            trig_end) -
@@ -566,6 +577,8 @@ void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
     trig = trig_end;
     adams.lead += step_ratio_.samples;
   }
+  adams.trig = trig;
+  adams.trig_cage = method_phase.cage;
   phase = advanced(phase, 1.0 / options_.sample_rate_hz);  // as without steps: the same for any step
   if (adams.lead == 0) {
     // PEC: a_p + A (y_c - y_p) = r_p + A y_c (its remainder is then the predicted one again).

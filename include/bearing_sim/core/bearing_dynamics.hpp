@@ -170,6 +170,11 @@ class BearingDynamics {
     Vector10 y_last_start = Vector10::Zero();
     int lead = 0;
     bool started = false;  // else it starts from the next sample's start
+    // cos and sin of the cage angle at its time, carried by the steps' rotations into the
+    // next sample (one sincos per kSamplesPerCageTrig samples: each rotation adds ~1 ulp).
+    CageTrig trig{1.0, 0.0};
+    double trig_cage = 0.0;
+    int trig_samples = 0;  // samples it may still be carried
   };
   Vector5 acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase, const BallArrays& balls,
                        const CageTrig& trig) const;
@@ -282,6 +287,7 @@ class BearingDynamics {
   int samples_since_linearization_ = 0;
   std::uint64_t linearizations_ = 0;
   static constexpr int kSamplesPerBallSplit = 16;
+  static constexpr int kSamplesPerCageTrig = 16;
   int samples_since_split_ = 0;  // current_.acceleration matches the load and model_
   // Since the last split: its displacement, the largest deflection (spalls left out) of a
   // clear ball then, and the rolling travel (|cage|, |cage - outer|, |cage - inner|, |spin|, rad).
