@@ -545,11 +545,12 @@ void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
   }
   RollingPhase method_phase = advanced(phase, adams_lead_s(adams));
   CageTrig trig = adams.trig;
-  // The last sample's end, where the carried cos and sin belong, unless the phase was set
-  // anew (its angle is wrapped once per sample: the same angle up to 2 pi).
-  constexpr double kTwoPi = 6.28318530717958647692;
+  // The last sample's end, where the carried cos and sin belong, up to the rounding of the
+  // phases (~1e-15 rad; the angle is wrapped once per sample, so also up to 2 pi); else the
+  // phase was set anew or the cage's slip moved the method's time: a sincos.
+  constexpr double kTwoPi = 6.28318530717958647692, kSameAngle = 1e-12;
   const double gap = std::abs(method_phase.cage - adams.trig_cage);
-  if (adams.trig_samples > 0 && (gap < 1e-9 || std::abs(gap - kTwoPi) < 1e-9)) {
+  if (adams.trig_samples > 0 && (gap < kSameAngle || std::abs(gap - kTwoPi) < kSameAngle)) {
     --adams.trig_samples;
   } else {
     trig = CageTrig{std::cos(method_phase.cage), std::sin(method_phase.cage)};

@@ -241,8 +241,7 @@ inline Kinematics kinematics(double cphi, double sphi, double gz, double nz, dou
 }
 }  // namespace
 
-const double* BearingModel::offsets_at(const RollingPhase& phase, const BallArrays& balls, bool include_spalls,
-                                       bool race_spalls) const {
+const double* BearingModel::offsets_at(const RollingPhase& phase, const BallArrays& balls, bool include_spalls) const {
   if (!imperfections_.time_varying()) return balls.deflection_offset.data();
   // The RK4 stages of a sample share phases (the mid stages, a step's end and the next
   // step's start), and a sample uses a few sets of balls (those integrated, those checked
@@ -253,7 +252,7 @@ const double* BearingModel::offsets_at(const RollingPhase& phase, const BallArra
     std::uint64_t generation = 0;
     Imperfections::BallSet terms;  // of this set of balls
     RollingPhase phase;
-    bool include_spalls = false, race_spalls = false;
+    bool include_spalls = false;
     bool has_values = false;
     std::vector<double> values;
     std::uint64_t last_use = 0;
@@ -274,16 +273,14 @@ const double* BearingModel::offsets_at(const RollingPhase& phase, const BallArra
   }
   entry->last_use = ++uses;
   const RollingPhase& p = entry->phase;
-  const bool same = entry->has_values && entry->include_spalls == include_spalls &&
-                    entry->race_spalls == race_spalls && p.cage == phase.cage &&
+  const bool same = entry->has_values && entry->include_spalls == include_spalls && p.cage == phase.cage &&
                     p.inner_ring == phase.inner_ring && p.outer_ring == phase.outer_ring &&
                     p.ball_spin == phase.ball_spin && p.time_s == phase.time_s;
   if (!same) {
     entry->values = balls.deflection_offset;
-    imperfections_.add_offsets(phase, entry->terms, entry->values.data(), include_spalls, race_spalls);
+    imperfections_.add_offsets(phase, entry->terms, entry->values.data(), include_spalls);
     entry->phase = phase;
     entry->include_spalls = include_spalls;
-    entry->race_spalls = race_spalls;
     entry->has_values = true;
   }
   return entry->values.data();

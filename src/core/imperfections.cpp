@@ -404,8 +404,7 @@ void Imperfections::fill_ball_set(const std::vector<int>& balls, BallSet* set) c
     }
 }
 
-void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, double* out, bool include_spalls,
-                                bool race_spalls) const {
+void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, double* out, bool include_spalls) const {
   const int n = static_cast<int>(set.ball.size());
   const double* base = set.base_azimuth.data();
   if (!race_waviness_.empty() || !ball_waviness_.empty()) {
@@ -459,7 +458,7 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, d
       if (entry < 0) continue;
       const double x = std::remainder(phase.ball_spin + ball_phase_[s.ball] - s.position_rad, kPi);
       out[entry] -= spall_dip(x, angular_width, depth);
-    } else if (race_spalls) {
+    } else {
       // Only the few balls within half a width of the spall centre: find them by index,
       // since the balls of a row are evenly spaced.
       const double ring = s.surface == Surface::OuterRace ? phase.outer_ring : phase.inner_ring;

@@ -167,10 +167,8 @@ class BearingModel {
   // Identifies the per-ball offsets' content, for the cache of offsets_at.
   std::uint64_t stamp_ = 0;
   static std::uint64_t next_stamp();
-  // Total constant and time-varying offsets of a subset at a phase, in a reused buffer
-  // (race_spalls = false: without the race spalls, which the force kernel then takes).
-  const double* offsets_at(const RollingPhase& phase, const BallArrays& balls, bool include_spalls = true,
-                           bool race_spalls = true) const;
+  // Total constant and time-varying offsets of a subset at a phase, in a reused buffer.
+  const double* offsets_at(const RollingPhase& phase, const BallArrays& balls, bool include_spalls = true) const;
   // The rows' groove-centre z are distinct (the force kernel tells a spall's row by it).
   bool rows_apart_axially_ = true;
   // Only race spalls vary the offsets (no waviness, roughness or ball spall), and the kernel

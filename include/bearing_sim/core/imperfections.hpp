@@ -120,13 +120,10 @@ class Imperfections {
   void fill_ball_set(const std::vector<int>& balls, BallSet* set) const;  // reusing set's storage
   // Adds the time-varying deflection change of each ball of the set to out[0..set size).
   // Spalls only ever remove deflection, so leaving them out gives an upper bound.
-  // race_spalls = false leaves out the race spalls only (the force kernel takes them as
-  // spall_windows).
-  void add_offsets(const RollingPhase& phase, const BallSet& set, double* out, bool include_spalls = true,
-                   bool race_spalls = true) const;
-  // A race spall at one rolling phase as the force kernel takes it: a ball of its row
-  // whose azimuth phi is within half the width w of the centre psi loses
-  // depth cos(pi (phi - psi) / w) of deflection (the dip of add_offsets).
+  void add_offsets(const RollingPhase& phase, const BallSet& set, double* out, bool include_spalls = true) const;
+  // A race spall at one rolling phase as the force kernel takes it when nothing else varies
+  // the offsets: a ball of its row whose azimuth phi is within half the width w of the
+  // centre psi loses depth cos(pi (phi - psi) / w) of deflection (the dip of add_offsets).
   struct SpallWindow {
     double cos_centre, sin_centre;  // psi, in the bearing frame
     double sin_half_width;          // sin(w / 2); w <= pi / 2
