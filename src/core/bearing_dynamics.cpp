@@ -14,20 +14,14 @@
 namespace bearing_sim {
 namespace {
 
-// m x and base + m x for the integrators' small fixed-size matrices: the SIMD kernel of
-// small_products.hpp (Eigen's products at these sizes cost several times the arithmetic).
+constexpr double kTwoPi = 6.28318530717958647692;
+
+// m x for the integrators' small fixed-size matrices: the SIMD kernel of small_products.hpp
+// (Eigen's products at these sizes cost several times the arithmetic).
 template <int Rows, int Cols>
 Eigen::Matrix<double, Rows, 1> times(const Eigen::Matrix<double, Rows, Cols>& m, const double* x) {
   Eigen::Matrix<double, Rows, 1> out;
   detail::multiply_add<Rows, Cols>(m.data(), x, nullptr, out.data());
-  return out;
-}
-
-template <int Rows, int Cols>
-Eigen::Matrix<double, Rows, 1> plus_times(const Eigen::Matrix<double, Rows, 1>& base,
-                                          const Eigen::Matrix<double, Rows, Cols>& m, const double* x) {
-  Eigen::Matrix<double, Rows, 1> out;
-  detail::multiply_add<Rows, Cols>(m.data(), x, base.data(), out.data());
   return out;
 }
 
@@ -548,7 +542,7 @@ void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
   // The last sample's end, where the carried cos and sin belong, up to the rounding of the
   // phases (~1e-15 rad; the angle is wrapped once per sample, so also up to 2 pi); else the
   // phase was set anew or the cage's slip moved the method's time: a sincos.
-  constexpr double kTwoPi = 6.28318530717958647692, kSameAngle = 1e-12;
+  constexpr double kSameAngle = 1e-12;
   const double gap = std::abs(method_phase.cage - adams.trig_cage);
   if (adams.trig_samples > 0 && (gap < kSameAngle || std::abs(gap - kTwoPi) < kSameAngle)) {
     --adams.trig_samples;
@@ -714,7 +708,6 @@ DynamicSample BearingDynamics::commit_sample(const Vector5& q, const Vector5& v,
   }
   ++sample_index_;
   // Angles wrapped once per sample keep their precision over long runs.
-  constexpr double kTwoPi = 6.28318530717958647692;
   // std::remainder(x, 2 pi) without its cost for the usual |x| <= 3 pi (an angle wrapped last
   // sample plus one sample's advance): n = round-half-even(x / 2 pi) is -1, 0 or 1, the
   // comparison with pi (= 2 pi / 2 exactly) picks it exactly and x -+ 2 pi is the one

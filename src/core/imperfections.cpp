@@ -39,6 +39,11 @@ inline long ceil_to_long(double x) {
   return static_cast<double>(t) < x ? t + 1 : t;
 }
 
+// Angle of the ring that carries a race surface (outer race: outer ring, else inner ring).
+inline double ring_angle(const RollingPhase& phase, Surface race) {
+  return race == Surface::OuterRace ? phase.outer_ring : phase.inner_ring;
+}
+
 // Half-sine dip of a spall centred at 0 of angular width w, at angle x (|x| < w/2).
 inline double spall_dip(double x, double angular_width, double depth) {
   return std::abs(x) < 0.5 * angular_width ? depth * std::cos(kPi * x / angular_width) : 0.0;
@@ -333,7 +338,7 @@ int Imperfections::spall_windows(const RollingPhase& phase, SpallWindow* windows
     } else {
       grown_window(s, phase.time_s, &w);
     }
-    const double centre = (s.surface == Surface::OuterRace ? phase.outer_ring : phase.inner_ring) + s.position_rad;
+    const double centre = ring_angle(phase, s.surface) + s.position_rad;
     if (count < kKeptCentres && kept_centres[count].centre == centre) {
       w.cos_centre = kept_centres[count].c;
       w.sin_centre = kept_centres[count].s;
@@ -413,7 +418,7 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, d
     thread_local std::vector<double> angles, coefficients;
     angles.clear();
     for (const Harmonic& h : race_waviness_)
-      angles.push_back(h.order * (phase.cage - (h.surface == Surface::OuterRace ? phase.outer_ring : phase.inner_ring)));
+      angles.push_back(h.order * (phase.cage - ring_angle(phase, h.surface)));
     for (const Harmonic& h : ball_waviness_) angles.push_back(h.order * phase.ball_spin);
     const int harmonics = static_cast<int>(angles.size());
     coefficients.resize(2 * angles.size());
@@ -461,8 +466,7 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, d
     } else {
       // Only the few balls within half a width of the spall centre: find them by index,
       // since the balls of a row are evenly spaced.
-      const double ring = s.surface == Surface::OuterRace ? phase.outer_ring : phase.inner_ring;
-      const double start = phase.cage - ring - s.position_rad;
+      const double start = phase.cage - ring_angle(phase, s.surface) - s.position_rad;
       const int z = geometry_.balls_per_row;
       const double* all_base = geometry_.base_azimuth.data();
       const double pitches_per_rad = z / kTwoPi;
