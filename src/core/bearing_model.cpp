@@ -151,21 +151,37 @@ void BallArrays::assign(const BallArrays& from, const int* entries, std::size_t 
   groove_centre_z.resize(n);
   normal_z.resize(n);
   deflection_offset.resize(n);
-  // One gather per array, through plain pointers (every split of a large bearing that
-  // moves a ball rebuilds both sets).
-  const auto gather = [entries, n](const auto& src, auto& dst) {
-    const auto* s = src.data();
-    auto* d = dst.data();
-    for (std::size_t k = 0; k < n; ++k) d[k] = s[entries[k]];
-  };
-  gather(from.ball, ball);
-  gather(from.row, row);
-  gather(from.base_azimuth, base_azimuth);
-  gather(from.cos_base, cos_base);
-  gather(from.sin_base, sin_base);
-  gather(from.groove_centre_z, groove_centre_z);
-  gather(from.normal_z, normal_z);
-  gather(from.deflection_offset, deflection_offset);
+  // One pass over the entries for all eight arrays, through plain pointers (every split of a
+  // large bearing that moves a ball rebuilds both sets): each entry is read once, and the
+  // loop carries eight loads and stores per ball instead of eight loops' index loads and
+  // counters.
+  const int* from_ball = from.ball.data();
+  const int* from_row = from.row.data();
+  const double* from_base = from.base_azimuth.data();
+  const double* from_cos = from.cos_base.data();
+  const double* from_sin = from.sin_base.data();
+  const double* from_z = from.groove_centre_z.data();
+  const double* from_normal_z = from.normal_z.data();
+  const double* from_offset = from.deflection_offset.data();
+  int* to_ball = ball.data();
+  int* to_row = row.data();
+  double* to_base = base_azimuth.data();
+  double* to_cos = cos_base.data();
+  double* to_sin = sin_base.data();
+  double* to_z = groove_centre_z.data();
+  double* to_normal_z = normal_z.data();
+  double* to_offset = deflection_offset.data();
+  for (std::size_t k = 0; k < n; ++k) {
+    const int e = entries[k];
+    to_ball[k] = from_ball[e];
+    to_row[k] = from_row[e];
+    to_base[k] = from_base[e];
+    to_cos[k] = from_cos[e];
+    to_sin[k] = from_sin[e];
+    to_z[k] = from_z[e];
+    to_normal_z[k] = from_normal_z[e];
+    to_offset[k] = from_offset[e];
+  }
 }
 
 double BearingModel::row_axial_position_m(int row) const {
@@ -277,8 +293,9 @@ const double* BearingModel::offsets_at(const RollingPhase& phase, const BallArra
                     p.inner_ring == phase.inner_ring && p.outer_ring == phase.outer_ring &&
                     p.ball_spin == phase.ball_spin && p.time_s == phase.time_s;
   if (!same) {
-    entry->values = balls.deflection_offset;
-    imperfections_.add_offsets(phase, entry->terms, entry->values.data(), include_spalls);
+    entry->values.resize(balls.size());
+    imperfections_.add_offsets(phase, entry->terms, balls.deflection_offset.data(), entry->values.data(),
+                               include_spalls);
     entry->phase = phase;
     entry->include_spalls = include_spalls;
     entry->has_values = true;

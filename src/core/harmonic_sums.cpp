@@ -10,6 +10,7 @@
 
 #include "harmonic_sums.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 HWY_BEFORE_NAMESPACE();
@@ -21,8 +22,8 @@ namespace hn = hwy::HWY_NAMESPACE;
 // the loop unrolled over them (a pass per harmonic would load and store every offset 2H
 // times; an inner loop over a run-time count is a chain of dependent FMAs per ball).
 template <int kHarmonics>
-HWY_INLINE void AddGroup(const double* HWY_RESTRICT c, const double* HWY_RESTRICT terms, int n,
-                         double* HWY_RESTRICT out) {
+HWY_INLINE void AddGroup(const double* HWY_RESTRICT c, const double* HWY_RESTRICT terms, int n, const double* base,
+                         double* out) {
   const hn::ScalableTag<double> d;
   using V = hn::Vec<decltype(d)>;
   const int lanes = static_cast<int>(hn::Lanes(d));
@@ -42,29 +43,31 @@ HWY_INLINE void AddGroup(const double* HWY_RESTRICT c, const double* HWY_RESTRIC
   };
   const auto load = [&](const double* p) HWY_ATTR { return hn::LoadU(d, p); };
   int b = 0;
-  for (; b + lanes <= n; b += lanes) hn::StoreU(add(b, hn::LoadU(d, out + b), load), d, out + b);
+  // base may be out: each vector is loaded before it is stored.
+  for (; b + lanes <= n; b += lanes) hn::StoreU(add(b, hn::LoadU(d, base + b), load), d, out + b);
   if (b == n) return;
   if (n >= lanes) {
     // The tail as the last full vector, its lanes already summed kept as they are (no read
     // past the arrays: a masked load may read the whole vector on some targets).
     const int last = n - lanes;
-    const V offset = hn::LoadU(d, out + last);
     const auto fresh = hn::Not(hn::FirstN(d, static_cast<std::size_t>(b - last)));
-    hn::StoreU(hn::IfThenElse(fresh, add(last, offset, load), offset), d, out + last);
+    const V summed = hn::LoadU(d, out + last);
+    hn::StoreU(hn::IfThenElse(fresh, add(last, hn::LoadU(d, base + last), load), summed), d, out + last);
     return;
   }
-  add_harmonic_sums_scalar(c, kHarmonics, terms, n, out);  // fewer balls than lanes
+  add_harmonic_sums_scalar(c, kHarmonics, terms, n, base, out);  // fewer balls than lanes
 }
 
-void AddHarmonicSums(const double* c, int harmonics, const double* terms, int n, double* out) {
+void AddHarmonicSums(const double* c, int harmonics, const double* terms, int n, const double* base, double* out) {
   for (int first = 0; first < harmonics; first += 4) {
     const double* group_c = c + 2 * first;
     const double* group_terms = terms + 2 * static_cast<long>(first) * n;
+    const double* group_base = first == 0 ? base : out;  // later groups add to the first's sums
     switch (harmonics - first) {
-      case 1: AddGroup<1>(group_c, group_terms, n, out); break;
-      case 2: AddGroup<2>(group_c, group_terms, n, out); break;
-      case 3: AddGroup<3>(group_c, group_terms, n, out); break;
-      default: AddGroup<4>(group_c, group_terms, n, out); break;
+      case 1: AddGroup<1>(group_c, group_terms, n, group_base, out); break;
+      case 2: AddGroup<2>(group_c, group_terms, n, group_base, out); break;
+      case 3: AddGroup<3>(group_c, group_terms, n, group_base, out); break;
+      default: AddGroup<4>(group_c, group_terms, n, group_base, out); break;
     }
   }
 }
@@ -115,16 +118,22 @@ void harmonic_coefficients(const double* amplitude, const double* angle, int har
   if (harmonics > 0) BEARING_SIM_DISPATCH(HarmonicCoefficients)(amplitude, angle, harmonics, coefficients);
 }
 
-void add_harmonic_sums(const double* coefficients, int harmonics, const double* terms, int n, double* out) {
-  if (harmonics > 0 && n > 0) BEARING_SIM_DISPATCH(AddHarmonicSums)(coefficients, harmonics, terms, n, out);
+void add_harmonic_sums(const double* coefficients, int harmonics, const double* terms, int n, const double* base,
+                       double* out) {
+  if (n <= 0) return;
+  if (harmonics > 0)
+    BEARING_SIM_DISPATCH(AddHarmonicSums)(coefficients, harmonics, terms, n, base, out);
+  else if (base != out)
+    std::copy(base, base + n, out);
 }
 
-void add_harmonic_sums_scalar(const double* c, int harmonics, const double* terms, int n, double* out) {
+void add_harmonic_sums_scalar(const double* c, int harmonics, const double* terms, int n, const double* base,
+                              double* out) {
   for (int b = 0; b < n; ++b) {
     double sum = 0.0;
     for (int h = 0; h < harmonics; ++h)
       sum += c[2 * h] * terms[2 * h * n + b] - c[2 * h + 1] * terms[(2 * h + 1) * n + b];
-    out[b] += sum;
+    out[b] = base[b] + sum;
   }
 }
 }  // namespace bearing_sim::detail

@@ -6,10 +6,13 @@
 // kernel; and the scalar loop they are tested against.
 namespace bearing_sim::detail {
 
-// out[b] += sum over h < harmonics of c[2h] terms[2h n + b] - c[2h + 1] terms[(2h + 1) n + b],
-// for b < n (terms: per harmonic, the n cosines then the n sines of its fixed angles).
-void add_harmonic_sums(const double* coefficients, int harmonics, const double* terms, int n, double* out);
-void add_harmonic_sums_scalar(const double* coefficients, int harmonics, const double* terms, int n, double* out);
+// out[b] = base[b] + sum over h < harmonics of c[2h] terms[2h n + b] - c[2h + 1] terms[(2h + 1) n + b],
+// for b < n (terms: per harmonic, the n cosines then the n sines of its fixed angles); base
+// may be out. A separate base spares the caller a copy of the constant offsets into out.
+void add_harmonic_sums(const double* coefficients, int harmonics, const double* terms, int n, const double* base,
+                       double* out);
+void add_harmonic_sums_scalar(const double* coefficients, int harmonics, const double* terms, int n,
+                              const double* base, double* out);
 
 // The per-call coefficients: coefficients[2h] = amplitude[h] cos(angle[h]) and
 // coefficients[2h + 1] = amplitude[h] sin(angle[h]), h < harmonics (a few ulp of std::cos and

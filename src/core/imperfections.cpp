@@ -1,6 +1,7 @@
 #include "bearing_sim/core/imperfections.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <random>
@@ -401,17 +402,47 @@ void Imperfections::fill_ball_set(const std::vector<int>& balls, BallSet* set) c
       set->roughness_weight.push_back(balls[e] / geometry_.balls_per_row == roughness_row_ ? 1.0 : 0.0);
   set->harmonic_terms.resize(2 * n * (race_waviness_.size() + ball_waviness_.size()));
   double* column = set->harmonic_terms.data();
+  // Two harmonics' cos and sin per pass over the balls: each entry read once per pass.
+  std::array<const Harmonic*, 2> pair{};
+  int paired = 0;
+  const auto gather_pair = [&] {
+    const int* entry = balls.data();
+    const double* c0 = pair[0]->cos_phase.data();
+    const double* s0 = pair[0]->sin_phase.data();
+    if (paired == 1) {
+      for (std::size_t e = 0; e < n; ++e) {
+        column[e] = c0[entry[e]];
+        column[n + e] = s0[entry[e]];
+      }
+    } else {
+      const double* c1 = pair[1]->cos_phase.data();
+      const double* s1 = pair[1]->sin_phase.data();
+      double* next = column + 2 * n;
+      for (std::size_t e = 0; e < n; ++e) {
+        const int b = entry[e];
+        column[e] = c0[b];
+        column[n + e] = s0[b];
+        next[e] = c1[b];
+        next[n + e] = s1[b];
+      }
+    }
+    column += 2 * n * static_cast<std::size_t>(paired);
+    paired = 0;
+  };
   for (const auto* harmonics : {&race_waviness_, &ball_waviness_})
     for (const Harmonic& h : *harmonics) {
-      for (std::size_t e = 0; e < n; ++e) column[e] = h.cos_phase[balls[e]];
-      for (std::size_t e = 0; e < n; ++e) column[n + e] = h.sin_phase[balls[e]];
-      column += 2 * n;
+      pair[paired++] = &h;
+      if (paired == 2) gather_pair();
     }
+  if (paired > 0) gather_pair();
 }
 
-void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, double* out, bool include_spalls) const {
+void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, const double* constant, double* out,
+                                bool include_spalls) const {
   const int n = static_cast<int>(set.ball.size());
   const double* base = set.base_azimuth.data();
+  // out = constant first: through the waviness sums if there are any, else a copy.
+  if (race_waviness_.empty() && ball_waviness_.empty() && constant != out) std::copy(constant, constant + n, out);
   if (!race_waviness_.empty() || !ball_waviness_.empty()) {
     // Per harmonic: amplitude * (cos, sin) of its angle now. Race harmonics see the race-frame
     // angle of ball b, base_b + cage - ring; ball harmonics the spin angle.
@@ -423,7 +454,7 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, d
     const int harmonics = static_cast<int>(angles.size());
     coefficients.resize(2 * angles.size());
     detail::harmonic_coefficients(waviness_amplitudes_.data(), angles.data(), harmonics, coefficients.data());
-    detail::add_harmonic_sums(coefficients.data(), harmonics, set.harmonic_terms.data(), n, out);
+    detail::add_harmonic_sums(coefficients.data(), harmonics, set.harmonic_terms.data(), n, constant, out);
   }
   if (has_roughness_) {
     constexpr double kScale = kProfilePoints / kTwoPi;

@@ -241,11 +241,15 @@ TEST(ContactKernel, HarmonicSumsAgreeWithTheScalarLoop) {
           }
         }
         for (double& x : base) x = 1e-6 * u(rng);  // the constant offsets the sums add to
-        std::vector<double> simd = base, scalar = base;
-        detail::add_harmonic_sums(c.data(), harmonics, terms.data(), n, simd.data());
-        detail::add_harmonic_sums_scalar(c.data(), harmonics, terms.data(), n, scalar.data());
-        for (int b = 0; b < n; ++b)
+        // In place (out = base) and into a separate array (the constant offsets left as they are).
+        std::vector<double> simd = base, scalar = base, separate(n, std::nan(""));
+        detail::add_harmonic_sums(c.data(), harmonics, terms.data(), n, simd.data(), simd.data());
+        detail::add_harmonic_sums(c.data(), harmonics, terms.data(), n, base.data(), separate.data());
+        detail::add_harmonic_sums_scalar(c.data(), harmonics, terms.data(), n, scalar.data(), scalar.data());
+        for (int b = 0; b < n; ++b) {
           ASSERT_NEAR(simd[b], scalar[b], 1e-14 * (bound + 1e-6)) << harmonics << " harmonics, ball " << b << " of " << n;
+          ASSERT_EQ(separate[b], simd[b]) << harmonics << " harmonics, ball " << b << " of " << n;
+        }
         // A wrong term (a harmonic or a ball missed) would be >= 1e-8 m off somewhere.
       }
   });

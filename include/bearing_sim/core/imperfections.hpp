@@ -120,7 +120,12 @@ class Imperfections {
   void fill_ball_set(const std::vector<int>& balls, BallSet* set) const;  // reusing set's storage
   // Adds the time-varying deflection change of each ball of the set to out[0..set size).
   // Spalls only ever remove deflection, so leaving them out gives an upper bound.
-  void add_offsets(const RollingPhase& phase, const BallSet& set, double* out, bool include_spalls = true) const;
+  void add_offsets(const RollingPhase& phase, const BallSet& set, double* out, bool include_spalls = true) const {
+    add_offsets(phase, set, out, out, include_spalls);
+  }
+  // Same into out = base + change (base may be out).
+  void add_offsets(const RollingPhase& phase, const BallSet& set, const double* base, double* out,
+                   bool include_spalls = true) const;
   // A race spall at one rolling phase as the force kernel takes it when nothing else varies
   // the offsets: a ball of its row whose azimuth phi is within half the width w of the
   // centre psi loses depth cos(pi (phi - psi) / w) of deflection (the dip of add_offsets).
