@@ -105,35 +105,18 @@ int BearingDynamics::choose_substeps(const BearingModel& model, const Vector5& l
   return std::max(1, static_cast<int>(std::ceil(rate_max * h_sample / step_times_omega_max(method))));
 }
 
-double BearingDynamics::largest_ball_load_share(const BearingModel& model, const Vector5& load) {
-  const StaticSolution statics = solve_static(model, load);
-  double largest = 0.0, total = 0.0;
-  for (const BallState& ball : statics.balls) {
-    largest = std::max(largest, ball.load_N);
-    total += ball.load_N;
-  }
-  return total > 0.0 ? largest / total : 1.0;
-}
-
 BearingDynamics::StepRatio BearingDynamics::choose_step_ratio(const BearingModel& model, const Vector5& load,
                                                              double sample_rate_hz, IntegrationMethod method) {
   if (method != IntegrationMethod::ExponentialAdams && method != IntegrationMethod::ExponentialAdamsPec)
     return {choose_substeps(model, load, sample_rate_hz, method), 1};
   const Imperfections& imperfections = model.imperfections();
-  // A ball dropping into a race spall makes the remainder rough within a step. On a bearing
-  // whose every ball carries a small share of the load (a gantry or slewing bearing) that is
-  // a small change of the linearized contacts: the smooth limit holds, and a sample within a
-  // step evaluates the few balls within the spall's reach exactly (correct_spall_balls).
-  // Where one ball carries much of it (the 6205: 39 %) the limit is lower and the steps end
-  // on samples (there the few balls would cost as much as the steps they save); so too with
-  // a ball spall, whose dips against both races the correction followed less well.
-  const bool spalls_limit_step = !imperfections.spalls().empty() &&
-                                 (imperfections.has_ball_spalls() ||
-                                  largest_ball_load_share(model, load) > kSmallBallLoadShare);
+  const bool spalls = !imperfections.spalls().empty();
   const double steps = fastest_rate_rad_s(model, load) / sample_rate_hz /
-                       (spalls_limit_step ? kAdamsWithSpallStepTimesOmegaMax : kAdamsStepTimesOmegaMax);
-  // A race's roughness (orders up to 4096) makes every ball's remainder rough within a step.
-  if (spalls_limit_step || imperfections.has_roughness()) return {std::max(1, static_cast<int>(std::ceil(steps))), 1};
+                       (spalls ? kAdamsWithSpallStepTimesOmegaMax : kAdamsStepTimesOmegaMax);
+  // A sample within a step takes its acceleration from the cubic through the step's
+  // remainders, which a ball dropping into a spall or a race's roughness (orders up to 4096)
+  // makes rough: there the samples are whole steps apart.
+  if (spalls || imperfections.has_roughness()) return {std::max(1, static_cast<int>(std::ceil(steps))), 1};
   const int divisions = kAdamsStepSampleDivisions;
   const int parts = std::max(divisions, static_cast<int>(std::ceil(steps * divisions)));
   const int common = std::gcd(parts, divisions);
@@ -348,7 +331,6 @@ void BearingDynamics::set_model(BearingModel model) {
     throw ConfigError(model.config().name + ": key 'flexible_ring': " + kFlexibleRingOfflineOnly);
   const Matrix5 inverse_mass = model.mass_matrix().inverse();
   model_ = std::move(model);
-  near_spall_balls_.clear();  // its per-ball constants were the old model's
   set_inverse_mass(inverse_mass);
   displacement_limit_m_ = 0.25 * model_.config().ball_diameter_m + std::abs(model_.clearance_m());
   update_cage_speed();
@@ -442,13 +424,9 @@ double BearingDynamics::contact_margin_m(const Vector5& q, const Vector5& v, con
 }
 
 bool BearingDynamics::integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
-                                       const BallArrays& balls, AdamsState& adams_state, AdamsNodes* nodes,
-                                       Vector5* a_end) const {
+                                       const BallArrays& balls, AdamsState& adams_state, Vector5* a_end) const {
   if (adams()) {
-    if (nodes)
-      integrate_sample_adams<true>(q, v, phase, a_start, balls, adams_state, nodes, a_end);
-    else
-      integrate_sample_adams<false>(q, v, phase, a_start, balls, adams_state, nodes, a_end);
+    integrate_sample_adams(q, v, phase, a_start, balls, adams_state, a_end);
     return true;
   }
   if (exponential())
@@ -516,8 +494,7 @@ void BearingDynamics::integrate_sample_exponential(Vector5& q, Vector5& v, Rolli
   v = y.tail<5>();
 }
 
-void BearingDynamics::start_adams(AdamsState& adams, AdamsNodes* nodes, const RollingPhase& start,
-                                  const BallArrays& balls) const {
+void BearingDynamics::start_adams(AdamsState& adams, const RollingPhase& start, const BallArrays& balls) const {
   // The remainders one, two and three steps before, from ETDRK4 steps backward in time along
   // the trajectory through the start (its weights are stored for -h): the history the
   // extrapolation needs, as smooth as the motion, from 12 evaluations.
@@ -526,7 +503,6 @@ void BearingDynamics::start_adams(AdamsState& adams, AdamsNodes* nodes, const Ro
   const CageTrig backward{forward.c, -forward.s};
   Vector10 y = adams.x.head<10>();
   Vector5 r = adams.x.segment<5>(10);
-  if (nodes) nodes->col(0) = y;
   RollingPhase phase = start;
   CageTrig trig{std::cos(phase.cage), std::sin(phase.cage)};
   for (int k = 1; k <= 3; ++k) {
@@ -535,16 +511,13 @@ void BearingDynamics::start_adams(AdamsState& adams, AdamsNodes* nodes, const Ro
     trig = rotated(rotated(trig, backward), backward);
     r = acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls, trig) - lin_accel_.lazyProduct(y);
     adams.x.segment<5>(10 + 5 * k) = r;
-    if (nodes) nodes->col(k) = y;
   }
   adams.lead = 0;
   adams.started = true;
 }
 
-template <bool kWithNodes>
 void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
-                                             const BallArrays& balls, AdamsState& adams, AdamsNodes* nodes,
-                                             Vector5* a_end) const {
+                                             const BallArrays& balls, AdamsState& adams, Vector5* a_end) const {
   // y = (q - q_lin, v) as in ETDRK4. Per step: the remainder r at the start (the previous
   // step's end evaluation), the predictor y_p = e^{hL} y + P0 r + P1 r_-1 + P2 r_-2 + P3 r_-3,
   // the remainder r_p at y_p and the step's end, the corrector
@@ -561,7 +534,7 @@ void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
     x.head<5>() = q - q_lin_;
     x.segment<5>(5) = v;
     x.segment<5>(10) = a_start - times(lin_accel_, x.data());
-    start_adams(adams, nodes, phase, balls);
+    start_adams(adams, phase, balls);
     adams.trig_samples = 0;
   }
   RollingPhase method_phase = advanced(phase, adams_lead_s(adams));
@@ -595,10 +568,6 @@ void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
                                                            trig_end) -
                                               times(lin_accel_, x.data()))
                                     : r_p;
-    if constexpr (kWithNodes) {
-      nodes->rightCols<3>() = nodes->leftCols<3>().eval();
-      nodes->col(0) = evaluate_end ? Vector10(x.head<10>()) : Vector10(predicted.head<10>());
-    }
     method_phase = end;
     trig = trig_end;
     adams.lead += step_ratio_.samples;
@@ -620,38 +589,6 @@ void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
   q = q_lin_ + sample.head<5>();
   v = sample.segment<5>(5);
   *a_end = sample.tail<5>();
-  if constexpr (kWithNodes) {
-    const double theta = 1.0 - static_cast<double>(adams.lead) / step_ratio_.samples;
-    correct_spall_balls(*nodes, method_phase, phase, theta, sample.head<10>(), a_end);
-  }
-}
-
-void BearingDynamics::correct_spall_balls(const AdamsNodes& nodes, const RollingPhase& method_phase,
-                                          const RollingPhase& sample_phase, double theta, const Vector10& y,
-                                          Vector5* a) const {
-  // The cubic's nodes are the ends of the last step and of the three before it (s = 1, 0,
-  // -1, -2 in steps from the last step's start); a ball within reach of a spall at any of
-  // them or at the sample is one whose race-frame angle is within 4 steps' travel of it.
-  const double h = internal_step_s();
-  const double cage = slipping_cage_speed();
-  model_.imperfections().balls_near_spalls(sample_phase, 4.0 * h * (cage - outer_speed_),
-                                           4.0 * h * (cage - inner_speed_), &near_spall_indices_);
-  if (near_spall_indices_.empty()) return;
-  const std::size_t n = near_spall_indices_.size();
-  if (near_spall_balls_.size() != n ||
-      !std::equal(near_spall_indices_.begin(), near_spall_indices_.end(), near_spall_balls_.ball.begin()))
-    near_spall_balls_.assign(model_.balls(), near_spall_indices_.data(), n);  // entries of all balls: indices
-  // Lagrange basis of the nodes 1, 0, -1, -2 at theta.
-  const double t = theta;
-  const double basis[4] = {t * (t + 1.0) * (t + 2.0) / 6.0, -(t - 1.0) * (t + 1.0) * (t + 2.0) / 2.0,
-                           (t - 1.0) * t * (t + 2.0) / 2.0, -(t - 1.0) * t * (t + 1.0) / 6.0};
-  Vector5 force = model_.contact_force(q_lin_ + y.head<5>(), y.tail<5>(), sample_phase, near_spall_balls_);
-  for (int k = 0; k < 4; ++k) {
-    const Vector10 node = nodes.col(k);
-    force -= basis[k] * model_.contact_force(q_lin_ + node.head<5>(), node.tail<5>(),
-                                             advanced(method_phase, -k * h), near_spall_balls_);
-  }
-  *a += divided_by_mass(force);
 }
 
 void BearingDynamics::integrate_sample_rk4(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
@@ -708,12 +645,8 @@ DynamicSample BearingDynamics::step() {
   Vector5 q = q0, v = v0;
   RollingPhase phase = phase_;
   AdamsState adams_state = adams_;  // kept only when the sample is
-  const bool with_nodes = correct_spalls_within_step();
-  AdamsNodes nodes;
-  if (with_nodes) nodes = adams_nodes_;
-  AdamsNodes* const nodes_or_null = with_nodes ? &nodes : nullptr;
   Vector5 a_end = Vector5::Zero();
-  bool end_known = integrate_sample(q, v, phase, a_start, *balls, adams_state, nodes_or_null, &a_end);
+  bool end_known = integrate_sample(q, v, phase, a_start, *balls, adams_state, &a_end);
   // The skipped balls are checked ball by ball only when the bound of clear_deflection_bound_m
   // does not already show them all clear (it almost always does: the split's margin is twice
   // the bound's growth over kSamplesPerBallSplit samples).
@@ -731,8 +664,7 @@ DynamicSample BearingDynamics::step() {
     v = v0;
     phase = phase_;
     adams_state = adams_;
-    if (with_nodes) nodes = adams_nodes_;
-    end_known = integrate_sample(q, v, phase, a_start, *balls, adams_state, nodes_or_null, &a_end);
+    end_known = integrate_sample(q, v, phase, a_start, *balls, adams_state, &a_end);
   }
   // The exponential integrators left cos and sin of the end's cage angle.
   const DynamicSample sample = commit_sample(q, v,
@@ -740,10 +672,7 @@ DynamicSample BearingDynamics::step() {
                                              : exponential() ? acceleration(q, v, phase, *balls, sample_end_trig_)
                                                              : acceleration(q, v, phase, *balls),
                                              phase);
-  if (adams()) {
-    adams_ = adams_state;
-    if (with_nodes) adams_nodes_ = nodes;
-  }
+  if (adams()) adams_ = adams_state;
   // A load line is for one sample: from its end on the load holds the end value.
   if (!load_line_.rate.isZero()) change_load(LoadLine{load_line_.at(phase_.time_s), Vector5::Zero(), phase_.time_s});
   return sample;

@@ -325,9 +325,7 @@ const double* BearingModel::offsets_at(const RollingPhase& phase, const BallArra
                     p.inner_ring == phase.inner_ring && p.outer_ring == phase.outer_ring &&
                     p.ball_spin == phase.ball_spin && p.time_s == phase.time_s;
   if (!same) {
-    // Grown only (a resize that grows value-initializes: an entry moving from a small set to
-    // a large one would zero-fill it before it is overwritten).
-    if (entry->values.size() < balls.size()) entry->values.resize(balls.size());
+    entry->values.resize(balls.size());
     imperfections_.add_offsets(phase, entry->terms, balls.deflection_offset.data(), entry->values.data(),
                                include_spalls);
     entry->phase = phase;

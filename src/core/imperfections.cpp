@@ -353,44 +353,6 @@ int Imperfections::spall_windows(const RollingPhase& phase, SpallWindow* windows
   return count;
 }
 
-void Imperfections::balls_near_spalls(const RollingPhase& phase, double outer_race_travel_rad,
-                                      double inner_race_travel_rad, std::vector<int>* balls) const {
-  balls->clear();
-  const int z = geometry_.balls_per_row;
-  const double pitches_per_rad = z / kTwoPi;
-  for (std::size_t i = 0; i < spalls_.size(); ++i) {
-    const Spall& s = spalls_[i];
-    if (s.surface == Surface::Ball) {
-      balls->push_back(s.ball);
-      continue;
-    }
-    double angular_width = spall_shapes_[i].angular_width, depth = 0.0;
-    if (!spall_shapes_[i].fixed) spall_size(s, phase.time_s, &angular_width, &depth);
-    const double travel = s.surface == Surface::OuterRace ? outer_race_travel_rad : inner_race_travel_rad;
-    // As in add_offsets: the candidates by index (ball j of the row is within the spacing
-    // error of its even place), then each by its angle from the spall's centre.
-    const double reach_rad = 0.5 * angular_width + std::abs(travel);
-    const double reach = (reach_rad + max_spacing_error_) * pitches_per_rad;
-    const double start = phase.cage - ring_angle(phase, s.surface) - s.position_rad;
-    const double* base = geometry_.base_azimuth.data() + s.row * z;
-    const double centre = -(start + base[0]) * pitches_per_rad;
-    long first = floor_to_long(centre - reach), last = ceil_to_long(centre + reach);
-    if (last - first + 1 >= z) {
-      first = 0;
-      last = z - 1;
-    }
-    for (long k = first; k <= last; ++k) {
-      const int j = static_cast<int>(((k % z) + z) % z);
-      const double angle = base[j] + start;
-      // To [-pi, pi] as in add_offsets.
-      const double x = angle - kTwoPi * round_to_nearest(angle * (1.0 / kTwoPi));
-      if (std::abs(x) <= reach_rad) balls->push_back(s.row * z + j);
-    }
-  }
-  std::sort(balls->begin(), balls->end());
-  balls->erase(std::unique(balls->begin(), balls->end()), balls->end());
-}
-
 void Imperfections::grown_window(const Spall& s, double time_s, SpallWindow* w) const {
   double angular_width = 0.0;
   spall_size(s, time_s, &angular_width, &w->depth);

@@ -124,10 +124,7 @@ class BearingDynamics {
   // between step ends from the corrector's cubic, so their step need not divide the sample:
   // the smallest multiple of 1/4 step per sample (at least 1) within the limit, e.g. 5 steps
   // per 4 samples instead of 2 per sample for the CT bearing (|lambda| h = 0.84 per sample).
-  // With roughness (a remainder rough within a step everywhere) whole steps per sample; so
-  // too with a spall, at a lower limit, unless the spalls are on races and every ball
-  // carries at most kSmallBallLoadShare of the load (then the samples within a step
-  // evaluate the balls within a spall's reach exactly).
+  // With a spall or roughness (a remainder rough within a step) whole steps per sample.
   // The other methods: choose_substeps steps per sample.
   struct StepRatio {
     int steps = 1, samples = 1;
@@ -145,13 +142,6 @@ class BearingDynamics {
   // (docs/model.md, 10.3 and 10.5).
   static constexpr double kAdamsStepTimesOmegaMax = 0.7;
   static constexpr double kAdamsWithSpallStepTimesOmegaMax = 0.55;
-  // A race spall on a bearing whose most loaded ball carries at most this share of the summed
-  // ball loads (the CT bearing: 1 %) keeps the smooth limit: with waviness and a 2 mm x 20 um
-  // spall it is within 0.6 % of RK4 in a_rms at 5 steps per 4 samples (|lambda| h = 0.67),
-  // and within 0.9 % over the cases of docs/model.md 10.3.
-  static constexpr double kSmallBallLoadShare = 0.02;
-  // Largest ball load over the sum of the ball loads at the static equilibrium of `load`.
-  static double largest_ball_load_share(const BearingModel& model, const Vector5& load);
   static double step_times_omega_max(IntegrationMethod method);
   // Linearizations of the exponential integrator since construction (it is redone when
   // the load has moved by more than kRelinearizeLoadChange of its size, at most every
@@ -186,24 +176,6 @@ class BearingDynamics {
     double trig_cage = 0.0;
     int trig_samples = 0;  // samples it may still be carried
   };
-  // The states y at which the four remainders of the Adams state's x were evaluated (column
-  // k: r_-k; the predicted ends with PEC), kept beside it only while samples within a step
-  // correct a spall's balls (in AdamsState, a small bearing's sample would spend 2 % of its
-  // time copying them).
-  using AdamsNodes = Eigen::Matrix<double, 10, 4>;
-  // A sample within a step on a bearing with spalls: the balls within reach of a spall
-  // evaluated at the sample's state, in place of their part of the corrector's cubic (which
-  // does not follow a ball dropping into a spall). Adds M^-1 (f_S(sample) - cubic of f_S at
-  // the remainders' states) to *a.
-  void correct_spall_balls(const AdamsNodes& nodes, const RollingPhase& method_phase, const RollingPhase& sample_phase,
-                           double theta, const Vector10& y, Vector5* a) const;
-  bool correct_spalls_within_step() const {
-    return step_ratio_.samples > 1 && !model_.imperfections().spalls().empty();
-  }
-  // The balls correct_spall_balls evaluates, taken from all the model's balls (cleared with
-  // a new model).
-  mutable std::vector<int> near_spall_indices_;
-  mutable BallArrays near_spall_balls_;
   Vector5 acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase, const BallArrays& balls,
                        const CageTrig& trig) const;
   RollingPhase advanced(const RollingPhase& phase, double dt) const;
@@ -212,7 +184,7 @@ class BearingDynamics {
   // to its end. The Adams methods advance `adams` past the sample's end and give the end's
   // acceleration in *a_end (returning true); the others leave its evaluation to the caller.
   bool integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
-                        const BallArrays& balls, AdamsState& adams, AdamsNodes* nodes, Vector5* a_end) const;
+                        const BallArrays& balls, AdamsState& adams, Vector5* a_end) const;
   void integrate_sample_rk4(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
                             const BallArrays& balls) const;
   void integrate_sample_exponential(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
@@ -223,7 +195,7 @@ class BearingDynamics {
                        double h, const CageTrig& rotation, const BallArrays& balls) const;
   // The Adams method's history at the start: three ETDRK4 steps backward from x's y and r
   // at `phase`.
-  void start_adams(AdamsState& adams, AdamsNodes* nodes, const RollingPhase& phase, const BallArrays& balls) const;
+  void start_adams(AdamsState& adams, const RollingPhase& phase, const BallArrays& balls) const;
   // How far the Adams method is ahead of the last sample, s.
   double adams_lead_s(const AdamsState& adams) const {
     return adams.lead / (options_.sample_rate_hz * step_ratio_.steps);
@@ -236,11 +208,8 @@ class BearingDynamics {
     return options_.method == IntegrationMethod::ExponentialAdams ||
            options_.method == IntegrationMethod::ExponentialAdamsPec;
   }
-  // kWithNodes: correct_spalls_within_step(), and `nodes` is not null (a template, so that
-  // the steps of every other bearing carry none of its tests).
-  template <bool kWithNodes>
   void integrate_sample_adams(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
-                              const BallArrays& balls, AdamsState& adams, AdamsNodes* nodes, Vector5* a_end) const;
+                              const BallArrays& balls, AdamsState& adams, Vector5* a_end) const;
   // cos and sin of the cage's turn in half an internal step (cached while it stays the same).
   CageTrig half_step_rotation() const;
   double contact_margin_m(const Vector5& q, const Vector5& v, const Vector5& a) const;
@@ -309,7 +278,6 @@ class BearingDynamics {
   // the corrector's cubic through the four remainders, exact in the linear part.
   std::array<Eigen::Matrix<double, 15, 30>, kAdamsStepSampleDivisions - 1> adams_sample_within_step_{};
   AdamsState adams_;
-  AdamsNodes adams_nodes_ = AdamsNodes::Zero();
   // The cage turn of half an internal step and its cos and sin (recomputed when it changes),
   // and cos and sin of the cage angle at the end of the last integrated sample.
   mutable double half_step_turn_ = std::numeric_limits<double>::quiet_NaN();

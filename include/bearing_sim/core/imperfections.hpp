@@ -140,13 +140,6 @@ class Imperfections {
   // more than `capacity`.
   int spall_windows(const RollingPhase& phase, SpallWindow* windows, int capacity) const;
   bool has_race_spalls() const { return race_spall_count_ > 0; }
-  bool has_ball_spalls() const { return spalls_.size() > static_cast<std::size_t>(race_spall_count_); }
-  // The balls (indices, ascending) that may be over a spall at some time within the given
-  // race-frame travel of `phase` either way (outer race, inner race, rad): every ball that
-  // carries a spall, and the balls of a race spall's row within half its width plus the
-  // travel of its centre.
-  void balls_near_spalls(const RollingPhase& phase, double outer_race_travel_rad, double inner_race_travel_rad,
-                         std::vector<int>* balls) const;
   // Whether anything but race spalls moves the offsets (waviness, roughness, ball spalls).
   bool offsets_vary_without_race_spalls() const {
     return !race_waviness_.empty() || has_roughness_ || !ball_waviness_.empty() ||
