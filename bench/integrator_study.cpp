@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <memory>
 #include <string>
@@ -636,7 +637,17 @@ int main(int argc, char** argv) {
     barrier_round_trip();
     return 0;
   }
-  const double duration = argc > 1 ? std::stod(argv[1]) : 0.3;
+  double duration = 0.3;
+  if (argc > 1) {
+    char* end = nullptr;
+    duration = std::strtod(argv[1], &end);
+    if (end == argv[1] || *end != '\0' || !(duration > 0.0)) {
+      std::fprintf(stderr,
+                   "usage: bearing_sim_integrator_study [duration_s > 0] [case name part] [method name part]\n"
+                   "       bearing_sim_integrator_study production [duration_s] | barrier\n");
+      return 2;
+    }
+  }
   const double rate = 10000.0;
   std::printf("Integrator study: %.2f s simulated per run, output %.0f Hz, all balls integrated\n\n", duration, rate);
   std::printf("| case | method | evaluations per sample | a_rms error | L error (dB) | worst octave band (dB) | real-time factor |\n");
