@@ -92,38 +92,6 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
 void BearingModel::update_race_spalls_in_kernel() {
   race_spalls_in_kernel_ = imperfections_.has_race_spalls() && !imperfections_.offsets_vary_without_race_spalls() &&
                            rows_apart_axially_;
-  windows_follow_outer_ = windows_follow_inner_ = windows_grow_ = false;
-  for (const Spall& s : imperfections_.spalls()) {
-    windows_follow_outer_ = windows_follow_outer_ || s.surface == Surface::OuterRace;
-    windows_follow_inner_ = windows_follow_inner_ || s.surface == Surface::InnerRace;
-    windows_grow_ = windows_grow_ || s.width_growth_m_per_s != 0.0 || s.depth_growth_m_per_s != 0.0;
-  }
-}
-
-const Imperfections::SpallWindow* BearingModel::spall_windows_at(const RollingPhase& phase, int* count) const {
-  constexpr int kCapacity = 4;
-  struct Kept {
-    std::uint64_t stamp = 0;
-    double outer = 0.0, inner = 0.0, time = 0.0;
-    int count = 0;
-    Imperfections::SpallWindow windows[kCapacity];
-  };
-  thread_local Kept kept;
-  const double outer = windows_follow_outer_ ? phase.outer_ring : 0.0;
-  const double inner = windows_follow_inner_ ? phase.inner_ring : 0.0;
-  const double time = windows_grow_ ? phase.time_s : 0.0;
-  if (kept.stamp != stamp_ || kept.outer != outer || kept.inner != inner || kept.time != time) {
-    kept.count = imperfections_.spall_windows(phase, kept.windows, kCapacity);
-    // The row's balls are those at its groove centre's z.
-    for (int i = 0; i < kept.count; ++i)
-      kept.windows[i].row_groove_centre_z = balls_.groove_centre_z[kept.windows[i].row * config_.balls_per_row];
-    kept.stamp = stamp_;
-    kept.outer = outer;
-    kept.inner = inner;
-    kept.time = time;
-  }
-  *count = kept.count;
-  return kept.windows;
 }
 
 std::uint64_t BearingModel::next_stamp() {
@@ -354,11 +322,14 @@ Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, cons
   // and normal slope): one call per force evaluation keeps small bearings cheap. When only
   // race spalls vary, they go into the kernel as windows and the constant offsets need no
   // per-call lookup, copy and sum (on a 9-ball bearing those cost as much as the kernel).
-  const Imperfections::SpallWindow* windows = nullptr;
+  constexpr int kWindows = 4;
+  Imperfections::SpallWindow windows[kWindows];
   int window_count = 0;
   const double* offsets = nullptr;
-  if (race_spalls_in_kernel_) windows = spall_windows_at(phase, &window_count);
+  if (race_spalls_in_kernel_) window_count = imperfections_.spall_windows(phase, windows, kWindows);
   if (window_count > 0) {
+    for (int i = 0; i < window_count; ++i)
+      windows[i].row_groove_centre_z = balls_.groove_centre_z[windows[i].row * config_.balls_per_row];
     offsets = balls.deflection_offset.data();
   } else {
     window_count = 0;

@@ -174,13 +174,7 @@ class BearingModel {
   // Only race spalls vary the offsets (no waviness, roughness or ball spall), and the kernel
   // can tell their rows apart: the force kernel takes them as windows (set with the spalls).
   bool race_spalls_in_kernel_ = false;
-  // Which ring angles the race spalls' windows follow, and whether one grows with time.
-  bool windows_follow_outer_ = false, windows_follow_inner_ = false, windows_grow_ = false;
   void update_race_spalls_in_kernel();
-  // The race spalls' windows at `phase`, *count of them (-1: more than 4), kept per thread
-  // until the next call: they change only with the rings that carry them (on the 6205's
-  // fixed outer ring, never), and with time while a spall grows.
-  const Imperfections::SpallWindow* spall_windows_at(const RollingPhase& phase, int* count) const;
 };
 
 // 6x6 Bushing stiffness (x, y, z, rx, ry, rz) with a zero row and column for rz.
