@@ -441,21 +441,17 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
                                 bool include_spalls) const {
   const int n = static_cast<int>(set.ball.size());
   const double* base = set.base_azimuth.data();
-  // out = constant first: through the waviness sums if there are any, else a copy.
-  if (race_waviness_.empty() && ball_waviness_.empty() && constant != out) std::copy(constant, constant + n, out);
-  if (!race_waviness_.empty() || !ball_waviness_.empty()) {
-    // Per harmonic: amplitude * (cos, sin) of its angle now. Race harmonics see the race-frame
-    // angle of ball b, base_b + cage - ring; ball harmonics the spin angle.
-    thread_local std::vector<double> angles, coefficients;
-    angles.clear();
-    for (const Harmonic& h : race_waviness_)
-      angles.push_back(h.order * (phase.cage - ring_angle(phase, h.surface)));
-    for (const Harmonic& h : ball_waviness_) angles.push_back(h.order * phase.ball_spin);
-    const int harmonics = static_cast<int>(angles.size());
-    coefficients.resize(2 * angles.size());
-    detail::harmonic_coefficients(waviness_amplitudes_.data(), angles.data(), harmonics, coefficients.data());
-    detail::add_harmonic_sums(coefficients.data(), harmonics, set.harmonic_terms.data(), n, constant, out);
-  }
+  // out = constant + the waviness (without waviness, a copy of constant). Per harmonic:
+  // amplitude * (cos, sin) of its angle now. Race harmonics see the race-frame angle of ball
+  // b, base_b + cage - ring; ball harmonics the spin angle.
+  thread_local std::vector<double> angles, coefficients;
+  angles.clear();
+  for (const Harmonic& h : race_waviness_) angles.push_back(h.order * (phase.cage - ring_angle(phase, h.surface)));
+  for (const Harmonic& h : ball_waviness_) angles.push_back(h.order * phase.ball_spin);
+  const int harmonics = static_cast<int>(angles.size());
+  coefficients.resize(2 * angles.size());
+  detail::harmonic_coefficients(waviness_amplitudes_.data(), angles.data(), harmonics, coefficients.data());
+  detail::add_harmonic_sums(coefficients.data(), harmonics, set.harmonic_terms.data(), n, constant, out);
   if (has_roughness_) {
     constexpr double kScale = kProfilePoints / kTwoPi;
     constexpr long kMask = kProfilePoints - 1;
