@@ -92,6 +92,34 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
 void BearingModel::update_race_spalls_in_kernel() {
   race_spalls_in_kernel_ = imperfections_.has_race_spalls() && !imperfections_.offsets_vary_without_race_spalls() &&
                            rows_apart_axially_;
+  standing_window_count_ = 0;
+  windows_follow_outer_ = windows_follow_inner_ = false;
+  if (!race_spalls_in_kernel_) return;
+  bool grows = false;
+  for (const Spall& s : imperfections_.spalls()) {
+    windows_follow_outer_ = windows_follow_outer_ || s.surface == Surface::OuterRace;
+    windows_follow_inner_ = windows_follow_inner_ || s.surface == Surface::InnerRace;
+    grows = grows || s.width_growth_m_per_s != 0.0 || s.depth_growth_m_per_s != 0.0;
+  }
+  if (grows) return;
+  standing_window_count_ = std::max(0, imperfections_.spall_windows(RollingPhase{}, standing_windows_, kMaxKernelWindows));
+  // The row's balls are those at its groove centre's z.
+  for (int i = 0; i < standing_window_count_; ++i)
+    standing_windows_[i].row_groove_centre_z = balls_.groove_centre_z[standing_windows_[i].row * config_.balls_per_row];
+}
+
+const Imperfections::SpallWindow* BearingModel::kernel_windows(const RollingPhase& phase,
+                                                               Imperfections::SpallWindow* scratch, int* count) const {
+  // The same windows as made anew: at ring angle 0 (or -0) a spall's centre is its position.
+  if (standing_window_count_ > 0 && (!windows_follow_outer_ || phase.outer_ring == 0.0) &&
+      (!windows_follow_inner_ || phase.inner_ring == 0.0)) {
+    *count = standing_window_count_;
+    return standing_windows_;
+  }
+  *count = std::max(0, imperfections_.spall_windows(phase, scratch, kMaxKernelWindows));
+  for (int i = 0; i < *count; ++i)
+    scratch[i].row_groove_centre_z = balls_.groove_centre_z[scratch[i].row * config_.balls_per_row];
+  return scratch;
 }
 
 std::uint64_t BearingModel::next_stamp() {
@@ -322,19 +350,15 @@ Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, cons
   // and normal slope): one call per force evaluation keeps small bearings cheap. When only
   // race spalls vary, they go into the kernel as windows and the constant offsets need no
   // per-call lookup, copy and sum (on a 9-ball bearing those cost as much as the kernel).
-  constexpr int kWindows = 4;
-  Imperfections::SpallWindow windows[kWindows];
+  Imperfections::SpallWindow scratch[kMaxKernelWindows];
+  const Imperfections::SpallWindow* windows = nullptr;
   int window_count = 0;
   const double* offsets = nullptr;
-  if (race_spalls_in_kernel_) window_count = imperfections_.spall_windows(phase, windows, kWindows);
-  if (window_count > 0) {
-    for (int i = 0; i < window_count; ++i)
-      windows[i].row_groove_centre_z = balls_.groove_centre_z[windows[i].row * config_.balls_per_row];
+  if (race_spalls_in_kernel_) windows = kernel_windows(phase, scratch, &window_count);
+  if (window_count > 0)
     offsets = balls.deflection_offset.data();
-  } else {
-    window_count = 0;
+  else
     offsets = offsets_at(phase, balls);
-  }
   const detail::ContactKernelInput in{cos_cage,
                                       sin_cage,
                                       groove_centre_radius_,

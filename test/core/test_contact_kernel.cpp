@@ -218,6 +218,36 @@ TEST(ContactKernel, RaceSpallWindowsGiveTheOffsetsDips) {
   });
 }
 
+// The windows of spalls on a standing ring are made once with the spalls (BearingModel keeps
+// them): they must follow every change of the spalls. On the 6205 (the outer ring stands),
+// ball 0 at the centre of the load zone: a spall under it lowers the force, clearing it
+// gives back the spall-free force bit for bit, and a growing spall (its windows made anew
+// at each time) deepens with time; each as the offsets' dips give it (1e-9 of the load).
+TEST(ContactKernel, StandingSpallWindowsFollowTheSpalls) {
+  BearingModel model = test::bearing_6205();
+  const Vector5 load = test::load5(1000.0, 0.0, 0.0, 0.0, 0.0);
+  const Vector5 q = solve_static(model, load).displacement;
+  const double scale = load.norm();
+  const auto force = [&](double time_s) {
+    const RollingPhase phase{0.0, 0.37, 0.0, 0.0, time_s};
+    const Vector5 f = model.contact_force(q, Vector5::Zero(), phase, model.balls());
+    EXPECT_LT((f - model.contact_force_and_stiffness(q, phase, nullptr, nullptr)).norm(), 1e-9 * scale);
+    return f;
+  };
+  const Vector5 clean = force(0.0);
+  model.add_spall(Spall{Surface::OuterRace, 0.0, 0, 1.5e-3, 20e-6});
+  const Vector5 spalled = force(0.0);
+  EXPECT_GT((clean - spalled).norm(), 1e-3 * scale) << "the spall under ball 0 was not seen";
+  EXPECT_EQ(force(1.0), spalled) << "a spall that does not grow gave another force later";
+  model.clear_spalls();
+  EXPECT_EQ(force(0.0), clean);
+  Spall growing{Surface::OuterRace, 0.0, 0, 0.5e-3, 2e-6};
+  growing.depth_growth_m_per_s = 10e-6;
+  model.add_spall(growing);
+  const Vector5 young = force(0.0), grown = force(1.0);
+  EXPECT_GT((young - grown).norm(), 1e-3 * scale) << "the growing spall's windows did not follow time";
+}
+
 // The waviness sums against the scalar loop: random phases and amplitudes of 0.01-1 um, 1-9
 // harmonics, ball counts that are not multiples of any vector width. Each offset is a sum of
 // at most 18 terms of <= 1e-6 m: FMAs and the order give rounding of ~1e-15 of that.

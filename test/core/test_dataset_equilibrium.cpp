@@ -89,15 +89,20 @@ TEST(DatasetEquilibrium, EveryScenarioHasAStaticEquilibriumWithItsLoadZoneUnderI
       // 1.5 C0 -> ~4800 MPa), so the assumed groove curvatures do not decide it.
       if (d.static_rating_N > 0.0) {
         const double ratio = load.head<3>().norm() / d.static_rating_N;
-        if (ratio <= 0.5) EXPECT_FALSE(s.exceeds_permissible_pressure()) << s.max_contact_pressure_Pa;
-        if (ratio >= 1.5) EXPECT_TRUE(s.exceeds_permissible_pressure()) << s.max_contact_pressure_Pa;
+        if (ratio <= 0.5) {
+          EXPECT_FALSE(s.exceeds_permissible_pressure()) << s.max_contact_pressure_Pa;
+        }
+        if (ratio >= 1.5) {
+          EXPECT_TRUE(s.exceeds_permissible_pressure()) << s.max_contact_pressure_Pa;
+        }
       }
     }
 
     // The scenarios place their outer-race faults in the load zone (the fixed outer race's
     // frame is the bearing frame): within half a ball pitch of the load direction.
     for (const ScenarioDefectEvent& e : sc.defect_events())
-      if (e.kind == ScenarioDefectEvent::Kind::Spall && e.spall.surface == Surface::OuterRace)
+      if (e.kind == ScenarioDefectEvent::Kind::Spall && e.spall.surface == Surface::OuterRace) {
         EXPECT_LE(std::abs(angle_difference(e.spall.position_rad, load_direction)), half_pitch);
+      }
   }
 }

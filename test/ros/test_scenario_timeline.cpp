@@ -295,7 +295,9 @@ TEST(ScenarioTimeline, RingTemperatureGoesOutOnEachStepOnly) {
   for (std::size_t i = 0; i < sent.size(); ++i) {
     const TimelineCommand& c = sent[i].command;
     EXPECT_EQ(c.ring_temperature_difference_K, s.ring_temperature_difference_at(c.scenario_time_s));
-    if (i > 0) EXPECT_NEAR(c.ring_temperature_difference_K, sent[i - 1].command.ring_temperature_difference_K - 0.1, 1e-12);
+    if (i > 0) {
+      EXPECT_NEAR(c.ring_temperature_difference_K, sent[i - 1].command.ring_temperature_difference_K - 0.1, 1e-12);
+    }
   }
   const Scenario plain = make_scenario();  // the timeline keeps a reference
   ScenarioTimeline without(plain, TimelineSettings{});

@@ -238,8 +238,9 @@ TEST_F(Generate, NpyCsvAndJsonEqualTheBag) {
     EXPECT_EQ(j["labels"]["phase"][k].get<std::string>(), labels[k].phase);
     EXPECT_EQ(j["labels"]["ring_speed_rad_s"][k].get<double>(), labels[k].ring_speed_rad_s);
     ASSERT_EQ(j["labels"]["defects"][k].size(), labels[k].defects.size());
-    if (!labels[k].defects.empty())
+    if (!labels[k].defects.empty()) {
       EXPECT_EQ(j["labels"]["defects"][k][0]["width_m"].get<double>(), labels[k].defects[0].width_m);
+    }
   }
   EXPECT_EQ(j["phases"].size(), 3u);
 }

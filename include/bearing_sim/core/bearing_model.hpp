@@ -174,7 +174,18 @@ class BearingModel {
   // Only race spalls vary the offsets (no waviness, roughness or ball spall), and the kernel
   // can tell their rows apart: the force kernel takes them as windows (set with the spalls).
   bool race_spalls_in_kernel_ = false;
+  // Those windows made once with the spalls, for ring angles of zero: while the rings that
+  // carry spalls stand there (a fixed ring, as the 6205's outer ring) and no spall grows, a
+  // force evaluation takes them as they are (making them anew cost the 6205 a twentieth of
+  // its time). Members, not a per-thread cache: the model is shared read-only by threads.
+  static constexpr int kMaxKernelWindows = 4;
+  Imperfections::SpallWindow standing_windows_[kMaxKernelWindows] = {};
+  int standing_window_count_ = 0;  // 0: none kept
+  bool windows_follow_outer_ = false, windows_follow_inner_ = false;
   void update_race_spalls_in_kernel();
+  // The kernel's windows at `phase` (into `scratch` unless the standing ones serve), *count.
+  const Imperfections::SpallWindow* kernel_windows(const RollingPhase& phase, Imperfections::SpallWindow* scratch,
+                                                   int* count) const;
 };
 
 // 6x6 Bushing stiffness (x, y, z, rx, ry, rz) with a zero row and column for rz.
