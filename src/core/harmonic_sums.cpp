@@ -27,11 +27,21 @@ HWY_INLINE void AddGroup(const double* HWY_RESTRICT c, const double* HWY_RESTRIC
   const hn::ScalableTag<double> d;
   using V = hn::Vec<decltype(d)>;
   const int lanes = static_cast<int>(hn::Lanes(d));
+#if HWY_HAVE_SCALABLE
+  // SVE's (and RVV's) vectors are sizeless types, which cannot be array elements: there each
+  // coefficient is broadcast where it is used (a loop invariant of the loops over the balls).
+  struct Broadcast {
+    const double* every_other;
+    V operator[](int h) const { return hn::Set(hn::ScalableTag<double>(), every_other[2 * h]); }
+  };
+  const Broadcast cos_coefficient{c}, sin_coefficient{c + 1};
+#else
   V cos_coefficient[kHarmonics], sin_coefficient[kHarmonics];
   for (int h = 0; h < kHarmonics; ++h) {
     cos_coefficient[h] = hn::Set(d, c[2 * h]);
     sin_coefficient[h] = hn::Set(d, c[2 * h + 1]);
   }
+#endif
   const auto add = [&](int b, V offset, auto load) HWY_ATTR {
     V sum = hn::Zero(d);
     for (int h = 0; h < kHarmonics; ++h) {
