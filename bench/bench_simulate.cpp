@@ -9,6 +9,7 @@
 
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/bearing_dynamics.hpp"
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/simd_info.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
 #include "bearing_sim/ros/triaxial_sensor.hpp"
@@ -47,7 +48,7 @@ Vector5 ct_load() {
 }
 
 void BM_SimulateCtGantry(benchmark::State& state, IntegrationMethod method) {
-  simulate(state, bearing("ct_gantry_lyc.yaml"), ct_load(), 180.0 * 2.0 * 3.14159265358979 / 60.0, method);
+  simulate(state, bearing("ct_gantry_lyc.yaml"), ct_load(), 180.0 * bearing_sim::kTwoPi / 60.0, method);
 }
 
 // The CT bearing with waviness on both races and the balls, and a 2 mm x 20 um spall on
@@ -57,13 +58,13 @@ bearing_sim::BearingConfig ct_gantry_with_defects() {
 }
 
 void BM_SimulateCtGantryWithDefects(benchmark::State& state, IntegrationMethod method) {
-  simulate(state, ct_gantry_with_defects(), ct_load(), 180.0 * 2.0 * 3.14159265358979 / 60.0, method);
+  simulate(state, ct_gantry_with_defects(), ct_load(), 180.0 * bearing_sim::kTwoPi / 60.0, method);
 }
 
 // The same, with the node's triaxial housing accelerometer on every sample (the node's configuration).
 void BM_SimulateCtGantryWithDefectsAndSensor(benchmark::State& state, IntegrationMethod method) {
   const bearing_sim::BearingModel model(ct_gantry_with_defects());
-  bearing_sim::BearingDynamics dynamics(model, ct_load(), 180.0 * 2.0 * 3.14159265358979 / 60.0,
+  bearing_sim::BearingDynamics dynamics(model, ct_load(), 180.0 * bearing_sim::kTwoPi / 60.0,
                                         {10000.0, 0, true, method});
   bearing_sim::ros_node::TriaxialSensor sensor(
       bearing_sim::load_accelerometer_config(std::string(BEARING_SIM_SOURCE_DIR) +
@@ -84,7 +85,7 @@ void BM_SimulateCtGantryWithDefectsAndSensor(benchmark::State& state, Integratio
 void BM_SimulateIns61822(benchmark::State& state, IntegrationMethod method) {
   Vector5 load;
   load << 3400.0, 0.0, 1750.0, 0.0, 0.0;
-  simulate(state, bearing("ins_618_22_db.yaml"), load, 60.0 * 2.0 * 3.14159265358979 / 60.0, method);
+  simulate(state, bearing("ins_618_22_db.yaml"), load, 60.0 * bearing_sim::kTwoPi / 60.0, method);
 }
 
 // The 6205 deep-groove bearing of the health tests (9 balls, inner ring rotating at
@@ -95,7 +96,7 @@ void BM_SimulateDeepGroove6205WithSpall(benchmark::State& state, IntegrationMeth
       YAML::Load("{}"), YAML::Load("[{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 20}]"), "bench");
   Vector5 load;
   load << 1000.0, 0.0, 0.0, 0.0, 0.0;
-  simulate(state, config, load, 1797.0 * 2.0 * 3.14159265358979 / 60.0, method);
+  simulate(state, config, load, 1797.0 * bearing_sim::kTwoPi / 60.0, method);
 }
 
 }  // namespace

@@ -30,6 +30,7 @@
 
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/bearing_dynamics.hpp"
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "bearing_sim/core/simulation_run.hpp"
 #include "bearing_sim/core/spectrum.hpp"
@@ -37,11 +38,9 @@
 #include "reference_cases.hpp"
 
 namespace {
-
 using namespace bearing_sim;
 using Vector10 = Eigen::Matrix<double, 10, 1>;
 using Matrix10 = Eigen::Matrix<double, 10, 10>;
-constexpr double kPi = 3.14159265358979323846;
 
 struct Case {
   std::string name;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "bearing_sim/core/bearing_model.hpp"
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/modal_damping.hpp"
 #include "flexible_ring_config.hpp"
@@ -13,8 +14,6 @@
 
 namespace bearing_sim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 using detail::Reader;
 
 // A list of exactly n finite numbers under `key`, if present.

@@ -7,15 +7,13 @@
 
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "small_products.hpp"
 
 namespace bearing_sim {
 namespace {
-
-constexpr double kTwoPi = 6.28318530717958647692;
-
 // m x for the integrators' small fixed-size matrices: the SIMD kernel of small_products.hpp
 // (Eigen's products at these sizes cost several times the arithmetic).
 template <int Rows, int Cols>
@@ -715,7 +713,6 @@ DynamicSample BearingDynamics::commit_sample(const Vector5& q, const Vector5& v,
   // comparison with pi (= 2 pi / 2 exactly) picks it exactly and x -+ 2 pi is the one
   // rounding std::remainder makes, so the result is bit for bit the same.
   const auto wrap = [](double x) {
-    constexpr double kPi = kTwoPi / 2.0;
     if (!(std::abs(x) <= 3.0 * kPi)) return std::remainder(x, kTwoPi);
     return x > kPi ? x - kTwoPi : x < -kPi ? x + kTwoPi : x;
   };

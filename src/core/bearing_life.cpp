@@ -5,11 +5,11 @@
 #include <iterator>
 #include <limits>
 
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 
 namespace bearing_sim {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // ISO 281:2007 Table 2, radial ball bearings: D_w cos(a) / D_pw and f_c for

@@ -7,14 +7,12 @@
 #include <limits>
 #include <random>
 
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/thermal_clearance.hpp"
 #include "contact_kernel.hpp"
 
 namespace bearing_sim {
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
 
 BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
   const auto& c = config_;

@@ -4,12 +4,10 @@
 
 #include <Eigen/Dense>
 
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 
 namespace bearing_sim {
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}  // namespace
 
 std::complex<double> Biquad::response(double f_hz, double fs_hz) const {
   const std::complex<double> x = std::polar(1.0, -2.0 * kPi * f_hz / fs_hz);  // z^-1

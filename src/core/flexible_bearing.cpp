@@ -6,12 +6,10 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 
 namespace bearing_sim {
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
 
 FlexibleBearing::FlexibleBearing(BearingModel model) : model_(std::move(model)) {
   const FlexibleRingSpec& spec = model_.config().flexible_ring;
@@ -210,7 +208,6 @@ std::vector<BallState> FlexibleBearing::ball_states(const Eigen::VectorXd& x, co
 }
 
 namespace {
-
 // Residual with the moments divided by the pitch radius (as solve_static), N.
 double scaled_norm(const Eigen::VectorXd& r, double pitch_radius) {
   Eigen::VectorXd s = r;

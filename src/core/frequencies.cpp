@@ -2,10 +2,9 @@
 
 #include <cmath>
 
+#include "bearing_sim/core/constants.hpp"
+
 namespace bearing_sim {
-namespace {
-constexpr double kTwoPi = 6.28318530717958647692;
-}
 
 BearingFrequencies bearing_frequencies(const BearingModel& model, double inner_rad_s, double outer_rad_s) {
   const auto& c = model.config();

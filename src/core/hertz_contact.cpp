@@ -2,10 +2,9 @@
 
 #include <cmath>
 
+#include "bearing_sim/core/constants.hpp"
+
 namespace bearing_sim {
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
 
 HertzContact hertz_contact(double inv_rx, double inv_ry, double youngs_modulus_Pa, double poisson_ratio) {
   HertzContact c;

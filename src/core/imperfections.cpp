@@ -8,15 +8,13 @@
 
 #include <unsupported/Eigen/FFT>
 
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "harmonic_sums.hpp"
 #include "yaml_reader.hpp"
 
 namespace bearing_sim {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kTwoPi = 2.0 * kPi;
-
 // Depth a ball of diameter d can reach in a spall of length w: it drops until it rests
 // on both edges, w^2 / (4 d) for w << d, never more than the spall is deep.
 double effective_depth(double width_m, double depth_m, double ball_diameter_m) {

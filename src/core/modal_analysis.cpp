@@ -7,6 +7,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 
 namespace bearing_sim {
@@ -73,7 +74,7 @@ ModalResult solve_modes(const RigidBody& body, const std::vector<BushingSupport>
   for (int i = 0; i < 6; ++i) {
     Mode m;
     m.free = lambda[i] < 1e-9 * lambda_max;
-    m.frequency_hz = m.free ? 0.0 : std::sqrt(lambda[i]) / (2.0 * M_PI);
+    m.frequency_hz = m.free ? 0.0 : std::sqrt(lambda[i]) / kTwoPi;
     m.shape = solver.eigenvectors().col(i);
     const double norm = std::sqrt(m.shape.dot(result.mass * m.shape));
     if (norm > 0.0) m.shape /= norm;

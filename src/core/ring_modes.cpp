@@ -2,11 +2,10 @@
 
 #include <cmath>
 
+#include "bearing_sim/core/constants.hpp"
+
 namespace bearing_sim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
 // In-plane, from the energies over the circumference (docs/model.md 18.1):
 // T = rho A R / 2 integral (w'^2 + v'^2) dtheta = rho A R pi (1 + 1/n^2) a'^2 / 2;
 // U = E I / (2 R^3) integral (w'' + w)^2 dtheta = pi E I (n^2 - 1)^2 / R^3 a^2 / 2;

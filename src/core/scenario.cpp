@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/thermal_clearance.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
@@ -15,7 +16,6 @@
 
 namespace bearing_sim {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kRpmToRadS = 2.0 * kPi / 60.0;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 namespace fs = std::filesystem;

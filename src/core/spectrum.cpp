@@ -9,11 +9,11 @@
 
 #include <unsupported/Eigen/FFT>
 
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 
 namespace bearing_sim {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 using Complex = std::complex<double>;
 
 void check_signal(const std::vector<double>& x, double sample_rate_hz, const char* what) {

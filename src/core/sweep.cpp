@@ -13,14 +13,12 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "yaml_reader.hpp"
 
 namespace bearing_sim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
 // ---------------------------------------------------------------------------
 // The one table of sweepable parameters.
 // ---------------------------------------------------------------------------

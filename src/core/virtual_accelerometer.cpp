@@ -5,13 +5,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "yaml_reader.hpp"
 
 namespace bearing_sim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 // The path is a digital biquad at the input rate; above this fraction of it the design
 // (exact poles, fitted numerator) no longer resembles the analog path.
 constexpr double kMaxPathResonanceFraction = 0.45;

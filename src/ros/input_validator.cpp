@@ -8,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "bearing_sim/core/bearing_dynamics.hpp"
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 
@@ -84,7 +85,6 @@ InputCheck check_integrator_work(const BearingModel& model, const Vector5& load,
                                   .eigenvalues()[4];
   const BearingConfig& b = model.config();
   std::ostringstream why;
-  constexpr double kTwoPi = 6.283185307179586;
   constexpr double kHighestPlausibleModeHz = 1.0e5;
   if (omega_max / kTwoPi <= kHighestPlausibleModeHz) {
     why.precision(3);

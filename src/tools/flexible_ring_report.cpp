@@ -7,6 +7,7 @@
 #include <iostream>
 #include <vector>
 
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/flexible_dynamics.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
 #include "job_size.hpp"
@@ -14,9 +15,6 @@
 
 namespace bearing_sim::tool {
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586;
-
 const char* direction_name(const RingMode& m) {
   return m.direction == RingModeDirection::Radial ? "in_plane" : "out_of_plane";
 }

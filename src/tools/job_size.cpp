@@ -6,15 +6,13 @@
 #include <sstream>
 
 #include "bearing_sim/core/bearing_dynamics.hpp"
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/ros/input_validator.hpp"
 #include "tool_common.hpp"
 
 namespace bearing_sim::tool {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
 std::string duration_text(double s) {
   std::ostringstream o;
   o.precision(3);

@@ -9,12 +9,11 @@
 #include <sstream>
 
 #include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 
 namespace bearing_sim::tool {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-
 std::string join(const std::vector<std::string>& parts, const std::string& sep) {
   std::string out;
   for (const auto& p : parts) out += (out.empty() ? "" : sep) + p;

@@ -5,11 +5,11 @@
 #include <limits>
 #include <sstream>
 
+#include "bearing_sim/core/constants.hpp"
+
 namespace bearing_sim {
 namespace viz {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-
 Eigen::Vector3d on_circle(double radius, double azimuth, double z) {
   return Eigen::Vector3d(radius * std::cos(azimuth), radius * std::sin(azimuth), z);
 }

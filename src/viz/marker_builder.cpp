@@ -3,13 +3,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 
 namespace bearing_sim {
 namespace viz {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-
 geometry_msgs::Point point(const Eigen::Vector3d& p) {
   geometry_msgs::Point out;
   out.x = p.x();

@@ -7,13 +7,13 @@
 #include <geometry_msgs/TransformStamped.h>
 
 #include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/ros/private_parameters.hpp"
 #include "bearing_sim/viz/viz_parameters.hpp"
 
 namespace bearing_sim {
 namespace viz {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 // The cage angle of the last BallLoads is carried forward at the cage speed between
 // messages, but not further than this: a stalled simulation shows a stopped cage.
 constexpr double kMaxCageExtrapolation_s = 0.5;
