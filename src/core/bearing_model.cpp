@@ -100,7 +100,8 @@ void BearingModel::update_race_spalls_in_kernel() {
     grows = grows || s.width_growth_m_per_s != 0.0 || s.depth_growth_m_per_s != 0.0;
   }
   if (grows) return;
-  standing_window_count_ = std::max(0, imperfections_.spall_windows(RollingPhase{}, standing_windows_, kMaxKernelWindows));
+  standing_window_count_ =
+      std::max(0, imperfections_.spall_windows(RollingPhase{}, standing_windows_, kMaxKernelWindows));
   // The row's balls are those at its groove centre's z.
   for (int i = 0; i < standing_window_count_; ++i)
     standing_windows_[i].row_groove_centre_z = balls_.groove_centre_z[standing_windows_[i].row * config_.balls_per_row];

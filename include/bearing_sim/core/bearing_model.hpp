@@ -176,8 +176,8 @@ class BearingModel {
   bool race_spalls_in_kernel_ = false;
   // Those windows made once with the spalls, for ring angles of zero: while the rings that
   // carry spalls stand there (a fixed ring, as the 6205's outer ring) and no spall grows, a
-  // force evaluation takes them as they are (making them anew cost the 6205 a twentieth of
-  // its time). Members, not a per-thread cache: the model is shared read-only by threads.
+  // force evaluation takes them as they are (making them anew took a twentieth of the 6205's
+  // instructions). Members, not a per-thread cache: the model is shared read-only by threads.
   static constexpr int kMaxKernelWindows = 4;
   Imperfections::SpallWindow standing_windows_[kMaxKernelWindows] = {};
   int standing_window_count_ = 0;  // 0: none kept
