@@ -22,15 +22,23 @@ bool limit_simd_target(const std::string& name) {
 
 std::string cpu_model_name() {
   std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("model name", 0) != 0) continue;
+  std::string line, name, family, model;
+  // The first processor's entries only (they end at its first blank line).
+  while (std::getline(in, line) && !line.empty()) {
     const std::size_t colon = line.find(':');
-    if (colon == std::string::npos) break;
+    if (colon == std::string::npos) continue;
     const std::size_t start = line.find_first_not_of(" \t", colon + 1);
-    return start == std::string::npos ? "unknown" : line.substr(start);
+    const std::string value = start == std::string::npos ? "" : line.substr(start);
+    const std::string key = line.substr(0, line.find_last_not_of(" \t", colon - 1) + 1);
+    if (key == "model name") name = value;
+    if (key == "cpu family") family = value;
+    if (key == "model") model = value;
   }
-  return "unknown";
+  if (name.empty()) return "unknown";
+  // A virtual machine often names every CPU alike ("Intel(R) Xeon(R) Processor"): the
+  // family and model numbers tell them apart.
+  if (!family.empty() && !model.empty()) name += " (family " + family + " model " + model + ")";
+  return name;
 }
 
 }  // namespace bearing_sim

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <limits>
 #include <random>
@@ -341,6 +342,14 @@ TEST(ContactKernel, ReportsTheCpuAndSimdTarget) {
   std::cout << "CPU: " << cpu_model_name() << ", SIMD target: " << simd_target_name() << "\n";
   EXPECT_FALSE(simd_target_name().empty());
   EXPECT_FALSE(cpu_model_name().empty());
+  // The name as /proc/cpuinfo gives it first, then its family and model where it has them.
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line) && line.rfind("model name", 0) != 0) {
+  }
+  if (line.empty()) return;  // no "model name" (e.g. an Arm kernel): "unknown" is right
+  const std::string name = line.substr(line.find_first_not_of(" \t", line.find(':') + 1));
+  EXPECT_EQ(cpu_model_name().rfind(name, 0), 0u) << cpu_model_name();
 }
 
 // bench_simulate --simd_target=AVX2: an AVX2-only CPU's kernel on an AVX-512 machine.

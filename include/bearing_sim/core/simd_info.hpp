@@ -11,7 +11,8 @@ std::string simd_target_name();
 // measure on an AVX-512 machine what an AVX2-only CPU would run. Call it before the first
 // force evaluation. False, changing nothing, when no compiled target of that name runs here.
 bool limit_simd_target(const std::string& name);
-// "model name" of the first processor in /proc/cpuinfo, or "unknown".
+// "model name" of the first processor in /proc/cpuinfo with its family and model numbers
+// where given, e.g. "Intel(R) Xeon(R) Processor (family 6 model 167)", or "unknown".
 std::string cpu_model_name();
 
 }  // namespace bearing_sim
