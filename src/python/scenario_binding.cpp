@@ -58,6 +58,7 @@ py::dict info_dict(const tool::DatasetInfo& i) {
   d["ideal_samples"] = i.ideal_samples;
   d["measured_samples"] = i.measured_samples;
   d["label_rate_hz"] = i.label_rate_hz;
+  d["simd_target"] = i.simd_target;
   return d;
 }
 

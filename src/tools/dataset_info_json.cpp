@@ -20,6 +20,7 @@ nlohmann::json dataset_info_json(const DatasetInfo& info) {
   j["measured_samples"] = info.measured_samples;
   j["label_rate_hz"] = info.label_rate_hz;
   j["frame_id"] = info.frame_id;
+  j["simd_target"] = info.simd_target;
   nlohmann::json phases = nlohmann::json::array();
   for (const ScenarioPhase& p : info.phases) phases.push_back({{"name", p.name}, {"start_s", p.start_s}});
   j["phases"] = phases;

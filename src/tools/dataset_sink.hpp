@@ -28,6 +28,9 @@ struct DatasetInfo {
   double label_rate_hz = 0.0;  // scenario_state / the sidecar's label time line
   std::string frame_id, bearing_frame_id;
   std::vector<ScenarioPhase> phases;
+  // The SIMD target the kernels ran on: the same scenario and seed give the same bytes on
+  // CPUs that run the same target; across targets the samples differ in their rounding.
+  std::string simd_target;
 };
 
 // The labels of one instant (dynamics sample `index`).

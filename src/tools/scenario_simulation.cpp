@@ -8,6 +8,7 @@
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/simd_info.hpp"
 #include "bearing_sim/core/thermal_clearance.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
 #include "bearing_sim/ros/message_conversion.hpp"
@@ -72,6 +73,7 @@ ScenarioSimulation::ScenarioSimulation(Scenario scenario, const std::string& sce
   info_.frame_id = config.rotating_ring == RotatingRing::Outer ? "bearing_outer_ring" : "bearing_inner_ring";
   info_.bearing_frame_id = "bearing";
   info_.phases = scenario_.phases();
+  info_.simd_target = simd_target_name();
   if (!(settings_.label_rate_hz > 0.0) || settings_.label_rate_hz > rate)
     throw InvalidInputError("label rate must be in (0, sample rate]");
   label_period_ = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(rate / settings_.label_rate_hz)));

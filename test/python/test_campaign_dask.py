@@ -47,6 +47,9 @@ def test_two_workers_give_the_bytes_of_a_serial_run(client, campaign_file, tmp_p
     assert len(serial) == 20 and serial == dask
     # Both workers took part: no run order or placement enters the bytes.
     assert len({r['pid'] for r in d['records']}) == 2
+    # Every record names the SIMD target its kernels ran on (the bytes hold for one target).
+    import bearing_sim
+    assert {r['simd_target'] for r in d['records']} == {bearing_sim.simd_target_name()}
     rows = manifest(tmp_path / 'dask')
     assert [int(r['index']) for r in rows] == list(range(20)) and {r['status'] for r in rows} == {'ok'}
     assert {r['label_defects_at_end'] for r in rows} == {'none', 'outer_race'}

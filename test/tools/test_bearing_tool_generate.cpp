@@ -25,6 +25,7 @@
 #include "bearing_sim/ScenarioState.h"
 #include "bearing_sim/VibrationChunk.h"
 #include "bearing_sim/VibrationLevel.h"
+#include "bearing_sim/core/simd_info.hpp"
 #include "tool_runner.hpp"
 
 using bearing_sim::test::read_file;
@@ -194,6 +195,8 @@ TEST_F(Generate, LabelsFollowTheScenario) {
   EXPECT_EQ(j["seed"], 5);
   EXPECT_EQ(j["ideal_samples"], kSamples);
   EXPECT_EQ(j["sensor"]["name"], "CT gantry stator, radial");
+  // The tool runs on this CPU with this library: the same dispatcher's choice.
+  EXPECT_EQ(j["simd_target"], bearing_sim::simd_target_name());
 }
 
 TEST_F(Generate, NpyCsvAndJsonEqualTheBag) {

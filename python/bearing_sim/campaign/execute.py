@@ -61,7 +61,7 @@ def run_index(campaign_path, campaign_text, out_dir, index):
         write_atomically(store.data_path(index), data)
         record.update(status='ok', file=os.path.relpath(store.data_path(index), store.out_dir), bytes=len(data),
                       labels=run_labels(result), simulated_s=result['info']['duration_s'], cpu_s=result['cpu_s'],
-                      divergences=result['divergences'])
+                      divergences=result['divergences'], simd_target=result['info']['simd_target'])
     except Exception as e:  # a failing run is recorded, never stops the campaign
         record.update(status='failed', error=f'{type(e).__name__}: {e}')
     finally:
