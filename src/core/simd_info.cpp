@@ -20,6 +20,15 @@ bool limit_simd_target(const std::string& name) {
   return false;
 }
 
+std::string runnable_simd_targets() {
+  std::string names;
+  for (const std::int64_t target : detail::contact_kernel_compiled_targets()) {
+    if ((hwy::SupportedTargets() & target) == 0) continue;
+    names += (names.empty() ? "" : ", ") + std::string(hwy::TargetName(target));
+  }
+  return names;
+}
+
 std::string cpu_model_name() {
   std::ifstream in("/proc/cpuinfo");
   std::string line, name, family, model;

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/simd_info.hpp"
 #include "commands.hpp"
 #include "tool_common.hpp"
 
@@ -45,6 +46,19 @@ int main(int argc, char** argv) {
     return "bearing_tool: invalid input: " + std::string(e.what()) + "\nRun '" + where +
            " --help' for the options.\n";
   });
+  // Before the command: the kernels' SIMD target, for datasets that must be byte-identical
+  // across machines (samples differ by rounding between targets) or a narrower target that
+  // runs faster on some CPUs. Applied as it is parsed, before the command's callback.
+  app.add_option_function<std::string>(
+         "--simd-target",
+         [](const std::string& name) {
+           if (!bearing_sim::limit_simd_target(name))
+             throw tool::InputError("--simd-target " + name + ": not a SIMD target this CPU runs (it runs: " +
+                                    bearing_sim::runnable_simd_targets() + ")");
+         },
+         "Run the kernels on this SIMD target (default: the best this CPU runs; e.g. AVX2, SSE4, NEON)")
+      ->type_name("NAME")
+      ->trigger_on_parse();
   for (Register r : kCommands) r(app);
 
   try {

@@ -18,6 +18,7 @@
 #include "bearing_sim/core/bearing_model.hpp"
 #include "bearing_sim/core/flexible_bearing.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
+#include "bearing_sim/core/simd_info.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
 #include "tool_runner.hpp"
 
@@ -362,6 +363,31 @@ std::vector<std::vector<double>> parse_csv(const std::string& path, std::string*
     rows.push_back(row);
   }
   return rows;
+}
+
+// --simd-target pins the kernels' target (a dataset byte-identical across machines): the
+// narrowest target this CPU runs gives the best one's result to rounding. The smooth CT
+// bearing's vibration (8.5e-5 m/s^2 on 46 kg: 4 mN) is what is left of 6800 N force sums,
+// whose rounding in another order (~1e-12 N per evaluation) moves a_rms by ~1e-8 of itself
+// (seen: 1.5e-8); 1e-6 is a wide margin, while a kernel that differed would be percent off.
+// A name this CPU cannot run is refused naming it and the targets it can.
+TEST_F(ToolTest, SimdTargetPinsTheKernelsAndOneThisCpuCannotRunIsRefused) {
+  const std::string targets = bearing_sim::runnable_simd_targets();
+  const std::size_t comma = targets.rfind(", ");
+  const std::string narrowest = comma == std::string::npos ? targets : targets.substr(comma + 2);
+  const std::string args =
+      "simulate --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.05";
+  const json best = run_json(args);
+  const json pinned = run_json("--simd-target " + narrowest + " " + args);
+  EXPECT_EQ(best["simd_target"], bearing_sim::simd_target_name());
+  EXPECT_EQ(pinned["simd_target"], narrowest);
+  const double a = best["a_rms_x"].get<double>();
+  ASSERT_GT(a, 0.0);
+  EXPECT_NEAR(pinned["a_rms_x"].get<double>(), a, 1e-6 * a);
+  const RunResult bad = run("--simd-target NO_SUCH_TARGET " + args);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_TRUE(contains(bad.err, "--simd-target NO_SUCH_TARGET")) << bad.err;
+  EXPECT_TRUE(contains(bad.err, narrowest)) << bad.err;
 }
 
 TEST_F(ToolTest, SimulateCsvHasOneRowPerSampleAndMeanIsTheStaticDisplacement) {
