@@ -100,11 +100,15 @@ void BearingModel::update_race_spalls_in_kernel() {
     grows = grows || s.width_growth_m_per_s != 0.0 || s.depth_growth_m_per_s != 0.0;
   }
   if (grows) return;
-  standing_window_count_ =
-      std::max(0, imperfections_.spall_windows(RollingPhase{}, standing_windows_, kMaxKernelWindows));
+  standing_window_count_ = make_kernel_windows(RollingPhase{}, standing_windows_);
+}
+
+int BearingModel::make_kernel_windows(const RollingPhase& phase, Imperfections::SpallWindow* windows) const {
+  const int count = std::max(0, imperfections_.spall_windows(phase, windows, kMaxKernelWindows));
   // The row's balls are those at its groove centre's z.
-  for (int i = 0; i < standing_window_count_; ++i)
-    standing_windows_[i].row_groove_centre_z = balls_.groove_centre_z[standing_windows_[i].row * config_.balls_per_row];
+  for (int i = 0; i < count; ++i)
+    windows[i].row_groove_centre_z = balls_.groove_centre_z[windows[i].row * config_.balls_per_row];
+  return count;
 }
 
 const Imperfections::SpallWindow* BearingModel::kernel_windows(const RollingPhase& phase,
@@ -115,9 +119,7 @@ const Imperfections::SpallWindow* BearingModel::kernel_windows(const RollingPhas
     *count = standing_window_count_;
     return standing_windows_;
   }
-  *count = std::max(0, imperfections_.spall_windows(phase, scratch, kMaxKernelWindows));
-  for (int i = 0; i < *count; ++i)
-    scratch[i].row_groove_centre_z = balls_.groove_centre_z[scratch[i].row * config_.balls_per_row];
+  *count = make_kernel_windows(phase, scratch);
   return scratch;
 }
 

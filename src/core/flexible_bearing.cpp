@@ -208,6 +208,7 @@ std::vector<BallState> FlexibleBearing::ball_states(const Eigen::VectorXd& x, co
 }
 
 namespace {
+
 // Residual with the moments divided by the pitch radius (as solve_static), N.
 double scaled_norm(const Eigen::VectorXd& r, double pitch_radius) {
   Eigen::VectorXd s = r;

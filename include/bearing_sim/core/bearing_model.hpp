@@ -183,6 +183,9 @@ class BearingModel {
   int standing_window_count_ = 0;  // 0: none kept
   bool windows_follow_outer_ = false, windows_follow_inner_ = false;
   void update_race_spalls_in_kernel();
+  // The race spalls' windows at `phase` with their rows' z, into windows[0..count) (0: more
+  // than kMaxKernelWindows, the offsets then carry the spalls).
+  int make_kernel_windows(const RollingPhase& phase, Imperfections::SpallWindow* windows) const;
   // The kernel's windows at `phase` (into `scratch` unless the standing ones serve), *count.
   const Imperfections::SpallWindow* kernel_windows(const RollingPhase& phase, Imperfections::SpallWindow* scratch,
                                                    int* count) const;
