@@ -5,18 +5,11 @@
 
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
+#include "envelope_evidence.hpp"
 #include "fault_evidence.hpp"
 #include "fixed_decimals.hpp"
 
 namespace bearing_sim {
-namespace {
-// Some band of the kurtogram's tree is wide enough and starts high enough: the half band
-// [fs/4, fs/2] is the widest one off DC.
-bool kurtogram_fits(double fs, double highest_fault_hz, double lowest_edge_hz) {
-  return 0.25 * fs >= 3.0 * highest_fault_hz && 0.25 * fs >= lowest_edge_hz;
-}
-
-}  // namespace
 
 
 const char* velocity_zone_name(VelocityZone zone) {
@@ -41,6 +34,15 @@ const char* health_level_name(HealthLevel level) {
     case HealthLevel::Ok: return "OK";
     case HealthLevel::Warn: return "WARN";
     case HealthLevel::Error: return "ERROR";
+  }
+  return "?";
+}
+
+const char* verdict_outcome_name(VerdictOutcome outcome) {
+  switch (outcome) {
+    case VerdictOutcome::None: return "none";
+    case VerdictOutcome::Fault: return "fault";
+    case VerdictOutcome::Ambiguous: return "ambiguous";
   }
   return "?";
 }
@@ -118,9 +120,10 @@ Diagnosis diagnose(const ConditionIndicators& c, const DiagnosisThresholds& t) {
                         "impulsive vibration: kurtosis " + detail::fixed_decimals(c.acceleration.kurtosis, 1) + " (Gaussian noise 3), "
                         "typical of a localised defect"});
   Diagnosis d;
+  d.verdict = fault_verdict(c.faults);
   if (findings.empty()) {
     d.reason = "no defect indication: " + velocity + ", kurtosis " + detail::fixed_decimals(c.acceleration.kurtosis, 1) +
-               ", no envelope peak " + detail::fixed_decimals(t.fault_snr_db, 0) + " dB over noise at the fault frequencies";
+               ", no fault series in the envelope spectrum (fundamental " + detail::fixed_decimals(c.fault_snr_db_used, 1) + " dB over noise with its supporting lines)";
     return d;
   }
   std::stable_sort(findings.begin(), findings.end(), [](const Finding& a, const Finding& b) {
@@ -164,53 +167,59 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
       velocity_low_hz < nyquist ? 1e3 * band_velocity_rms(x, fs, velocity_low_hz, c.velocity_high_hz) : 0.0;
   c.zone = velocity_zone(c.velocity_rms_mm_s, o.zones);
 
-  // Envelope band.
+  // Two envelope paths (docs/health.md, "Evidence", rule 10): the window as recorded (the
+  // band by options.envelope_band) and the pre-whitened window, whose lines are the
+  // cyclostationary impacts of rolling elements, not the machine's discrete lines. The
+  // verdict is the recorded path's where it names a defect, else the whitened path's.
   static constexpr FaultKind kKinds[] = {FaultKind::OuterRace, FaultKind::InnerRace, FaultKind::Ball,
                                          FaultKind::Cage};
-  double highest_fault_hz = 0.0;
-  for (FaultKind k : kKinds) highest_fault_hz = std::max(highest_fault_hz, fault_frequency_hz(freq, k));
-  // Well above the fault lines themselves, so that the band holds the resonances they
-  // excite rather than the lines (and their low harmonics).
-  const double lowest_edge_hz = std::max(500.0, 4.0 * highest_fault_hz);
-  BandKurtosis sk;  // of the chosen band
-  if (o.resonance_hz > 0.0) {
-    if (!(o.envelope_band_width_hz > 0.0)) throw InvalidInputError("analysis: the envelope band width must be > 0");
-    c.envelope_low_hz = std::max(0.0, o.resonance_hz - 0.5 * o.envelope_band_width_hz);
-    c.envelope_high_hz = o.resonance_hz + 0.5 * o.envelope_band_width_hz;
-    c.envelope_band_source = "resonance";
-  } else if (o.envelope_band == EnvelopeBand::Kurtogram && kurtogram_fits(fs, highest_fault_hz, lowest_edge_hz)) {
-    // The most impulsive band wide enough to hold harmonics 1-3 of every fault line.
-    const Kurtogram k = fast_kurtogram(x, fs, 3.0 * highest_fault_hz, lowest_edge_hz);
-    c.envelope_low_hz = k.best.low_hz;
-    c.envelope_high_hz = k.best.high_hz;
-    c.envelope_band_source = "kurtogram";
-    sk = BandKurtosis{true, k.best.kurtosis, k.best.independent_samples};
-  } else {
-    c.envelope_low_hz = lowest_edge_hz;
-    c.envelope_high_hz = 0.4 * fs;
-    c.envelope_band_source = "fixed";
-  }
-  if (!(c.envelope_high_hz <= nyquist) || !(c.envelope_low_hz < c.envelope_high_hz))
-    throw InvalidInputError("analysis: envelope band " + detail::fixed_decimals(c.envelope_low_hz, 0) + "-" + detail::fixed_decimals(c.envelope_high_hz, 0) +
-                            " Hz does not fit below the Nyquist frequency " + detail::fixed_decimals(nyquist, 0) +
-                            " Hz (raise the sample rate or give resonance_hz)");
-  // The band's impulsiveness, whichever way it was chosen (the evidence rule asks it of a
-  // series without sidebands); the kurtogram has it already, by the same computation.
-  if (!sk.valid) sk = band_spectral_kurtosis(x, fs, c.envelope_low_hz, c.envelope_high_hz);
-  c.envelope_band_kurtosis = sk.kurtosis;
-  c.envelope_band_independent_samples = sk.independent_samples;
-  const std::vector<double> envelope = band_envelope(x, fs, c.envelope_low_hz, c.envelope_high_hz);
-  c.envelope_mean_m_s2 = signal_statistics(envelope).mean;
-  c.envelope = amplitude_spectrum(envelope, fs);
+  double lowest_fault_hz = 0.0;
   for (FaultKind k : kKinds) {
-    FaultIndicator f;
-    f.kind = k;
-    f.envelope_peak = find_peak(c.envelope, fault_frequency_hz(freq, k), o.peak_search, o.envelope_floor_m_s2);
-    f.modulation = c.envelope_mean_m_s2 > 0.0 ? f.envelope_peak.amplitude / c.envelope_mean_m_s2 : 0.0;
-    collect_fault_evidence(c.envelope, freq, o, sk, &f);
-    c.faults.push_back(f);
+    const double f = fault_frequency_hz(freq, k);
+    if (f > 0.0 && (lowest_fault_hz == 0.0 || f < lowest_fault_hz)) lowest_fault_hz = f;
   }
-  arbitrate_fault_series(c.envelope, freq, o, &c.faults);
+  constexpr double kPeriodsPerSegment = 10.0;  // rule 11: the slowest line resolved in each segment
+  const double segment_s =
+      std::min(c.window_s, o.segment_s > 0.0 ? o.segment_s
+                                             : std::max(1.0, kPeriodsPerSegment / std::max(lowest_fault_hz, 1e-9)));
+  EnvelopePathSettings recorded_path;
+  recorded_path.segment_samples = fft_friendly_length(static_cast<std::size_t>(std::llround(segment_s * fs)));
+  recorded_path.absolute_floor = o.envelope_floor_m_s2;
+  // Whitening flattens a line only where broadband noise fills the bins around it: with most
+  // bins below the sensor floor (a noise-free simulation) it is not tried.
+  double share_below_floor = 1.0;
+  const std::vector<double> whitened =
+      o.prewhiten ? prewhiten(x, white_noise_bin_magnitude(o.prewhiten_floor_m_s2_per_sqrt_hz, n, fs), &share_below_floor)
+                  : std::vector<double>();
+  const bool broadband_floor = o.prewhiten && share_below_floor < 0.5;
+  EnvelopeEvidence from_whitened;
+  if (broadband_floor) {
+    EnvelopePathSettings whitened_path = recorded_path;
+    whitened_path.absolute_floor = 0.0;  // no unit: the sensor floor entered the whitening
+    from_whitened = envelope_evidence(whitened, fs, freq, o, choose_envelope_band(x, fs, freq, o, EnvelopeBand::Fixed),
+                                      whitened_path);
+    recorded_path.whitened_fundamentals = &from_whitened.found_fundamentals;
+  }
+  EnvelopeEvidence chosen =
+      envelope_evidence(x, fs, freq, o, choose_envelope_band(x, fs, freq, o, o.envelope_band), recorded_path);
+  c.envelope_source = "as recorded";
+  if (chosen.verdict.outcome == VerdictOutcome::None && broadband_floor &&
+      from_whitened.verdict.outcome != VerdictOutcome::None) {
+    chosen = std::move(from_whitened);
+    c.envelope_source = "whitened";
+  }
+  c.envelope_low_hz = chosen.band.low_hz;
+  c.envelope_high_hz = chosen.band.high_hz;
+  c.envelope_band_source = chosen.band.source;
+  c.envelope_band_kurtosis = chosen.band.kurtosis.kurtosis;
+  c.envelope_band_independent_samples = chosen.band.kurtosis.independent_samples;
+  c.envelope = std::move(chosen.envelope);
+  c.envelope_mean_m_s2 = chosen.envelope_mean;
+  c.envelope_segments = chosen.segments;
+  c.envelope_segment_s = chosen.segment_s;
+  c.fault_snr_db_used = chosen.fault_snr_db_used;
+  c.evidence_snr_db_used = chosen.evidence_snr_db_used;
+  c.faults = std::move(chosen.faults);
   c.diagnosis = diagnose(c, o.thresholds);
   return c;
 }

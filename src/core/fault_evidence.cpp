@@ -8,11 +8,7 @@
 
 namespace bearing_sim {
 namespace {
-constexpr int kHarmonics = 3;
-
-bool line_found(const SpectralPeak& p, double threshold_db) {
-  return p.searched && p.local_maximum && p.snr_db >= threshold_db;
-}
+constexpr int kHarmonics = 4;
 
 // The lowest frequency told apart from its neighbour in the envelope spectrum: a line there
 // has its search window (+-1 bin) outside the excluded main lobe (+-noise_exclude_bins) of
@@ -55,6 +51,11 @@ bool lines_coincide(const FaultIndicator& a, double a_fmod_hz, const FaultIndica
   for (int k = 0; k <= 2; ++k)
     for (double sign : {-1.0, 1.0})
       if (std::abs(a.envelope_peak.frequency_hz + sign * k * a_fmod_hz - fb) <= tol) return true;
+  // Half orders m/2 of a's fundamental (m odd, up to 7/2): a loose housing or a ring rocking
+  // in its seat is struck every other impact (period doubling), which puts lines at the
+  // half orders; 1.5 BPFO of the 6205 lies 0.7 % from BPFI.
+  for (int m = 1; m <= 7; m += 2)
+    if (std::abs(0.5 * m * a.envelope_peak.frequency_hz - fb) <= tol) return true;
   return false;
 }
 // Whether the healthy varying compliance (Z |f_c|, balls passing the load zone) can give this
@@ -115,26 +116,100 @@ bool lines_on_compliance_comb(const FaultIndicator& f, const BearingFrequencies&
 }
 }  // namespace
 
+std::vector<double> series_lines_hz(const BearingFrequencies& freq, FaultKind kind, int harmonics,
+                                    double neighbourhood_rel) {
+  const double f0 = fault_frequency_hz(freq, kind), fm = modulation_frequency_hz(freq, kind);
+  (void)neighbourhood_rel;
+  const int orders = fm > 0.0 ? 2 : 0;  // the sidebands rule 6 counts as the series' own
+  std::vector<double> lines;
+  for (int n = 1; n <= harmonics; ++n)
+    for (int j = -orders; j <= orders; ++j) lines.push_back(n * f0 + j * fm);
+  return lines;
+}
+
+SpectralPeak series_peak(const Spectrum& envelope, double expected_hz, const std::vector<double>& own_lines_hz,
+                         const AnalysisOptions& o, const EvidenceContext& context) {
+  SpectralPeak p = find_peak(envelope, expected_hz, o.peak_search, context.absolute_floor);
+  // A single spectrum's maxima are its own noise's (a maximum every third bin or so), against
+  // which the single-spectrum thresholds are set: the density is asked of averages only.
+  if (context.segments < 2) {
+    p.chance = 0.0;
+    return p;
+  }
+  p.chance = line_chance(envelope, p, search_half_width_hz(expected_hz, envelope.resolution_hz, o.peak_search),
+                         own_lines_hz, o.thresholds.line_neighbourhood_rel, o.peak_search);
+  return p;
+}
+
+bool line_found(const SpectralPeak& p, double threshold_db, const DiagnosisThresholds& t) {
+  return p.searched && p.local_maximum && p.snr_db >= threshold_db && p.chance <= t.line_chance_max;
+}
+
+Verdict fault_verdict(const std::vector<FaultIndicator>& faults) {
+  Verdict v;
+  bool cage = false;
+  for (const FaultIndicator& f : faults) {
+    if (!f.suspected) continue;
+    if (f.kind == FaultKind::Cage)
+      cage = true;
+    else
+      v.kinds.push_back(f.kind);
+  }
+  if (v.kinds.empty() && cage) v.kinds = {FaultKind::Ball, FaultKind::Cage};  // cage-rate lines alone
+  if (v.kinds.empty()) {
+    v.text = "no bearing defect indicated";
+    return v;
+  }
+  v.outcome = v.kinds.size() == 1 ? VerdictOutcome::Fault : VerdictOutcome::Ambiguous;
+  if (v.outcome == VerdictOutcome::Fault) {
+    v.text = std::string(fault_kind_name(v.kinds[0])) + " defect";
+    return v;
+  }
+  v.text = "cannot tell between ";
+  for (std::size_t i = 0; i < v.kinds.size(); ++i)
+    v.text += std::string(i == 0 ? "" : i + 1 == v.kinds.size() ? " and " : ", ") + fault_kind_name(v.kinds[i]);
+  v.text += cage && v.kinds[0] == FaultKind::Ball && v.kinds.size() == 2 && v.kinds[1] == FaultKind::Cage
+                ? " (cage-rate lines alone: a cage defect or a ball defect's modulation)"
+                : " defects (each series has evidence of its own; one defect or both)";
+  return v;
+}
+
 void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& freq, const AnalysisOptions& o,
-                            const BandKurtosis& band, FaultIndicator* f) {
+                            const EvidenceContext& context, const BandKurtosis& band, FaultIndicator* f) {
   const DiagnosisThresholds& t = o.thresholds;
   const double min_hz = resolvable_hz(envelope, o);
+  const std::vector<double> own = series_lines_hz(freq, f->kind, kHarmonics + 1, o.thresholds.line_neighbourhood_rel);
   f->resolvable = envelope.resolution_hz > 0.0 && f->envelope_peak.expected_hz >= min_hz;
   EvidenceLine first;
   first.peak = f->envelope_peak;
-  first.found = f->resolvable && line_found(first.peak, t.fault_snr_db);
+  first.found = f->resolvable && line_found(first.peak, context.fault_snr_db, t);
   f->harmonics.push_back(first);
-  // Higher harmonics at n x the fundamental as found (as expected if it was not found).
+  // Higher harmonics at n x the fundamental as found (as expected if it was not found); one
+  // within the window of a line of another series that is present is shared: evidence for
+  // neither (rule 10).
   const double base_hz = first.found ? first.peak.frequency_hz : first.peak.expected_hz;
+  const double nominal_hz = fault_frequency_hz(freq, f->kind);
+  const auto half_width = [&](double hz) { return search_half_width_hz(hz, envelope.resolution_hz, o.peak_search); };
   for (int n = 2; n <= kHarmonics; ++n) {
     EvidenceLine h;
     h.order = n;
-    h.peak = find_peak(envelope, n * base_hz, o.peak_search, o.envelope_floor_m_s2);
-    h.found = f->resolvable && line_found(h.peak, t.evidence_snr_db);
+    h.peak = series_peak(envelope, n * base_hz, own, o, context);
+    h.found = f->resolvable && line_found(h.peak, context.evidence_snr_db, t);
+    for (FaultKind other : context.present) {
+      if (other == f->kind || f->kind == FaultKind::Cage) continue;
+      // Only between series told apart at their fundamentals (else rule 6 decides between
+      // them), and harmonic on harmonic: the sidebands' coincidences are rule 6's too.
+      const double other_hz = fault_frequency_hz(freq, other);
+      if (std::abs(other_hz - nominal_hz) <= half_width(other_hz) + half_width(nominal_hz)) continue;
+      for (int m = 1; m <= 3; ++m)  // the other series' fundamental and the harmonics it is judged on
+        if (std::abs(n * nominal_hz - m * other_hz) <= half_width(n * nominal_hz) + half_width(m * other_hz))
+          h.shared = true;
+    }
     f->harmonics.push_back(h);
   }
   f->harmonics_found = 0;
   for (const EvidenceLine& h : f->harmonics) {
+    if (h.shared) continue;
     if (!h.found) break;
     ++f->harmonics_found;
   }
@@ -142,13 +217,13 @@ void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& 
   // (+-1 bin at least) lies outside the carrier's excluded main lobe (+-noise_exclude_bins).
   const double fm = modulation_frequency_hz(freq, f->kind);
   if (f->resolvable && fm >= min_hz && base_hz - fm > min_hz) {
-    f->sidebands_required = true;
+    f->sidebands_required = f->kind != FaultKind::Ball;  // rule 3: a ball's are support, not a requirement
     f->modulation_hz = fm;
     for (double sign : {-1.0, 1.0}) {
       EvidenceLine sb;
       sb.offset_hz = sign * fm;
-      sb.peak = find_peak(envelope, base_hz + sign * fm, o.peak_search, o.envelope_floor_m_s2);
-      sb.found = line_found(sb.peak, t.evidence_snr_db);
+      sb.peak = series_peak(envelope, base_hz + sign * fm, own, o, context);
+      sb.found = line_found(sb.peak, context.evidence_snr_db, t);
       f->sidebands_found += sb.found ? 1 : 0;
       f->sidebands.push_back(sb);
     }
@@ -173,7 +248,7 @@ void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& 
               detail::fixed_decimals(envelope.resolution_hz, 2) + " Hz bins); a window of at least " +
               detail::fixed_decimals(resolvable_hz_for(1.0, o) / f->envelope_peak.expected_hz, 1) + " s is needed";
   else if (lines && !f->impulsive)
-    f->note = std::string(f->sidebands_required ? "lines on the cage-rate comb (m x " + detail::fixed_decimals(std::abs(freq.cage_hz), 2) + " Hz)"
+    f->note = std::string(on_comb ? "lines on the cage-rate comb (m x " + detail::fixed_decimals(std::abs(freq.cage_hz), 2) + " Hz)"
                                                 : "lines without sidebands") +
               " in a band that is not impulsive (spectral kurtosis " + detail::fixed_decimals(band.kurtosis, 2) + " < " +
               detail::fixed_decimals(t.impulsive_band_kurtosis, 1) + "): the varying compliance of a healthy bearing";

@@ -347,3 +347,121 @@ SpectralPeak find_peak(const Spectrum& s, double expected_hz, const PeakSearchOp
 }
 
 }  // namespace bearing_sim
+
+namespace bearing_sim {
+
+std::vector<double> prewhiten(const std::vector<double>& x, double floor_per_bin, double* share_below_floor) {
+  check_signal(x, 1.0, "prewhiten");
+  std::vector<Complex> spectrum = forward(x);
+  const double floor = std::max(floor_per_bin, std::numeric_limits<double>::min());
+  std::size_t below = 0;
+  for (Complex& c : spectrum) {
+    const double magnitude = std::abs(c);
+    below += magnitude < floor ? 1 : 0;
+    c /= std::max(magnitude, floor);
+  }
+  if (share_below_floor) *share_below_floor = static_cast<double>(below) / static_cast<double>(spectrum.size());
+  std::vector<Complex> z;
+  Eigen::FFT<double> fft;
+  fft.inv(z, spectrum);
+  std::vector<double> y(z.size());
+  for (std::size_t i = 0; i < z.size(); ++i) y[i] = z[i].real();
+  return y;
+}
+
+double white_noise_bin_magnitude(double density_per_sqrt_hz, std::size_t n, double sample_rate_hz) {
+  return density_per_sqrt_hz * std::sqrt(0.5 * static_cast<double>(n) * sample_rate_hz);
+}
+
+Spectrum averaged_envelope_spectrum(const std::vector<double>& x, double fs, double low_hz, double high_hz,
+                                    std::size_t segment_samples, std::size_t* segments_out) {
+  const std::vector<double> envelope = band_envelope(x, fs, low_hz, high_hz);
+  const std::size_t n = std::min(std::max<std::size_t>(segment_samples, 8), envelope.size());
+  const std::size_t step = std::max<std::size_t>(n / 2, 1);
+  Spectrum sum;
+  std::size_t segments = 0;
+  for (std::size_t start = 0; start + n <= envelope.size(); start += step) {
+    const std::vector<double> segment(envelope.begin() + static_cast<long>(start),
+                                      envelope.begin() + static_cast<long>(start + n));
+    const Spectrum s = amplitude_spectrum(segment, fs);
+    if (sum.amplitude.empty()) {
+      sum.resolution_hz = s.resolution_hz;
+      sum.amplitude.assign(s.amplitude.size(), 0.0);
+    }
+    for (std::size_t k = 0; k < s.amplitude.size(); ++k) sum.amplitude[k] += s.amplitude[k] * s.amplitude[k];
+    ++segments;
+  }
+  for (double& a : sum.amplitude) a = std::sqrt(a / static_cast<double>(segments));
+  if (segments_out) *segments_out = segments;
+  return sum;
+}
+
+double equivalent_averages(std::size_t segments) {
+  constexpr double kHannHalfOverlapCorrelation = 0.167;
+  return segments > 1 ? static_cast<double>(segments) / (1.0 + 2.0 * kHannHalfOverlapCorrelation * kHannHalfOverlapCorrelation)
+                      : static_cast<double>(segments);
+}
+
+namespace {
+// P(Gamma(k, 1/k) > x) for a whole k >= 1: exp(-k x) sum_{j<k} (k x)^j / j!.
+double gamma_mean_one_exceedance(int k, double x) {
+  const double y = k * x;
+  double term = 1.0, sum = 1.0;
+  for (int j = 1; j < k; ++j) {
+    term *= y / j;
+    sum += term;
+  }
+  return std::exp(-y) * sum;
+}
+// The x where the (decreasing) exceedance equals p, by bisection on a bracketing interval.
+double gamma_mean_one_quantile(int k, double p) {
+  double lo = 0.0, hi = 1.0;
+  while (gamma_mean_one_exceedance(k, hi) > p) hi *= 2.0;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (gamma_mean_one_exceedance(k, mid) > p ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+}  // namespace
+
+double averaged_threshold_db(double single_threshold_db, double averages) {
+  const int k = std::max(1, static_cast<int>(std::floor(averages)));
+  if (k == 1) return single_threshold_db;
+  // One spectrum: power exponential, median ln 2 of the mean; P(power > r median) = 2^-r.
+  const double ratio = std::pow(10.0, single_threshold_db / 10.0);
+  const double p = std::exp(-ratio * std::log(2.0));
+  const double threshold = gamma_mean_one_quantile(k, p), median = gamma_mean_one_quantile(k, 0.5);
+  return 10.0 * std::log10(threshold / median);  // a power ratio: dB of amplitude
+}
+
+double line_chance(const Spectrum& s, const SpectralPeak& peak, double window_half_hz,
+                   const std::vector<double>& own_lines_hz, double neighbourhood_rel, const PeakSearchOptions& o) {
+  const auto bins = static_cast<long>(s.amplitude.size());
+  if (!peak.searched || !(s.resolution_hz > 0.0) || bins < 8) return 1.0;
+  const double df = s.resolution_hz, f0 = peak.expected_hz;
+  const double reach = std::max(neighbourhood_rel * f0, o.noise_half_width_bins * df);
+  const double guard = o.noise_exclude_bins * df;  // a line's Hann main lobe beside its window
+  const auto excluded = [&](double f) {
+    if (std::abs(f - f0) <= window_half_hz + guard) return true;
+    for (double l : own_lines_hz)
+      if (std::abs(f - l) <= std::max(o.tolerance_rel * l, o.tolerance_min_bins * df) + guard) return true;
+    return false;
+  };
+  long counted_bins = 0, higher_maxima = 0;
+  for (long j = std::max(1L, static_cast<long>(std::ceil((f0 - reach) / df)));
+       j <= std::min(bins - 2, static_cast<long>(std::floor((f0 + reach) / df))); ++j) {
+    const double f = j * df;
+    if (excluded(f)) continue;
+    ++counted_bins;
+    const double a = s.amplitude[static_cast<std::size_t>(j)];
+    if (a >= peak.amplitude && a >= s.amplitude[static_cast<std::size_t>(j - 1)] &&
+        a >= s.amplitude[static_cast<std::size_t>(j + 1)])
+      ++higher_maxima;
+  }
+  if (counted_bins == 0) return 1.0;
+  const double rate_per_hz = (higher_maxima + 0.5) / (counted_bins * df);
+  return 1.0 - std::exp(-rate_per_hz * 2.0 * window_half_hz);
+}
+
+}  // namespace bearing_sim

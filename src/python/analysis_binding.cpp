@@ -44,6 +44,11 @@ py::dict analyze(const PyBearing& b, py::array_t<double, py::array::c_style | py
   d["envelope_band_kurtosis"] = c.envelope_band_kurtosis;
   d["envelope_band_independent_samples"] = c.envelope_band_independent_samples;
   d["envelope_resolution_hz"] = c.envelope.resolution_hz;
+  d["envelope_source"] = c.envelope_source;
+  d["envelope_segments"] = c.envelope_segments;
+  d["envelope_segment_s"] = c.envelope_segment_s;
+  d["fault_snr_db_used"] = c.fault_snr_db_used;
+  d["evidence_snr_db_used"] = c.evidence_snr_db_used;
   d["envelope_m_s2"] = py::array_t<double>(static_cast<py::ssize_t>(c.envelope.amplitude.size()),
                                            c.envelope.amplitude.data());
   py::list faults;
@@ -56,11 +61,13 @@ py::dict analyze(const PyBearing& b, py::array_t<double, py::array::c_style | py
     e["amplitude_m_s2"] = fi.envelope_peak.amplitude;
     e["noise_floor_m_s2"] = fi.envelope_peak.noise_floor;
     e["snr_db"] = fi.envelope_peak.snr_db;
+    e["chance"] = fi.envelope_peak.chance;
     e["modulation"] = fi.modulation;
     py::list harmonics, sidebands;
-    for (const EvidenceLine& h : fi.harmonics) harmonics.append(py::make_tuple(h.peak.frequency_hz, h.peak.snr_db, h.found));
+    for (const EvidenceLine& h : fi.harmonics)
+      harmonics.append(py::make_tuple(h.peak.frequency_hz, h.peak.snr_db, h.found, h.shared, h.peak.chance));
     for (const EvidenceLine& s : fi.sidebands) sidebands.append(py::make_tuple(s.peak.frequency_hz, s.peak.snr_db, s.found));
-    e["harmonics"] = harmonics;  // (frequency_hz, snr_db, found) of harmonics 1..3
+    e["harmonics"] = harmonics;  // (frequency_hz, snr_db, found, shared, chance) of harmonics 1..4
     e["harmonics_found"] = fi.harmonics_found;
     e["sidebands_required"] = fi.sidebands_required;
     e["modulation_hz"] = fi.modulation_hz;
@@ -76,6 +83,13 @@ py::dict analyze(const PyBearing& b, py::array_t<double, py::array::c_style | py
   d["faults"] = faults;
   d["health"] = health_level_name(c.diagnosis.level);
   d["reason"] = c.diagnosis.reason;
+  py::dict verdict;
+  verdict["outcome"] = verdict_outcome_name(c.diagnosis.verdict.outcome);
+  py::list kinds;
+  for (FaultKind k : c.diagnosis.verdict.kinds) kinds.append(fault_kind_name(k));
+  verdict["kinds"] = kinds;
+  verdict["text"] = c.diagnosis.verdict.text;
+  d["verdict"] = verdict;
   return d;
 }
 

@@ -132,7 +132,7 @@ CsvSignal read_csv(const std::string& path, const std::string& wanted) {
 nlohmann::json peak_json(const SpectralPeak& p) {
   return {{"expected_hz", p.expected_hz},  {"searched", p.searched},       {"frequency_hz", p.frequency_hz},
           {"amplitude_m_s2", p.amplitude}, {"noise_floor_m_s2", p.noise_floor}, {"snr_db", p.snr_db},
-          {"local_maximum", p.local_maximum}};
+          {"local_maximum", p.local_maximum}, {"chance", p.chance}};
 }
 
 // "24/13*/-" : the SNR of each line (from `first`), * when found, - when not searched.
@@ -148,8 +148,15 @@ std::string evidence_cell(const std::vector<EvidenceLine>& lines, std::size_t fi
 nlohmann::json evidence_json(const std::vector<EvidenceLine>& lines) {
   nlohmann::json a = nlohmann::json::array();
   for (const EvidenceLine& l : lines)
-    a.push_back({{"order", l.order}, {"offset_hz", l.offset_hz}, {"found", l.found}, {"peak", peak_json(l.peak)}});
+    a.push_back({{"order", l.order}, {"offset_hz", l.offset_hz}, {"found", l.found}, {"shared", l.shared},
+                 {"peak", peak_json(l.peak)}});
   return a;
+}
+
+nlohmann::json verdict_json(const Verdict& v) {
+  nlohmann::json kinds = nlohmann::json::array();
+  for (FaultKind k : v.kinds) kinds.push_back(fault_kind_name(k));
+  return {{"outcome", verdict_outcome_name(v.outcome)}, {"kinds", kinds}, {"text", v.text}};
 }
 
 void run(const AnalyzeCliOptions& o) {
@@ -214,9 +221,13 @@ void run(const AnalyzeCliOptions& o) {
                                  {"envelope_band_independent_samples", c.envelope_band_independent_samples},
                                  {"envelope_mean_m_s2", c.envelope_mean_m_s2},
                                  {"envelope_resolution_hz", c.envelope.resolution_hz},
+                                 {"envelope_source", c.envelope_source},
+                                 {"envelope_segments", c.envelope_segments},
+                                 {"fault_snr_db_used", c.fault_snr_db_used},
                                  {"faults", faults},
                                  {"level", health_level_name(c.diagnosis.level)},
-                                 {"reason", c.diagnosis.reason}};
+                                 {"reason", c.diagnosis.reason},
+                                 {"verdict", verdict_json(c.diagnosis.verdict)}};
   // L and an SNR are +-inf for a silent signal (written as null).
   require_finite_result(result, "analyze", {"L_dB", "snr_db"});
   if (o.json) {
@@ -259,6 +270,7 @@ void run(const AnalyzeCliOptions& o) {
   for (const FaultIndicator& fi : c.faults)
     if (!fi.note.empty()) out << fault_frequency_label(fi.kind) << ": " << fi.note << "\n";
   out << "\nDiagnosis: " << health_level_name(c.diagnosis.level) << ": " << c.diagnosis.reason << "\n";
+  out << "Verdict: " << c.diagnosis.verdict.text << "\n";
 }
 
 }  // namespace

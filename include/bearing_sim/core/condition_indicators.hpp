@@ -51,6 +51,15 @@ struct DiagnosisThresholds {
   // / cage frequency): the compliance excitation falls as Z^-2.5 (fault_evidence.cpp); the
   // 6205 (9) and the 618/22 (10) show it, the CT bearing (207) does not.
   double compliance_max_balls = 40.0;
+  // A line is found only where a window of its width holds no line of that height by chance
+  // more often than this (line_chance): 0.1, a tenth of the windows of the neighbourhood.
+  double line_chance_max = 0.1;
+  // The neighbourhood (+- this fraction of the frequency) that line_chance counts lines in.
+  double line_neighbourhood_rel = 0.2;
+  // A series of the pre-whitened envelope whose carrier stands this far (dB of power) over
+  // the band's mean as a discrete comb in the recorded spectrum is strictly periodic, not
+  // impacts (rule 10). White noise: about 3 dB.
+  double deterministic_comb_db = 10.0;
   double kurtosis_warn = 6.0;    // impulsive signal -> WARN (Gaussian noise: 3); <= 0 disables
   VelocityZone warn_zone = VelocityZone::C;   // velocity zone at or above: WARN
   VelocityZone error_zone = VelocityZone::D;  // ... ERROR
@@ -71,7 +80,18 @@ struct AnalysisOptions {
   // sample rate.
   double resonance_hz = 0.0;
   double envelope_band_width_hz = 2000.0;
-  EnvelopeBand envelope_band = EnvelopeBand::Kurtogram;
+  EnvelopeBand envelope_band = EnvelopeBand::Kurtogram;  // of the path as recorded
+  // Cepstral pre-whitening of the window before the envelope (prewhiten, spectrum.hpp):
+  // the machine's discrete lines and the path's resonances flattened, impacts kept. Bins
+  // below a sensor floor of prewhiten_floor_m_s2_per_sqrt_hz (1e-5: 1 ug/sqrt(Hz), below
+  // the best IEPE sensors) are left relative to that floor, so a noise-free simulation's
+  // rounding noise is not raised. The band's spectral kurtosis is always of the signal as
+  // recorded.
+  bool prewhiten = true;
+  double prewhiten_floor_m_s2_per_sqrt_hz = 1e-5;
+  // Envelope spectrum averaged over segments of segment_s (averaged_envelope_spectrum);
+  // 0: max(1 s, 10 periods of the lowest fault frequency), the window at most.
+  double segment_s = 0.0;
   // Velocity band; a low edge of 0 takes ISO 20816-3's for the machine's speed
   // (iso20816_velocity_low_hz of the relative ring speed).
   double velocity_low_hz = 0.0;
@@ -92,6 +112,9 @@ enum class FaultKind { OuterRace, InnerRace, Ball, Cage };
 // or a sideband f_fault + offset_hz (offset -f_mod or +f_mod).
 struct EvidenceLine {
   int order = 1;           // harmonic number (1: the fundamental); sidebands: 1
+  // Within the search window of a line of another series whose fundamental is found
+  // (2 x BPFI and 3 x BPFO of the 6205 lie 0.7 % apart): evidence for neither, skipped.
+  bool shared = false;
   double offset_hz = 0.0;  // 0 for a harmonic; -+ the modulation frequency for a sideband
   SpectralPeak peak;       // searched at expected_hz (amplitude in m/s^2, snr_db over noise)
   bool found = false;      // a local maximum with snr_db >= its threshold
@@ -112,7 +135,7 @@ struct FaultIndicator {
   std::vector<EvidenceLine> harmonics;
   std::vector<EvidenceLine> sidebands;
   double modulation_hz = 0.0;        // f_mod (0: no modulation predicted or not resolvable)
-  int harmonics_found = 0;           // consecutive from the 1st: 0 .. 3
+  int harmonics_found = 0;           // consecutive from the 1st, shared ones skipped: 0 .. 4
   int sidebands_found = 0;           // 0 .. 2
   bool sidebands_required = false;   // modulation predicted and resolvable
   // The fault frequency is >= noise_exclude_bins + 2 bins (else nothing of it is "found").
@@ -130,9 +153,21 @@ struct FaultIndicator {
   std::string note;
 };
 
+// What the envelope evidence says, beside the health level: nothing; one fault type; or
+// that it cannot tell between several (two race or ball series each with its own evidence,
+// or a cage-rate series alone: a cage defect or a ball defect's modulation).
+enum class VerdictOutcome { None, Fault, Ambiguous };
+const char* verdict_outcome_name(VerdictOutcome outcome);  // "none", "fault", "ambiguous"
+struct Verdict {
+  VerdictOutcome outcome = VerdictOutcome::None;
+  std::vector<FaultKind> kinds;  // the type (Fault) or the types it cannot tell between
+  std::string text;
+};
+
 struct Diagnosis {
   HealthLevel level = HealthLevel::Ok;
   std::string reason;  // one line for a maintenance engineer
+  Verdict verdict;
 };
 
 struct ConditionIndicators {
@@ -151,7 +186,14 @@ struct ConditionIndicators {
   double envelope_band_kurtosis = 0.0;
   double envelope_band_independent_samples = 0.0;
   double envelope_mean_m_s2 = 0.0;  // mean of the band envelope (the demodulated level)
-  Spectrum envelope;  // envelope spectrum, m/s^2
+  // The envelope path the verdict comes from: "whitened" (the pre-whitened window; its
+  // envelope has no unit) or "as recorded".
+  std::string envelope_source;
+  std::size_t envelope_segments = 1;  // averaged segments (averaged_envelope_spectrum)
+  double envelope_segment_s = 0.0;
+  // The detection thresholds for that average (averaged_threshold_db of the options').
+  double fault_snr_db_used = 0.0, evidence_snr_db_used = 0.0;
+  Spectrum envelope;  // envelope spectrum, m/s^2 (pre-whitened: relative to the whitened level)
   std::vector<FaultIndicator> faults;  // outer race, inner race, ball, cage in that order
   Diagnosis diagnosis;
 };

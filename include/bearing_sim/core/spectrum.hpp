@@ -38,6 +38,38 @@ std::vector<double> band_envelope(const std::vector<double>& x, double sample_ra
 // Amplitude spectrum (as amplitude_spectrum) of band_envelope: the envelope spectrum.
 Spectrum envelope_spectrum(const std::vector<double>& x, double sample_rate_hz, double low_hz, double high_hz);
 
+// Cepstral pre-whitening (Sawalhi & Randall; Borghesani et al., MSSP 36, 2013): every bin of
+// the spectrum set to unit magnitude, its phase kept, so that the discrete lines (shaft
+// orders, the electrical line family, gear meshes) and the transmission path's colouring
+// are flattened while impacts, which are broadband and phase-coherent, stay impulsive. A
+// bin below floor_per_bin keeps its magnitude relative to the floor (x_k / floor): a
+// sensor's noise floor, so that the rounding noise of a noise-free simulation is not
+// raised to the level of its lines. Mean removed; the result has the length of x.
+std::vector<double> prewhiten(const std::vector<double>& x, double floor_per_bin = 0.0,
+                              double* share_below_floor = nullptr);  // of the bins
+// The DFT magnitude one bin of white noise of this one-sided density (units/sqrt(Hz)) has
+// in an n-sample transform at sample_rate_hz (its RMS over the bins): sqrt(n fs / 2) d.
+double white_noise_bin_magnitude(double density_per_sqrt_hz, std::size_t n, double sample_rate_hz);
+// Envelope spectrum averaged over segments (Welch): the band envelope of the whole x,
+// then cut into segments of segment_samples overlapping by half, each mean-removed,
+// Hann-windowed and transformed; the amplitude is the RMS over the segments of the
+// amplitude-corrected bins (a line of amplitude A reads A). Averaging keeps the lines and
+// narrows the spread of the noise bins (K segments: a chi-square of about 2K degrees of
+// freedom per bin instead of 2), which is what makes weak lines of a long record
+// significant; short segments follow a wandering speed. segments_out: K.
+Spectrum averaged_envelope_spectrum(const std::vector<double>& x, double sample_rate_hz, double low_hz, double high_hz,
+                                    std::size_t segment_samples, std::size_t* segments_out = nullptr);
+// The number of independent spectra that K Hann segments overlapping by half are worth
+// (Welch 1967: the overlap correlates neighbours by 0.167 in power): K / (1 + 2 0.167^2)
+// for K > 1, else K.
+double equivalent_averages(std::size_t segments);
+// The threshold over the median of the bins (dB, amplitude) that an average of
+// `averages` power spectra of Gaussian noise exceeds with the same per-bin probability as
+// a single spectrum (Rayleigh bins) exceeds single_threshold_db: the bins' power is then
+// Gamma(K, 1/K) distributed (K = floor(averages)); a threshold set for one spectrum keeps
+// its false-alarm rate when the spectrum is averaged.
+double averaged_threshold_db(double single_threshold_db, double averages);
+
 // Velocity (m/s) from acceleration (m/s^2) by dividing each bin by j omega, keeping only
 // [low_hz, high_hz]; no window, so the ends of the record carry some leakage.
 std::vector<double> integrate_to_velocity(const std::vector<double>& accel, double sample_rate_hz, double low_hz,
@@ -104,11 +136,25 @@ struct SpectralPeak {
   double amplitude = 0.0;       // of the largest bin
   double noise_floor = 0.0;     // MEDIAN of the neighbouring bins (robust to other lines)
   double snr_db = 0.0;          // 20 lg(amplitude / max(noise_floor, absolute_floor))
+  // The chance that a search window this wide holds a local maximum at least this high
+  // where no line of the searched series lies (line_chance; 1 until computed).
+  double chance = 1.0;
 };
 
 // absolute_floor: the SNR is taken against at least this (e.g. the sensor's noise floor
 // per bin), so that numerically tiny lines of a near-perfect signal do not count.
 SpectralPeak find_peak(const Spectrum& spectrum, double expected_hz, const PeakSearchOptions& options = {},
                        double absolute_floor = 0.0);
+// The chance that a window of the peak's search width (+-window_half_hz) holds, by chance,
+// a local maximum at least as high as the peak: the density of such maxima per Hz in the
+// neighbourhood (+-neighbourhood_rel of the expected frequency, at least +-noise_half_width
+// bins), leaving out the peak's own window and the windows of `own_lines_hz` (the other
+// lines of the hypothesis being tested), counted with half a maximum added (so that an
+// empty neighbourhood does not give certainty), as a Poisson rate: 1 - exp(-rate width).
+// A real machine's envelope spectrum is dense with lines (shaft orders, the supply's
+// family, other components): there a +-1 % window finds "a line" by chance, and an SNR
+// over the median floor says nothing about that.
+double line_chance(const Spectrum& spectrum, const SpectralPeak& peak, double window_half_hz,
+                   const std::vector<double>& own_lines_hz, double neighbourhood_rel, const PeakSearchOptions& options);
 
 }  // namespace bearing_sim
