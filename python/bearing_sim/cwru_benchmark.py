@@ -23,20 +23,7 @@ Smith & Randall: W. A. Smith and R. B. Randall, Rolling element bearing diagnost
 the Case Western Reserve University data: a benchmark study, Mechanical Systems and Signal
 Processing 64-65 (2015) 100-131, Table B2 (config/cwru/smith_randall_2015_table_b2.csv).
 
-Scoring:
-- Verdict: the analyser's result['verdict'] (outcome none / fault / ambiguous, and the kinds
-  it names) when the result has one; otherwise derived from the series: outcome "none" when
-  no series is suspected, else "fault" naming the suspected kinds.
-- Class of a record: "none" (nothing found); the single kind named ("outer", "inner",
-  "ball", "cage"); "ambiguous(a|b)" when the analyser cannot tell between the kinds listed;
-  "multiple" when it asserts two or more kinds.
-- Right type alone: the class equals the record's fault kind; a normal record is right when
-  its class is "none".
-- Wrong type named: the outcome is "fault" and names a kind other than the record's (on a
-  normal record: any kind), alone or beside the right one.
-- Cannot tell: an ambiguous outcome is neither right nor wrong; it is counted apart, as
-  "truth among them" or "truth not among them" (the cannot_tell column).
-- A record whose file cannot be read or analysed is an error row, in no count but its own.
+Scoring: bearing_sim.cwru_scoring.RULES, printed at the end of --help.
 """
 import argparse
 import collections
@@ -95,20 +82,21 @@ def record_numbers(text):
         raise argparse.ArgumentTypeError(f'not a comma-separated list of record numbers: {text!r}') from None
 
 
-def parse_args(argv):
+def parser():
     p = argparse.ArgumentParser(prog='python3 -m bearing_sim.cwru_benchmark',
-                                description=__doc__.split('\n\n')[0])
+                                description=__doc__.split('\n\n')[0],
+                                epilog=cwru_scoring.RULES, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument('directory', type=pathlib.Path, help='directory of CWRU .mat files (searched recursively)')
     p.add_argument('--out', type=pathlib.Path, required=True, help='output directory (created)')
     p.add_argument('--window-s', type=float, default=0.0,
                    help='analyse the last S seconds of each record (default 0: the whole record)')
     p.add_argument('--records', type=record_numbers,
                    help='comma-separated record numbers to analyse (default: all found)')
-    return p.parse_args(argv)
+    return p
 
 
 def main(argv=None):
-    args = parse_args(argv)
+    args = parser().parse_args(argv)
     if not args.directory.is_dir():
         print(f'cwru_benchmark: {args.directory}: no such directory', file=sys.stderr)
         return 2
