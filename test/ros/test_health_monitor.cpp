@@ -1,6 +1,7 @@
 // ROS-free health units of the node: HealthMonitor (ring buffer, worker, life), the
 // triaxial sensor, and the chunk's tilt fields. References are closed forms and synthetic
 // signals with known content.
+#include <algorithm>
 #include <cmath>
 #include <future>
 #include <random>
@@ -35,18 +36,26 @@ HealthSettings settings() {
   return s;
 }
 
-// Gaussian noise of sigma plus, optionally, a 3 kHz ring-down (tau 1 ms, amplitude a) at every
-// period of 1/impact_hz: what a spall struck by every ball gives through the sensor path.
+// Gaussian noise of sigma plus, optionally, a 3 kHz ring-down (tau 1 ms, amplitude a) once
+// per period of 1/impact_hz, each impact scattered about its place on the grid by 1 % of the
+// period (a rolling element's slip, not accumulating): what a spall struck by every ball
+// gives through the sensor path.
 std::vector<float> signal(double seconds, double sigma, double impact_hz, double a, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> n(0.0, sigma);
   const std::size_t len = static_cast<std::size_t>(seconds * kFs);
+  std::vector<double> impacts;
+  if (impact_hz > 0.0) {
+    std::normal_distribution<double> scatter(0.0, 0.01 / impact_hz);
+    for (int k = 0; k <= static_cast<int>(seconds * impact_hz) + 1; ++k) impacts.push_back(k / impact_hz + scatter(rng));
+  }
   std::vector<float> x(len);
   for (std::size_t i = 0; i < len; ++i) {
     const double t = static_cast<double>(i) / kFs;
     double v = n(rng);
-    if (impact_hz > 0.0) {
-      const double since = std::fmod(t, 1.0 / impact_hz);
+    const auto next = std::upper_bound(impacts.begin(), impacts.end(), t);
+    if (next != impacts.begin()) {
+      const double since = t - *(next - 1);
       v += a * std::exp(-since / 1e-3) * std::sin(2.0 * M_PI * 3000.0 * since);
     }
     x[i] = static_cast<float>(v);
