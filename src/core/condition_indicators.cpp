@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/speed_estimate.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
 #include "envelope_evidence.hpp"
 #include "fault_evidence.hpp"
@@ -140,8 +141,9 @@ double iso20816_velocity_low_hz(double shaft_speed_hz) {
   return std::abs(shaft_speed_hz) < kSlowMachineHz ? 2.0 : 10.0;
 }
 
-ConditionIndicators analyze_vibration(const std::vector<double>& accel, double fs, const BearingFrequencies& freq,
+ConditionIndicators analyze_vibration(const std::vector<double>& accel, double fs, const BearingFrequencies& given,
                                       const AnalysisOptions& o) {
+  BearingFrequencies freq = given;
   if (!(fs > 0.0) || !std::isfinite(fs)) throw InvalidInputError("analysis: the sample rate must be > 0 Hz");
   if (!(o.window_s >= 0.0) || !std::isfinite(o.window_s)) throw InvalidInputError("analysis: window_s must be >= 0");
   const double velocity_low_hz =
@@ -166,6 +168,14 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
   c.velocity_rms_mm_s =
       velocity_low_hz < nyquist ? 1e3 * band_velocity_rms(x, fs, velocity_low_hz, c.velocity_high_hz) : 0.0;
   c.zone = velocity_zone(c.velocity_rms_mm_s, o.zones);
+  // The speed as the recording shows it, where one ring turns and its shaft lines stand
+  // clear (speed_estimate.hpp): a hand-read speed is often off by a fault line's window.
+  if (o.measure_speed && (freq.inner_ring_hz > 0.0) != (freq.outer_ring_hz > 0.0)) {
+    const SpeedEstimate speed = estimate_speed_scale(x, fs, freq.relative_ring_hz, o.speed);
+    c.speed_measured = speed.measured;
+    c.speed_scale = speed.scale;
+    if (speed.measured) freq = scaled_frequencies(freq, speed.scale);
+  }
 
   // Two envelope paths (docs/health.md, "Evidence", rule 10): the window as recorded (the
   // band by options.envelope_band) and the pre-whitened window, whose lines are the

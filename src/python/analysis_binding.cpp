@@ -45,6 +45,8 @@ py::dict analyze(const PyBearing& b, py::array_t<double, py::array::c_style | py
   d["envelope_band_independent_samples"] = c.envelope_band_independent_samples;
   d["envelope_resolution_hz"] = c.envelope.resolution_hz;
   d["envelope_source"] = c.envelope_source;
+  d["speed_measured"] = c.speed_measured;
+  d["speed_scale"] = c.speed_scale;
   d["envelope_segments"] = c.envelope_segments;
   d["envelope_segment_s"] = c.envelope_segment_s;
   d["fault_snr_db_used"] = c.fault_snr_db_used;

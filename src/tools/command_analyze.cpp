@@ -222,6 +222,8 @@ void run(const AnalyzeCliOptions& o) {
                                  {"envelope_mean_m_s2", c.envelope_mean_m_s2},
                                  {"envelope_resolution_hz", c.envelope.resolution_hz},
                                  {"envelope_source", c.envelope_source},
+                                 {"speed_measured", c.speed_measured},
+                                 {"speed_scale", c.speed_scale},
                                  {"envelope_segments", c.envelope_segments},
                                  {"fault_snr_db_used", c.fault_snr_db_used},
                                  {"faults", faults},

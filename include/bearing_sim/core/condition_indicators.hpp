@@ -8,6 +8,7 @@
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/signal_statistics.hpp"
 #include "bearing_sim/core/spectrum.hpp"
+#include "bearing_sim/core/speed_estimate.hpp"
 
 namespace bearing_sim {
 
@@ -89,6 +90,10 @@ struct AnalysisOptions {
   // recorded.
   bool prewhiten = true;
   double prewhiten_floor_m_s2_per_sqrt_hz = 1e-5;
+  // Take the turning ring's speed from its 1-3 x lines where they stand clear and agree
+  // (estimate_speed_scale), the fault frequencies scaled with it.
+  bool measure_speed = true;
+  SpeedEstimateOptions speed;
   // Envelope spectrum averaged over segments of segment_s (averaged_envelope_spectrum);
   // 0: max(1 s, 10 periods of the lowest fault frequency), the window at most.
   double segment_s = 0.0;
@@ -190,6 +195,9 @@ struct ConditionIndicators {
   // envelope has no unit) or "as recorded".
   std::string envelope_source;
   std::size_t envelope_segments = 1;  // averaged segments (averaged_envelope_spectrum)
+  // The speed the fault frequencies were taken at, over the given one (1: as given).
+  bool speed_measured = false;
+  double speed_scale = 1.0;
   double envelope_segment_s = 0.0;
   // The detection thresholds for that average (averaged_threshold_db of the options').
   double fault_snr_db_used = 0.0, evidence_snr_db_used = 0.0;
