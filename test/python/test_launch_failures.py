@@ -1,0 +1,84 @@
+"""ct_gantry.launch ends by itself, with the reason on its output, when it cannot do what it
+was asked: record:=true with a bag directory that cannot be created or written or has too
+little free space (the recorder is required; record_bag checks before rosbag starts), also
+with a scenario whose player waits for the recorder. Each launch runs on a master of its own port; the tests wait for it to end
+(at most LAUNCH_TIMEOUT_S, generous for a loaded machine) and never time it."""
+import os
+import shutil
+import signal
+import socket
+import subprocess
+
+import pytest
+
+LAUNCH_TIMEOUT_S = 120
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(('localhost', 0))
+        return s.getsockname()[1]
+
+
+def launch(tmp_path, *args):
+    """Runs `roslaunch bearing_sim ct_gantry.launch ARGS` until it ends; returns its output."""
+    port = free_port()
+    env = dict(os.environ, ROS_MASTER_URI=f'http://localhost:{port}', ROS_HOME=str(tmp_path / 'ros_home'),
+               ROS_LOG_DIR=str(tmp_path / 'ros_home' / 'log'))
+    roslaunch = shutil.which('roslaunch', path='/usr/bin:' + env.get('PATH', ''))
+    p = subprocess.Popen([roslaunch, '-p', str(port), 'bearing_sim', 'ct_gantry.launch', 'viz:=false', *args],
+                         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env,
+                         start_new_session=True)
+    try:
+        out, _ = p.communicate(timeout=LAUNCH_TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGINT)
+        out, _ = p.communicate(timeout=60)
+        pytest.fail(f'the launch did not end by itself within {LAUNCH_TIMEOUT_S} s:\n{out[-4000:]}')
+    return out
+
+
+def unwritable_dir(tmp_path):
+    """An existing directory in which this user cannot create a file (root writes anywhere
+    permissions allow, but not into sysfs)."""
+    if os.geteuid() == 0:
+        return '/sys'
+    d = tmp_path / 'read_only'
+    d.mkdir(mode=0o555)
+    return str(d)
+
+
+def bag_dir_and_reason(tmp_path, case):
+    """bag_dir, more launch arguments and the line record_bag must print."""
+    if case == 'uncreatable':
+        (tmp_path / 'a_file').write_text('')
+        bag_dir = str(tmp_path / 'a_file' / 'bags')
+        return bag_dir, [], f'record_bag: cannot create the bag directory {bag_dir} (Not a directory): not recording'
+    if case == 'unwritable':
+        bag_dir = unwritable_dir(tmp_path)
+        return bag_dir, [], f'record_bag: cannot create a file in {bag_dir} ('
+    st = os.statvfs(tmp_path)
+    asked = 2 * st.f_bavail * st.f_frsize // (1 << 20) + 1024
+    bag_dir = str(tmp_path / 'bags')
+    return bag_dir, [f'bag_min_free_mb:={asked}'], f'MB free, less than the {asked} MB asked for (bag_min_free_mb)'
+
+
+@pytest.mark.parametrize('case', ['uncreatable', 'unwritable', 'no room'])
+def test_a_recorder_that_cannot_record_ends_the_launch_with_the_reason(tmp_path, case):
+    bag_dir, extra, reason = bag_dir_and_reason(tmp_path, case)
+    out = launch(tmp_path, 'record:=true', f'bag_dir:={bag_dir}', *extra)
+    assert reason in out, out[-4000:]
+    assert 'REQUIRED process [bearing/recorder' in out, out[-4000:]
+    if case == 'no room':  # created, and left empty: no bag of 4 kB without messages, no probe file
+        assert os.listdir(bag_dir) == []
+
+
+def test_a_scenario_with_a_recorder_that_cannot_record_ends(tmp_path):
+    # The player waits for the recorder's subscription to scenario_state; the recorder is
+    # required, so the launch ends when it dies instead of when the player gives up.
+    bag_dir = str(tmp_path / 'a_file' / 'bags')
+    (tmp_path / 'a_file').write_text('')
+    out = launch(tmp_path, 'record:=true', f'bag_dir:={bag_dir}', 'scenario:=ct_gantry_scan',
+                 'scenario_shutdown:=true')
+    assert f'record_bag: cannot create the bag directory {bag_dir}' in out, out[-4000:]
+    assert 'REQUIRED process [bearing/recorder' in out, out[-4000:]
