@@ -1,8 +1,10 @@
 #include "bearing_sim/ros/scenario_player.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
+#include <string>
 
 #include <geometry_msgs/WrenchStamped.h>
 #include <std_msgs/Float64.h>
@@ -56,6 +58,12 @@ ScenarioPlayer::ScenarioPlayer(ros::NodeHandle nh, ros::NodeHandle pnh)
   pnh_.param("loop", settings_.loop, settings_.loop);
   pnh_.param("wait_timeout_s", wait_timeout_s_, wait_timeout_s_);
   pnh_.param("wait_for_subscribers", wait_for_subscribers_, wait_for_subscribers_);
+  // A bounded wait: a recorder or node that never comes must end the player with a reason.
+  if (!(std::isfinite(wait_timeout_s_) && wait_timeout_s_ > 0.0))
+    throw std::runtime_error("~wait_timeout_s must be a finite number of seconds > 0, got " +
+                             std::to_string(wait_timeout_s_));
+  if (wait_for_subscribers_ < 0)
+    throw std::runtime_error("~wait_for_subscribers must be >= 0, got " + std::to_string(wait_for_subscribers_));
   try {
     ScenarioTimeline check(scenario_, settings_);  // rates
   } catch (const InvalidInputError& e) {
@@ -80,6 +88,13 @@ bool ScenarioPlayer::wait_for_node() {
   std::string node_process = node_name_;
   pnh_.param<std::string>("node_process", node_process, node_process);
   node_process = nh_.resolveName(node_process);
+  const std::string state_topic = nh_.resolveName("scenario_state");
+  const std::string listeners_wanted =
+      wait_for_subscribers_ > 0 ? " and " + std::to_string(wait_for_subscribers_) + " subscriber(s) of " + state_topic +
+                                      " (~wait_for_subscribers: the recorder)"
+                                : "";
+  ROS_INFO("scenario_player: waiting up to %.0f s (~wait_timeout_s) for %s%s", wait_timeout_s_, node.c_str(),
+           listeners_wanted.c_str());
   for (const char* service : {"inject_defect", "clear_defects"}) {
     if (!ros::service::waitForService(nh_.resolveName(service), ros::Duration(remaining()))) {
       if (ros::ok())
@@ -113,13 +128,23 @@ bool ScenarioPlayer::wait_for_node() {
     return std::find(subs.begin(), subs.end(), node_process) != subs.end() && pub.getNumSubscribers() >= subs.size();
   };
   while (ros::ok()) {
-    if (connected(speed_pub_, "speed") && connected(load_pub_, "load") &&
-        state_pub_.getNumSubscribers() >= static_cast<std::uint32_t>(std::max(0, wait_for_subscribers_)))
-      return true;
+    const bool speed = connected(speed_pub_, "speed"), load = connected(load_pub_, "load");
+    const std::uint32_t listeners = state_pub_.getNumSubscribers();
+    const bool labels = listeners >= static_cast<std::uint32_t>(wait_for_subscribers_);
+    if (speed && load && labels) return true;
     if (remaining() <= 0.0) {
-      ROS_FATAL("scenario_player: %s does not subscribe to speed and load, or scenario_state has fewer than %d "
-                "subscribers, after %.0f s",
-                node.c_str(), wait_for_subscribers_, wait_timeout_s_);
+      // Name what is missing: the node's inputs, or the listeners of the labels.
+      std::string missing;
+      if (!speed || !load)
+        missing = node + " is not connected to " + (speed ? "" : nh_.resolveName("speed")) +
+                  (!speed && !load ? " and " : "") + (load ? "" : nh_.resolveName("load"));
+      if (!labels)
+        missing += (missing.empty() ? "" : "; ") + state_topic + " has " + std::to_string(listeners) + " of the " +
+                   std::to_string(wait_for_subscribers_) +
+                   " subscriber(s) asked for (~wait_for_subscribers; with record:=true the recorder, which "
+                   "did not start or died: see its log)";
+      ROS_FATAL("scenario_player: after %.0f s (~wait_timeout_s), %s; the scenario does not start",
+                wait_timeout_s_, missing.c_str());
       return false;
     }
     ros::WallDuration(0.02).sleep();

@@ -1,7 +1,8 @@
 """ct_gantry.launch ends by itself, with the reason on its output, when it cannot do what it
 was asked: record:=true with a bag directory that cannot be created or written or has too
-little free space (the recorder is required; record_bag checks before rosbag starts), also
-with a scenario whose player waits for the recorder. Each launch runs on a master of its own port; the tests wait for it to end
+little free space (the recorder is required; record_bag checks before rosbag starts), and a
+scenario whose player waits for a scenario_state subscriber that never comes (a bounded wait,
+~wait_timeout_s). Each launch runs on a master of its own port; the tests wait for it to end
 (at most LAUNCH_TIMEOUT_S, generous for a loaded machine) and never time it."""
 import os
 import shutil
@@ -82,3 +83,19 @@ def test_a_scenario_with_a_recorder_that_cannot_record_ends(tmp_path):
                  'scenario_shutdown:=true')
     assert f'record_bag: cannot create the bag directory {bag_dir}' in out, out[-4000:]
     assert 'REQUIRED process [bearing/recorder' in out, out[-4000:]
+
+
+def test_the_scenario_player_waits_a_bounded_time_and_names_what_is_missing(tmp_path):
+    out = launch(tmp_path, 'scenario:=ct_gantry_scan', 'scenario_shutdown:=true',
+                 'scenario_wait_for_subscribers:=1', 'scenario_wait_timeout_s:=3')
+    assert 'scenario_player: waiting up to 3 s (~wait_timeout_s) for /bearing/bearing_sim_node and 1 subscriber(s) ' \
+           'of /bearing/scenario_state' in out, out[-4000:]
+    assert 'scenario_player: after 3 s (~wait_timeout_s), /bearing/scenario_state has 0 of the 1 subscriber(s) ' \
+           'asked for' in out, out[-4000:]
+    assert 'REQUIRED process [bearing/scenario_player' in out, out[-4000:]
+
+
+def test_the_scenario_player_refuses_an_unbounded_wait(tmp_path):
+    out = launch(tmp_path, 'scenario:=ct_gantry_scan', 'scenario_shutdown:=true', 'scenario_wait_timeout_s:=0')
+    assert 'scenario_player: ~wait_timeout_s must be a finite number of seconds > 0, got 0' in out, out[-4000:]
+    assert 'REQUIRED process [bearing/scenario_player' in out, out[-4000:]

@@ -25,8 +25,9 @@ class ScenarioPlayer {
   ScenarioPlayer(ros::NodeHandle nh, ros::NodeHandle pnh);
 
   // Until the node's services, its subscriptions to speed and load, a valid clock and
-  // ~wait_for_subscribers listeners of scenario_state are there. False (logged) on
-  // timeout or a mode mismatch; also false if ROS shut down meanwhile.
+  // ~wait_for_subscribers listeners of scenario_state are there, for ~wait_timeout_s at most.
+  // False (logged, naming what is missing) on timeout or a mode mismatch; also false if ROS
+  // shut down meanwhile.
   bool wait_for_node();
   // Scenario time 0 = now on the node's clock; sends the inputs at 0 at once.
   void start();
