@@ -19,6 +19,7 @@ from dask.distributed import Client, LocalCluster
 
 import bearing_sim
 from bearing_sim.campaign import Campaign, run_campaign
+from bearing_sim.campaign.store import RunStore
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 DURATION_S = 10.0
@@ -54,7 +55,7 @@ def measure(label, campaign, out, client=None, serial=False, pids=()):
     machine_busy_s = (busy1 - busy0) / hz
     others_s = max(machine_busy_s - mine, 0.0)
     cores = os.cpu_count()
-    ok = [r for r in s['records'] if r['status'] == 'ok']
+    ok = [r for r in RunStore(out, campaign).records() if r['status'] == 'ok']
     cpu = sum(r['cpu_s'] for r in ok)
     simulated = sum(r['simulated_s'] for r in ok)
     size = sum(r['bytes'] for r in ok) / max(len(ok), 1)

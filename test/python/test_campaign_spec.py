@@ -105,7 +105,7 @@ def _param(spec):
 BAD = [
     (lambda d: d.pop('name'), "key 'name': required"),
     (_set('cuont', 3), "key 'cuont': unknown key"),
-    (_set('count', 0), "key 'count': must be >= 1"),
+    (_set('count', 0), "key 'count': must be 1 to 10,000,000"),
     (_set('count', 'many'), "key 'count': expected int"),
     (_set('format', 'parquet'), "key 'format': expected one of npy, hdf5"),
     (_set('seed', -4), "key 'seed'"),

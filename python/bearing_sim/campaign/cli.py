@@ -41,10 +41,8 @@ def main(argv=None):
         if args.manifest_only:
             store = RunStore(args.out, campaign)
             store.prepare()
-            records = store.write_manifest()
-            ok = sum(1 for r in records if store.is_finished(r['index']))
-            log(f'campaign {campaign.name}: manifest of {len(records)} run(s), {ok} finished, '
-                f'{campaign.count - ok} not')
+            rows, ok = store.write_manifest()
+            log(f'campaign {campaign.name}: manifest of {rows} run(s), {ok} finished, {campaign.count - ok} not')
             return 0
         indices = parse_index_range(args.index_range, campaign.count) if args.index_range else None
         summary = run_campaign(campaign, args.out, indices=indices, scheduler=args.scheduler, workers=args.workers,

@@ -1,6 +1,7 @@
 """Runs of a campaign: one run as a pure function of (campaign, index) that writes its own
 files, and the campaign on Dask distributed (a LocalCluster, or a scheduler's address) or
 serially in this process (reference runs, or one task of a job array)."""
+import itertools
 import logging
 import os
 import shutil
@@ -18,6 +19,10 @@ from .run_files import encode_hdf5, encode_npy, run_labels
 from .spec import Campaign
 from .store import RunStore, write_atomically
 
+# Runs handed to Dask at a time per worker: enough to keep every worker busy, while the
+# driver holds the futures of a window, not of the whole campaign.
+RUNS_IN_FLIGHT_PER_WORKER = 4
+
 _campaigns = {}  # per worker process: parsed once per (file, text)
 
 
@@ -34,8 +39,7 @@ def scenario_text(campaign, run, work_dir):
     scenario = dict(run.scenario)
     for key, (file_name, text) in run.derived_files.items():
         path = os.path.join(work_dir, file_name)
-        with open(path, 'w', encoding='utf-8') as f:
-            f.write(text)
+        write_atomically(path, text.encode())
         scenario[key] = path
     source = os.path.join(campaign.directory, f'{os.path.basename(campaign.path)}, scenario of run {run.index}')
     return bearing_sim.yaml_text(scenario), source
@@ -71,12 +75,12 @@ def run_index(campaign_path, campaign_text, out_dir, index):
     return record
 
 
-def check_template(campaign, indices, tries=3):
+def check_template(campaign, todo, tries=3):
     """Loads the scenario, bearing and sensor of the first runs without running them. If none
     of them loads, the template is bad and the command stops before anything is dispatched;
     a run that fails on its own parameters is recorded when it runs."""
     first_error = None
-    for index in indices[:tries]:
+    for index in itertools.islice(todo, tries):
         run = campaign.definition(index)
         with tempfile.TemporaryDirectory() as work_dir:
             text, source = scenario_text(campaign, run, work_dir)
@@ -101,29 +105,32 @@ def parse_index_range(text, count):
 
 def run_campaign(campaign, out_dir, indices=None, client=None, scheduler=None, workers=None, serial=False,
                  log=lambda line: print(line, file=sys.stderr)):
-    """Runs the unfinished runs among `indices` (default all) and rebuilds the manifest.
-    Returns {'requested', 'skipped', 'ok', 'failed', 'records'}."""
+    """Runs the unfinished runs among `indices` (a range, default all) and rebuilds the manifest.
+    Returns {'requested', 'skipped', 'ok', 'failed'}."""
     store = RunStore(out_dir, campaign)
     store.prepare()
     indices = range(campaign.count) if indices is None else indices
-    todo = [i for i in indices if not store.is_finished(i)]
-    summary = {'requested': len(indices), 'skipped': len(indices) - len(todo), 'ok': 0, 'failed': 0, 'records': []}
-    if todo:
-        check_template(campaign, todo)
-    log(f'campaign {campaign.name}: {len(todo)} run(s) to do, {summary["skipped"]} already finished')
+    finished = store.finished(indices)
+    skipped = finished.count(1)
+    summary = {'requested': len(indices), 'skipped': skipped, 'ok': 0, 'failed': 0}
+
+    def todo():  # one index at a time: a campaign's count is not held in memory
+        return (indices.start + k for k in range(len(indices)) if not finished[k])
+    log(f'campaign {campaign.name}: {len(indices) - skipped} run(s) to do, {skipped} already finished')
+    if skipped < len(indices):
+        check_template(campaign, todo())
 
     def done(record):
-        summary['records'].append(record)
         summary['ok' if record['status'] == 'ok' else 'failed'] += 1
         if record['status'] != 'ok':
             log(f"campaign {campaign.name}: run {record['index']} failed: {record.get('error')}")
 
-    args = (campaign.path, campaign.text, os.path.abspath(out_dir))
-    if serial or not todo:
-        for i in todo:
+    args = (campaign.path, campaign.text, store.out_dir)
+    if serial or skipped == len(indices):
+        for i in todo():
             done(run_index(*args, i))
     else:
-        _run_on_dask(args, todo, client, scheduler, workers, store, done)
+        _run_on_dask(args, todo(), client, scheduler, workers, store, done)
     store.write_manifest()
     log(f"campaign {campaign.name}: {summary['ok']} finished, {summary['failed']} failed, "
         f"{summary['skipped']} skipped (finished before); manifest {os.path.join(store.out_dir, 'manifest.csv')}")
@@ -146,21 +153,38 @@ def _run_on_dask(args, todo, client, scheduler, workers, store, done):
                 client = Client(cluster)
             own.insert(0, client)
         token = uuid.uuid4().hex[:8]
-        futures = client.map(run_index, *[[a] * len(todo) for a in args], todo, pure=False,
-                             key=[f'bearing-campaign-{token}-run-{i}' for i in todo])
-        index_of = {f.key: i for f, i in zip(futures, todo)}
-        for future in as_completed(futures):
+        in_flight = {}  # key -> (future, index)
+        running = as_completed()
+
+        def workers_now():  # an adaptive cluster grows: counted again every few seconds
+            return max(1, len(client.scheduler_info()['workers']))
+
+        def top_up():
+            while len(in_flight) < RUNS_IN_FLIGHT_PER_WORKER * n_workers:
+                i = next(todo, None)
+                if i is None:
+                    return
+                future = client.submit(run_index, *args, i, pure=False, key=f'bearing-campaign-{token}-run-{i}')
+                in_flight[future.key] = (future, i)
+                running.add(future)
+
+        n_workers, counted = workers_now(), time.monotonic()
+        top_up()
+        for future in running:
+            _, i = in_flight.pop(future.key)
             try:
-                done(future.result())
+                record = future.result()
             except Exception as e:  # the worker died (after the scheduler's retries) or was lost
-                i = index_of[future.key]
                 record = {'index': i, 'status': 'failed', 'error': f'{type(e).__name__}: {e}'}
                 if store.is_finished(i):
                     record = store.read_status(i)
                 else:
                     store.write_status(i, record)
-                done(record)
+            done(record)
             future.release()
+            if time.monotonic() - counted > 5.0:
+                n_workers, counted = workers_now(), time.monotonic()
+            top_up()
     finally:
         for thing in own:
             thing.close()

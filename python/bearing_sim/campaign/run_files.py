@@ -29,6 +29,11 @@ def encode_hdf5(result, parameters):
     return buffer.getvalue()
 
 
+# The manifest's label columns, in this order (the keys of run_labels).
+LABEL_NAMES = ('defects_at_end', 'mean_radial_load_N', 'mean_ring_speed_rad_s', 'sample_rate_hz', 'samples',
+               'spall_depth_at_end_m', 'spall_width_at_end_m')
+
+
 def run_labels(result):
     """Labels of the whole run for the manifest: the defects at its end and mean operating point."""
     labels = result['labels']

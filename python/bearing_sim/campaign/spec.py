@@ -1,6 +1,5 @@
 """A campaign file (docs/datasets.md, "Campaigns"): N runs of one scenario template whose
 ${parameters} are drawn from distributions. Run i is defined by (campaign, i) alone."""
-import copy
 import hashlib
 import json
 import os
@@ -11,13 +10,14 @@ import yaml
 from . import strict_yaml
 from .distributions import Distribution, unit_draw
 from .errors import CampaignError
+from .substitution import References, fill
 
 FORMATS = ('npy', 'hdf5')
 MAX_SCENARIO_SEED = 1000000  # the core reads integers of a scenario file up to this
+# Run files are numbered with 7 digits (run_0000042.npy), so that their names sort by index.
+MAX_COUNT = 10_000_000
 _TOP_KEYS = {'name', 'description', 'count', 'seed', 'format', 'label_rate_hz', 'parameters', 'scenario'}
-_REF = re.compile(r'\$\{([A-Za-z_][A-Za-z0-9_]*)\}')
 _NAME = re.compile(r'[A-Za-z0-9_.-]+')
-_MAX_NESTING = 8  # a value that refers to parameters that refer to ... (a cycle beyond this)
 
 
 class RunDefinition:
@@ -48,8 +48,9 @@ class Campaign:
             raise CampaignError(f"{path}: key 'name': letters, digits, '.', '-' and '_' only, got {self.name!r}")
         self.description = doc.get('description', '')
         self.count = self._required(doc, 'count', int)
-        if self.count < 1:
-            raise CampaignError(f"{path}: key 'count': must be >= 1, got {self.count}")
+        if not 1 <= self.count <= MAX_COUNT:
+            raise CampaignError(f"{path}: key 'count': must be 1 to {MAX_COUNT:,} (run files are numbered with "
+                                f'7 digits), got {self.count:,}')
         self.seed = doc.get('seed', 0)
         if not isinstance(self.seed, int) or isinstance(self.seed, bool) or self.seed < 0:
             raise CampaignError(f"{path}: key 'seed': expected an integer >= 0, got {self.seed!r}")
@@ -72,12 +73,7 @@ class Campaign:
         if not isinstance(self.template, dict):
             raise CampaignError(f"{path}: key 'scenario': required, a scenario (docs/scenarios.md) whose values "
                                 f'may be ${{parameter}}')
-        self._check_references(self.template, 'scenario')
-        for name, d in self.parameters.items():
-            if d.kind == 'constant':
-                self._check_references(d.value, f'parameters.{name}')
-            elif d.kind in ('choice', 'grid'):
-                self._check_references(d.values, f'parameters.{name}.{d.kind}')
+        self.references = References(self.parameters, self.template, path)
 
     @classmethod
     def load(cls, path):
@@ -90,19 +86,6 @@ class Campaign:
         if not isinstance(value, kind) or isinstance(value, bool):
             raise CampaignError(f"{self.path}: key '{key}': expected {kind.__name__}, got {value!r}")
         return value
-
-    def _check_references(self, node, key):
-        if isinstance(node, dict):
-            for k, v in node.items():
-                self._check_references(v, f'{key}.{k}')
-        elif isinstance(node, list):
-            for i, v in enumerate(node):
-                self._check_references(v, f'{key}[{i}]')
-        elif isinstance(node, str):
-            for name in _REF.findall(node):
-                if name not in self.parameters:
-                    raise CampaignError(f"{self.path}: key '{key}': unknown parameter ${{{name}}} "
-                                        f"(parameters: {', '.join(self.parameters) or 'none'})")
 
     # -- run i -------------------------------------------------------------------------
     def check_index(self, index):
@@ -128,8 +111,9 @@ class Campaign:
         return int(unit_draw(self.seed, index, '#seed') * (MAX_SCENARIO_SEED + 1))
 
     def definition(self, index):
-        parameters = self.parameters_of(index)
-        scenario = _substitute(copy.deepcopy(self.template), parameters, 'scenario', self.path, 0)
+        # The manifest records each parameter with the ${...} inside its value filled in.
+        parameters = self.references.resolve(self.parameters_of(index))
+        scenario = fill(self.template, parameters, 'scenario', self.path)
         scenario.setdefault('name', f'{self.name}_{index:07d}')
         scenario.setdefault('seed', self.run_seed(index))
         derived = {}
@@ -139,10 +123,7 @@ class Campaign:
                 derived[key] = (key.replace('_file', '.yaml'), self._derived_file(spec, key, folder))
             elif isinstance(spec, str):
                 scenario[key] = self.resolve(spec, folder, key)
-        # The manifest records each parameter with the ${...} inside its value filled in.
-        resolved = {n: _substitute(copy.deepcopy(v), parameters, f'parameters.{n}', self.path, 0)
-                    for n, v in parameters.items()}
-        return RunDefinition(index, resolved, scenario, derived)
+        return RunDefinition(index, parameters, scenario, derived)
 
     def resolve(self, name, folder, key):
         """A bearing or sensor file as the core finds it: absolute, relative to the campaign's
@@ -171,24 +152,3 @@ class Campaign:
             node[parts[-1]] = value
         return yaml.safe_dump(doc, sort_keys=False)
 
-
-def _substitute(node, values, key, path, depth):
-    if depth > _MAX_NESTING:
-        raise CampaignError(f"{path}: key '{key}': parameters refer to each other more than {_MAX_NESTING} deep")
-    if isinstance(node, dict):
-        return {k: _substitute(v, values, f'{key}.{k}', path, depth) for k, v in node.items()}
-    if isinstance(node, list):
-        return [_substitute(v, values, f'{key}[{i}]', path, depth) for i, v in enumerate(node)]
-    if not isinstance(node, str):
-        return node
-    whole = _REF.fullmatch(node)
-    if whole:  # the value itself, with its type (a number, a list, a mapping)
-        return _substitute(copy.deepcopy(values[whole.group(1)]), values, key, path, depth + 1)
-
-    def text(match):
-        value = values[match.group(1)]
-        if isinstance(value, (dict, list)):
-            raise CampaignError(f"{path}: key '{key}': ${{{match.group(1)}}} is a list or mapping and cannot "
-                                f'be part of a text')
-        return str(value)
-    return _REF.sub(text, node)
