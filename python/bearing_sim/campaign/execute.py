@@ -19,6 +19,9 @@ from .run_files import encode_hdf5, encode_npy, run_labels
 from .spec import Campaign
 from .store import RunStore, write_atomically
 
+# Runs loaded (not run) before the campaign starts, until one loads: when none does, the
+# template or its parameter ranges are wrong and the campaign is refused (docs/datasets.md).
+TEMPLATE_CHECK_RUNS = 100
 # Runs handed to Dask at a time per worker: enough to keep every worker busy, while the
 # driver holds the futures of a window, not of the whole campaign.
 RUNS_IN_FLIGHT_PER_WORKER = 4
@@ -75,12 +78,14 @@ def run_index(campaign_path, campaign_text, out_dir, index):
     return record
 
 
-def check_template(campaign, todo, tries=3):
-    """Loads the scenario, bearing and sensor of the first runs without running them. If none
-    of them loads, the template is bad and the command stops before anything is dispatched;
-    a run that fails on its own parameters is recorded when it runs."""
-    first_error = None
-    for index in itertools.islice(todo, tries):
+def check_template(campaign, todo):
+    """Loads the scenario, bearing and sensor of the runs to do, without running them, until one
+    loads. If none of the first TEMPLATE_CHECK_RUNS does, the template (or the ranges of its
+    parameters) is bad and the command stops before anything is dispatched; otherwise a run that
+    fails on its own parameters is recorded when it runs, and the campaign goes on."""
+    first_error, tried = None, 0
+    for index in itertools.islice(todo, TEMPLATE_CHECK_RUNS):
+        tried += 1
         run = campaign.definition(index)
         with tempfile.TemporaryDirectory() as work_dir:
             text, source = scenario_text(campaign, run, work_dir)
@@ -88,8 +93,9 @@ def check_template(campaign, todo, tries=3):
                 _core.check_scenario(text, source)
                 return
             except (bearing_sim.ConfigError, bearing_sim.InvalidInputError) as e:
-                first_error = first_error or f"{campaign.path}: key 'scenario' (run {index}): {e}"
-    raise CampaignError(first_error)
+                first_error = first_error or f'run {index}: {e}'
+    raise CampaignError(f"{campaign.path}: key 'scenario': none of the first {tried} run(s) to do loads "
+                        f'(a template error, or parameter ranges no run can satisfy); {first_error}')
 
 
 def parse_index_range(text, count):
