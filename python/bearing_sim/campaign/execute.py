@@ -16,6 +16,7 @@ from bearing_sim import _core
 
 from .errors import CampaignError
 from .run_files import encode_hdf5, encode_npy, run_labels
+from .run_lock import RunLock
 from .spec import Campaign
 from .store import RunStore, write_atomically
 
@@ -112,32 +113,34 @@ def parse_index_range(text, count):
 def run_campaign(campaign, out_dir, indices=None, client=None, scheduler=None, workers=None, serial=False,
                  log=lambda line: print(line, file=sys.stderr)):
     """Runs the unfinished runs among `indices` (a range, default all) and rebuilds the manifest.
-    Returns {'requested', 'skipped', 'ok', 'failed'}."""
+    Holds the runs' lock in out_dir meanwhile (run_lock.py). Returns {'requested', 'skipped',
+    'ok', 'failed'}."""
     store = RunStore(out_dir, campaign)
     store.prepare()
     indices = range(campaign.count) if indices is None else indices
-    finished = store.finished(indices)
-    skipped = finished.count(1)
-    summary = {'requested': len(indices), 'skipped': skipped, 'ok': 0, 'failed': 0}
+    with RunLock(store.out_dir, indices):
+        finished = store.finished(indices)
+        skipped = finished.count(1)
+        summary = {'requested': len(indices), 'skipped': skipped, 'ok': 0, 'failed': 0}
 
-    def todo():  # one index at a time: a campaign's count is not held in memory
-        return (indices.start + k for k in range(len(indices)) if not finished[k])
-    log(f'campaign {campaign.name}: {len(indices) - skipped} run(s) to do, {skipped} already finished')
-    if skipped < len(indices):
-        check_template(campaign, todo())
+        def todo():  # one index at a time: a campaign's count is not held in memory
+            return (indices.start + k for k in range(len(indices)) if not finished[k])
+        log(f'campaign {campaign.name}: {len(indices) - skipped} run(s) to do, {skipped} already finished')
+        if skipped < len(indices):
+            check_template(campaign, todo())
 
-    def done(record):
-        summary['ok' if record['status'] == 'ok' else 'failed'] += 1
-        if record['status'] != 'ok':
-            log(f"campaign {campaign.name}: run {record['index']} failed: {record.get('error')}")
+        def done(record):
+            summary['ok' if record['status'] == 'ok' else 'failed'] += 1
+            if record['status'] != 'ok':
+                log(f"campaign {campaign.name}: run {record['index']} failed: {record.get('error')}")
 
-    args = (campaign.path, campaign.text, store.out_dir)
-    if serial or skipped == len(indices):
-        for i in todo():
-            done(run_index(*args, i))
-    else:
-        _run_on_dask(args, todo(), client, scheduler, workers, store, done)
-    store.write_manifest()
+        args = (campaign.path, campaign.text, store.out_dir)
+        if serial or skipped == len(indices):
+            for i in todo():
+                done(run_index(*args, i))
+        else:
+            _run_on_dask(args, todo(), client, scheduler, workers, store, done)
+        store.write_manifest()
     log(f"campaign {campaign.name}: {summary['ok']} finished, {summary['failed']} failed, "
         f"{summary['skipped']} skipped (finished before); manifest {os.path.join(store.out_dir, 'manifest.csv')}")
     return summary
