@@ -134,3 +134,9 @@ def test_the_first_run_of_a_large_count_starts_without_visiting_every_index(camp
     # One byte per index (10 MB) at most; a list of ten million indices would be 400 MB.
     assert peak < 32 << 20, peak
 
+
+def test_an_empty_out_is_refused(campaign_file, tmp_path):
+    r = subprocess.run([sys.executable, str(SCRIPT), str(campaign_file(small_campaign())), '--out', ''],
+                       capture_output=True, text=True, timeout=120, cwd=tmp_path)
+    assert r.returncode == 2 and '--out: empty' in r.stderr, r.stderr
+    assert list(tmp_path.iterdir()) == [tmp_path / 'config']

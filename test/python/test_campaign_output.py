@@ -1,8 +1,11 @@
 """The output directory has one owner per run: a second bearing_campaign on runs another
 process holds is refused (exit 2) naming the lock, while job-array tasks with disjoint index
-ranges share the directory."""
+ranges share the directory. A file that cannot be written (here: beyond RLIMIT_FSIZE, as a
+full disk) stops the campaign naming it, with the manifest of the runs finished so far; a
+rerun resumes."""
 import csv
 import os
+import resource
 import subprocess
 import sys
 import time
@@ -65,3 +68,25 @@ def test_two_campaigns_on_one_out_never_compute_a_run_twice(campaign_file, tmp_p
     assert sorted(rows) == list(range(30)) and {r['status'] for r in rows.values()} == {'ok'}
     assert not list((out / 'runs').glob('.*.tmp'))
 
+
+def test_a_file_that_cannot_be_written_stops_the_campaign_naming_it(campaign_file, tmp_path):
+    doc = small_campaign(count=4)
+    # Runs 0 and 1 write 12 kB, run 2 120 kB: beyond the 20 kB file size limit below.
+    doc['parameters']['duration_s'] = {'grid': [0.1, 0.1, 1.0, 0.1]}
+    doc['scenario']['duration_s'] = '${duration_s}'
+    path = campaign_file(doc)
+    out = tmp_path / 'out'
+
+    def small_files():  # writing past it fails with EFBIG (Python ignores SIGXFSZ), as a full disk
+        resource.setrlimit(resource.RLIMIT_FSIZE, (20000, 20000))
+    code, err = finish(bearing_campaign(path, out, preexec_fn=small_files))
+    assert code == 2, err
+    assert f'cannot write {out}/runs/run_0000002.npy: File too large; the campaign stopped (2 run(s) finished now, ' \
+           f'manifest {out}/manifest.csv)' in err, err
+    assert 'Traceback' not in err
+    rows = manifest(out)
+    assert sorted(rows) == [0, 1] and {r['status'] for r in rows.values()} == {'ok'}
+    assert not list((out / 'runs').glob('.*.tmp'))
+    code, err = finish(bearing_campaign(path, out))
+    assert code == 0 and '2 run(s) to do, 2 already finished' in err, err
+    assert {r['status'] for r in manifest(out).values()} == {'ok'} and len(manifest(out)) == 4

@@ -1,6 +1,7 @@
 """bearing_campaign: runs a dataset campaign (docs/datasets.md, "Campaigns").
 Exit status: 0 every requested run finished, 1 some failed (recorded in the manifest),
-2 bad command line, campaign file or output directory."""
+2 bad command line, campaign file or output directory (also one that stops taking files,
+a full disk, during the runs)."""
 import argparse
 import os
 import sys

@@ -14,7 +14,7 @@ import uuid
 import bearing_sim
 from bearing_sim import _core
 
-from .errors import CampaignError
+from .errors import CampaignError, OutputError
 from .run_files import encode_hdf5, encode_npy, run_labels
 from .run_lock import RunLock
 from .spec import Campaign
@@ -51,7 +51,8 @@ def scenario_text(campaign, run, work_dir):
 
 def run_index(campaign_path, campaign_text, out_dir, index):
     """Runs run `index` and writes its data file and status record; never raises for a run
-    that fails (the error is recorded). Returns the status record."""
+    that fails (the error is recorded), only an OutputError when out_dir cannot take the
+    run's files. Returns the status record."""
     campaign = _campaign(campaign_path, campaign_text)
     store = RunStore(out_dir, campaign)
     store.remove_leftovers(index)
@@ -62,7 +63,10 @@ def run_index(campaign_path, campaign_text, out_dir, index):
         run = campaign.definition(index)
         record['parameters'] = run.parameters
         record['seed'] = run.scenario['seed']
-        os.makedirs(work_dir, exist_ok=True)
+        try:
+            os.makedirs(work_dir, exist_ok=True)
+        except OSError as e:
+            raise OutputError(f'cannot create {work_dir}: {e.strerror}') from None
         text, source = scenario_text(campaign, run, work_dir)
         result = _core.generate_from_yaml(text, source, None, None, float(campaign.label_rate_hz))
         data = encode_npy(result) if campaign.format == 'npy' else encode_hdf5(result, run.parameters)
@@ -70,6 +74,8 @@ def run_index(campaign_path, campaign_text, out_dir, index):
         record.update(status='ok', file=os.path.relpath(store.data_path(index), store.out_dir), bytes=len(data),
                       labels=run_labels(result), simulated_s=result['info']['duration_s'], cpu_s=result['cpu_s'],
                       divergences=result['divergences'], simd_target=result['info']['simd_target'])
+    except OutputError:  # not the run's fault: the campaign stops, the run is redone by a rerun
+        raise
     except Exception as e:  # a failing run is recorded, never stops the campaign
         record.update(status='failed', error=f'{type(e).__name__}: {e}')
     finally:
@@ -113,8 +119,9 @@ def parse_index_range(text, count):
 def run_campaign(campaign, out_dir, indices=None, client=None, scheduler=None, workers=None, serial=False,
                  log=lambda line: print(line, file=sys.stderr)):
     """Runs the unfinished runs among `indices` (a range, default all) and rebuilds the manifest.
-    Holds the runs' lock in out_dir meanwhile (run_lock.py). Returns {'requested', 'skipped',
-    'ok', 'failed'}."""
+    Holds the runs' lock in out_dir meanwhile (run_lock.py). An OutputError (a full disk) stops
+    the campaign after the manifest of what is finished. Returns {'requested', 'skipped', 'ok',
+    'failed'}."""
     store = RunStore(out_dir, campaign)
     store.prepare()
     indices = range(campaign.count) if indices is None else indices
@@ -135,15 +142,28 @@ def run_campaign(campaign, out_dir, indices=None, client=None, scheduler=None, w
                 log(f"campaign {campaign.name}: run {record['index']} failed: {record.get('error')}")
 
         args = (campaign.path, campaign.text, store.out_dir)
-        if serial or skipped == len(indices):
-            for i in todo():
-                done(run_index(*args, i))
-        else:
-            _run_on_dask(args, todo(), client, scheduler, workers, store, done)
+        try:
+            if serial or skipped == len(indices):
+                for i in todo():
+                    done(run_index(*args, i))
+            else:
+                _run_on_dask(args, todo(), client, scheduler, workers, store, done)
+        except OutputError as e:
+            raise OutputError(f'{e}; the campaign stopped ({summary["ok"]} run(s) finished now, '
+                              f'{_manifest_after_error(store)}); free space or fix the directory and run it '
+                              f'again to resume') from None
         store.write_manifest()
     log(f"campaign {campaign.name}: {summary['ok']} finished, {summary['failed']} failed, "
         f"{summary['skipped']} skipped (finished before); manifest {os.path.join(store.out_dir, 'manifest.csv')}")
     return summary
+
+
+def _manifest_after_error(store):
+    try:
+        store.write_manifest()
+        return f"manifest {os.path.join(store.out_dir, 'manifest.csv')}"
+    except OutputError as e:
+        return f'no manifest either: {e}'
 
 
 def _run_on_dask(args, todo, client, scheduler, workers, store, done):
@@ -179,21 +199,28 @@ def _run_on_dask(args, todo, client, scheduler, workers, store, done):
 
         n_workers, counted = workers_now(), time.monotonic()
         top_up()
-        for future in running:
-            _, i = in_flight.pop(future.key)
-            try:
-                record = future.result()
-            except Exception as e:  # the worker died (after the scheduler's retries) or was lost
-                record = {'index': i, 'status': 'failed', 'error': f'{type(e).__name__}: {e}'}
-                if store.is_finished(i):
-                    record = store.read_status(i)
-                else:
-                    store.write_status(i, record)
-            done(record)
-            future.release()
-            if time.monotonic() - counted > 5.0:
-                n_workers, counted = workers_now(), time.monotonic()
-            top_up()
+        try:
+            for future in running:
+                _, i = in_flight.pop(future.key)
+                try:
+                    record = future.result()
+                except OutputError:
+                    raise
+                except Exception as e:  # the worker died (after the scheduler's retries) or was lost
+                    record = {'index': i, 'status': 'failed', 'error': f'{type(e).__name__}: {e}'}
+                    if store.is_finished(i):
+                        record = store.read_status(i)
+                    else:
+                        store.write_status(i, record)
+                done(record)
+                future.release()
+                if time.monotonic() - counted > 5.0:
+                    n_workers, counted = workers_now(), time.monotonic()
+                top_up()
+        except OutputError:
+            for future, _ in in_flight.values():
+                future.cancel()
+            raise
     finally:
         for thing in own:
             thing.close()

@@ -8,7 +8,7 @@ import fcntl
 import os
 import struct
 
-from .errors import CampaignError
+from .errors import CampaignError, OutputError
 
 LOCK_FILE = 'campaign.lock'
 _FLOCK = '@hhqqi4x'  # Linux struct flock: type, whence, start, len, pid (and padding)
@@ -22,14 +22,14 @@ class RunLock:
         try:
             self._fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
         except OSError as e:
-            raise CampaignError(f'cannot open {self.path}: {e.strerror}') from None
+            raise OutputError(f'cannot open {self.path}: {e.strerror}') from None
         try:
             fcntl.lockf(self._fd, fcntl.LOCK_EX | fcntl.LOCK_NB, len(indices), indices.start)
         except OSError as e:
             holder = self._holder(indices) if e.errno in (errno.EACCES, errno.EAGAIN) else None
             os.close(self._fd)
             if holder is None:
-                raise CampaignError(f'cannot lock {self.path}: {e.strerror}') from None
+                raise OutputError(f'cannot lock {self.path}: {e.strerror}') from None
             last = indices.stop - 1
             raise CampaignError(
                 f'--out {out_dir}: another bearing_campaign process{holder} is generating runs of {indices.start}..'

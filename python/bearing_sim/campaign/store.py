@@ -1,7 +1,8 @@
 """The output directory of a campaign: one data file and one status record per run under
 runs/, the campaign's definition, and the manifest table. Every file is written under a
 temporary name and renamed, so a file under its final name is complete; a run is finished
-only when its status record says so and its data file has the recorded size."""
+only when its status record says so and its data file has the recorded size. A file that
+cannot be written is an OutputError naming it."""
 import contextlib
 import csv
 import glob
@@ -12,7 +13,7 @@ import re
 import shutil
 import socket
 
-from .errors import CampaignError
+from .errors import CampaignError, OutputError
 from .run_files import LABEL_NAMES
 
 _STAMP = 'campaign.json'
@@ -30,6 +31,8 @@ def atomic_file(path):
             f.flush()
             os.fsync(f.fileno())
         os.replace(tmp, path)
+    except OSError as e:  # a full disk, a read-only or vanished directory
+        raise OutputError(f'cannot write {path}: {e.strerror or e}') from None
     finally:
         with contextlib.suppress(OSError):
             os.remove(tmp)
@@ -42,6 +45,8 @@ def write_atomically(path, data):
 
 class RunStore:
     def __init__(self, out_dir, campaign):
+        if not os.fspath(out_dir):
+            raise CampaignError('--out: empty; give the output directory')
         self.out_dir = os.path.abspath(out_dir)
         self.runs_dir = os.path.join(self.out_dir, 'runs')
         self.campaign = campaign
