@@ -184,3 +184,24 @@ def test_a_template_none_of_the_first_runs_loads_is_refused(campaign_file, tmp_p
     assert f"key 'scenario': none of the first {TEMPLATE_CHECK_RUNS} run(s) to do loads" in str(e.value)
     assert 'run 0: ' in str(e.value) and 'at most a quarter of the raceway' in str(e.value)
     assert not list((tmp_path / 'out' / 'runs').glob('run_*'))
+
+
+def test_a_run_whose_text_draws_a_list_is_recorded_and_the_campaign_goes_on(campaign_file, tmp_path):
+    # A list cannot be part of a text: the runs that draw it fail on their values, run 0 among them.
+    for seed in range(1000):
+        doc = small_campaign(count=6, seed=seed)
+        doc['parameters']['tag'] = {'choice': [[1, 2], 'a']}
+        doc['scenario']['description'] = 'tag ${tag}'
+        c = Campaign.load(campaign_file(doc))
+        listed = [isinstance(c.parameters_of(i)['tag'], list) for i in range(6)]
+        if listed[0] and not all(listed):
+            break
+    else:
+        pytest.fail('no seed draws the tags wanted')
+    s = run_campaign(c, tmp_path / 'out', serial=True, log=quiet)
+    assert (s['ok'], s['failed']) == (listed.count(False), listed.count(True))
+    rows = {int(r['index']): r for r in manifest(tmp_path / 'out')}
+    for i in range(6):
+        assert rows[i]['status'] == ('failed' if listed[i] else 'ok')
+        if listed[i]:
+            assert '${tag} is a list or mapping and cannot be part of a text' in rows[i]['error']

@@ -93,14 +93,16 @@ def check_template(campaign, todo):
     first_error, tried = None, 0
     for index in itertools.islice(todo, TEMPLATE_CHECK_RUNS):
         tried += 1
-        run = campaign.definition(index)
-        with tempfile.TemporaryDirectory() as work_dir:
-            text, source = scenario_text(campaign, run, work_dir)
-            try:
+        try:
+            run = campaign.definition(index)  # a CampaignError here may be the run's values too
+            with tempfile.TemporaryDirectory() as work_dir:
+                text, source = scenario_text(campaign, run, work_dir)
                 _core.check_scenario(text, source)
-                return
-            except (bearing_sim.ConfigError, bearing_sim.InvalidInputError) as e:
-                first_error = first_error or f'run {index}: {e}'
+            return
+        except OutputError:
+            raise
+        except (CampaignError, bearing_sim.ConfigError, bearing_sim.InvalidInputError) as e:
+            first_error = first_error or f'run {index}: {e}'
     raise CampaignError(f"{campaign.path}: key 'scenario': none of the first {tried} run(s) to do loads "
                         f'(a template error, or parameter ranges no run can satisfy); {first_error}')
 
