@@ -122,6 +122,24 @@ Diagnosis diagnose(const ConditionIndicators& c, const DiagnosisThresholds& t) {
                         "typical of a localised defect"});
   Diagnosis d;
   d.verdict = fault_verdict(c.faults);
+  // Series the analysis cannot see (too slow for the window, too fast for the band): said,
+  // and when no race or ball series can be seen at all, not called healthy.
+  std::string unseen;
+  int seen = 0;
+  for (const FaultIndicator& f : c.faults) {
+    if (f.resolvable) {
+      seen += f.kind != FaultKind::Cage ? 1 : 0;
+      continue;
+    }
+    unseen += (unseen.empty() ? "" : ", ") + std::string(fault_frequency_label(f.kind));
+  }
+  if (!unseen.empty()) {
+    d.verdict.text += "; the analysis cannot see " + unseen;
+    if (seen == 0)
+      findings.push_back({HealthLevel::Warn, 0.0,
+                          "cannot assess the bearing: none of its fault lines can be seen in this window and band (" +
+                              unseen + "; the series' notes say why)"});
+  }
   if (findings.empty()) {
     d.reason = "no defect indication: " + velocity + ", kurtosis " + detail::fixed_decimals(c.acceleration.kurtosis, 1) +
                ", no fault series in the envelope spectrum (fundamental " + detail::fixed_decimals(c.fault_snr_db_used, 1) + " dB over noise with its supporting lines)";

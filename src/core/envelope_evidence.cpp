@@ -75,6 +75,7 @@ EnvelopeEvidence envelope_evidence(const std::vector<double>& demodulated, doubl
   context.evidence_snr_db = e.evidence_snr_db_used = averaged_threshold_db(o.thresholds.evidence_snr_db, averages);
   context.absolute_floor = settings.absolute_floor;
   context.segments = e.segments;
+  context.band_width_hz = band.high_hz - band.low_hz;
   for (FaultKind k : kKinds) {
     FaultIndicator f;
     f.kind = k;

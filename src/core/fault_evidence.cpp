@@ -179,7 +179,12 @@ void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& 
   const DiagnosisThresholds& t = o.thresholds;
   const double min_hz = resolvable_hz(envelope, o);
   const std::vector<double> own = series_lines_hz(freq, f->kind, kHarmonics + 1, o.thresholds.line_neighbourhood_rel);
-  f->resolvable = envelope.resolution_hz > 0.0 && f->envelope_peak.expected_hz >= min_hz;
+  // Visible: above the lowest resolvable frequency, and within what the envelope of the band
+  // can carry (its width) and its spectrum shows (below its last bins).
+  const double expected_hz = f->envelope_peak.expected_hz;
+  const double last_hz = envelope.frequency_hz(envelope.amplitude.empty() ? 0 : envelope.amplitude.size() - 2);
+  const bool too_high = !(expected_hz <= std::min(context.band_width_hz, last_hz));
+  f->resolvable = envelope.resolution_hz > 0.0 && expected_hz >= min_hz && !too_high;
   EvidenceLine first;
   first.peak = f->envelope_peak;
   first.found = f->resolvable && line_found(first.peak, context.fault_snr_db, t);
@@ -242,7 +247,11 @@ void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& 
   f->band_kurtosis = band.kurtosis;
   f->impulsive = !f->impulsiveness_required || band.kurtosis >= t.impulsive_band_kurtosis;
   f->suspected = lines && f->impulsive;
-  if (!f->resolvable)
+  if (too_high)
+    f->note = std::string(fault_frequency_label(f->kind)) + " " + detail::fixed_decimals(expected_hz, 1) +
+              " Hz lies above what the envelope can show (band " + detail::fixed_decimals(context.band_width_hz, 0) +
+              " Hz wide, spectrum to " + detail::fixed_decimals(last_hz, 0) + " Hz): the analysis cannot see it";
+  else if (!f->resolvable)
     f->note = std::string(fault_frequency_label(f->kind)) + " " + detail::fixed_decimals(f->envelope_peak.expected_hz, 2) +
               " Hz is not resolvable in a " + detail::fixed_decimals(1.0 / envelope.resolution_hz, 2) + " s window (" +
               detail::fixed_decimals(envelope.resolution_hz, 2) + " Hz bins); a window of at least " +

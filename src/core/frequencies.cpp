@@ -1,12 +1,17 @@
 #include "bearing_sim/core/frequencies.hpp"
 
 #include <cmath>
+#include <string>
 
 #include "bearing_sim/core/constants.hpp"
+#include "bearing_sim/core/errors.hpp"
 
 namespace bearing_sim {
 
 BearingFrequencies bearing_frequencies(const BearingModel& model, double inner_rad_s, double outer_rad_s) {
+  if (!std::isfinite(inner_rad_s) || !std::isfinite(outer_rad_s))
+    throw InvalidInputError("bearing frequencies: the ring speeds must be finite numbers (inner " +
+                            std::to_string(inner_rad_s) + " rad/s, outer " + std::to_string(outer_rad_s) + " rad/s)");
   const auto& c = model.config();
   const double z = c.balls_per_row;
   const double wc = model.cage_speed_rad_s(inner_rad_s, outer_rad_s);

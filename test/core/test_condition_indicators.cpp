@@ -316,3 +316,30 @@ TEST(ConditionIndicators, WindowAndErrors) {
 
 }  // namespace
 }  // namespace bearing_sim
+
+namespace bearing_sim {
+namespace {
+
+// Fault lines faster than the envelope band is wide cannot be in its envelope: a shaft
+// speed 30 times too high puts BPFO at 2610 Hz, beyond the 2 kHz resonance band. The series
+// say so, and a window that shows no race or ball series is not called healthy.
+TEST(ConditionIndicators, FaultLinesAboveTheBandCannotBeSeen) {
+  const BearingFrequencies f = scaled_frequencies(frequencies(), 30.0);
+  std::vector<double> x(20000);
+  std::mt19937_64 rng(4);
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (double& v : x) v = n(rng);
+  AnalysisOptions o;
+  o.resonance_hz = 3000.0;  // band 2-4 kHz: envelope lines up to 2 kHz
+  const ConditionIndicators c = analyze_vibration(x, 20000.0, f, o);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_FALSE(c.faults[k].resolvable) << fault_frequency_label(c.faults[k].kind);
+    EXPECT_NE(c.faults[k].note.find("cannot see"), std::string::npos) << c.faults[k].note;
+  }
+  EXPECT_TRUE(c.faults[3].resolvable);  // the cage line, 291 Hz, is within the band's reach
+  EXPECT_EQ(c.diagnosis.level, HealthLevel::Warn) << c.diagnosis.reason;
+  EXPECT_NE(c.diagnosis.reason.find("cannot assess"), std::string::npos) << c.diagnosis.reason;
+}
+
+}  // namespace
+}  // namespace bearing_sim

@@ -2,7 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <string>
 
+#include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 #include "test_support.hpp"
 
@@ -56,4 +59,17 @@ TEST(Frequencies, CageSpeedIsLinearInRingSpeeds) {
   EXPECT_NEAR(f.ball_pass_outer_race_hz, 0.0, 1e-12);
   EXPECT_NEAR(f.ball_pass_inner_race_hz, 0.0, 1e-12);
   EXPECT_NEAR(f.ball_spin_hz, 0.0, 1e-12);
+}
+
+// A speed that is not a number has no frequencies: refused, naming the speeds (a NaN would
+// otherwise make every fault line NaN and every analysis "healthy").
+TEST(Frequencies, NonFiniteSpeedIsRefused) {
+  const BearingModel model(ct_bearing());
+  EXPECT_THROW(bearing_frequencies(model, std::nan("")), InvalidInputError);
+  EXPECT_THROW(bearing_frequencies(model, 1.0, std::numeric_limits<double>::infinity()), InvalidInputError);
+  try {
+    bearing_frequencies(model, std::nan(""), 0.0);
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("finite"), std::string::npos) << e.what();
+  }
 }
