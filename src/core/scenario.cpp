@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/thermal_clearance.hpp"
@@ -124,12 +125,12 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
   sc.description_ = r.text("description", "");
   sc.duration_s_ = r.number("duration_s", 0.0, true);
   r.require(sc.duration_s_ > 0.0, "duration_s", "must be > 0, got " + format_number(sc.duration_s_));
-  r.require(sc.duration_s_ <= 1e7, "duration_s", "must be at most 1e7 s");
+  r.require(sc.duration_s_ <= kMaxScenarioDurationS, "duration_s", "must be at most 1e7 s");
   const int seed = r.integer("seed", 1);
   r.require(seed >= 0, "seed", "must be >= 0");
   sc.seed_ = static_cast<std::uint64_t>(seed);
   sc.sample_rate_hz_ = r.number("sample_rate_hz", 10000.0);
-  r.require(sc.sample_rate_hz_ >= 100.0 && sc.sample_rate_hz_ <= 1e6, "sample_rate_hz", "must be in [100, 1e6] Hz");
+  r.require(sc.sample_rate_hz_ >= 100.0 && sc.sample_rate_hz_ <= kMaxSampleRateHz, "sample_rate_hz", "must be in [100, 1e6] Hz");
 
   const fs::path base_dir = fs::path(source).has_parent_path() ? fs::path(source).parent_path() : fs::path(".");
   const std::string bearing = r.text("bearing_file", "");

@@ -232,7 +232,7 @@ void register_generate_command(CLI::App& app) {
       ->check(non_negative_number());
   add_number_option(cmd, "--duration-s", &o->duration_s, "S", "Simulated time (default: each scenario's duration_s)")
       ->check(positive_number())
-      ->check(CLI::Range(0.0, 1e12));  // beyond, the sample count leaves the integers
+      ->check(CLI::Range(0.0, kMaxScenarioDurationS));  // as a scenario file's duration_s
   CLI::Option* temperature = add_ring_temperature_option(
       cmd, &o->ring_temperature_difference_K,
       "Inner minus outer ring temperature, K, held for the whole run instead of each scenario's "

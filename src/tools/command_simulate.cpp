@@ -22,9 +22,6 @@
 namespace bearing_sim::tool {
 namespace {
 
-// As the node's and a scenario's sample_rate_hz: above, one second of run is hours of work.
-constexpr double kMaxSampleRateHz = 1e6;
-
 struct SimulateOptions {
   double ring_temperature_difference_K = 0.0;
   std::string bearing;

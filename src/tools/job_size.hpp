@@ -10,10 +10,9 @@
 
 namespace bearing_sim::tool {
 
-// Runs estimated longer than this are announced on stderr before they start; longer than the
-// limit, they need the confirmation flag.
-constexpr double kAnnounceRunS = 600.0;
-constexpr double kLongRunLimitS = 3600.0;
+// Runs estimated longer than kAnnounceRunS (bearing_dynamics.hpp, shared with the Python
+// module) are announced on stderr before they start; longer than kLongRunLimitS, they need the
+// confirmation flag.
 
 // The automatic substeps at `load`. Above the ceiling of ros_node::check_integrator_work (the
 // node's check) throws ConfigError naming the bearing file, the stiff mode (or overdamped

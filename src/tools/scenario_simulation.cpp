@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/bearing_dynamics.hpp"
@@ -51,6 +52,12 @@ ScenarioSimulation::ScenarioSimulation(Scenario scenario, const std::string& sce
   const std::uint64_t seed = settings_.seed.value_or(scenario_.seed());
   const double duration = settings_.duration_s.value_or(scenario_.duration_s());
   if (!(duration > 0.0) || !std::isfinite(duration)) throw InvalidInputError("duration must be > 0 s");
+  if (duration > kMaxScenarioDurationS) {
+    char text[160];
+    std::snprintf(text, sizeof text, "duration %g s: at most %g s, as a scenario's duration_s", duration,
+                  kMaxScenarioDurationS);
+    throw InvalidInputError(text);
+  }
   BearingConfig config = load_bearing_config(scenario_.bearing_file());
   config.imperfections.seed = seed;  // roughness, ball sizes and cage slip from the run's seed
   config.ring_temperature_difference_K =

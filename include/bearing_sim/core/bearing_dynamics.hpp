@@ -53,6 +53,15 @@ const char* integration_method_name(IntegrationMethod method);
 std::optional<IntegrationMethod> integration_method_from_name(const std::string& name);
 std::vector<std::string> integration_method_names();
 
+// The highest output sample rate of a run (node parameter, scenario sample_rate_hz,
+// bearing_tool simulate --rate, bearing_sim.simulate): above, one second of run is hours of work.
+constexpr double kMaxSampleRateHz = 1e6;
+// Wall time of a run estimated before it starts (bearing_tool simulate / generate,
+// bearing_sim.simulate / generate): longer than kAnnounceRunS it is announced, longer than
+// kLongRunLimitS it needs the confirmation (--allow-long-run, allow_long_run=True).
+constexpr double kAnnounceRunS = 600.0;
+constexpr double kLongRunLimitS = 3600.0;
+
 struct DynamicsOptions {
   double sample_rate_hz = 10000.0;
   // Internal steps per output sample; 0 chooses them from the highest natural

@@ -12,6 +12,10 @@
 
 namespace bearing_sim {
 
+// The longest scenario run: a scenario file's duration_s and a duration given in its place
+// (bearing_tool generate --duration-s, bearing_sim.generate duration_s).
+constexpr double kMaxScenarioDurationS = 1e7;
+
 // Inputs of the simulation at one scenario time.
 struct ScenarioInputs {
   Vector5 load = Vector5::Zero();  // Fx, Fy, Fz (N), Mx, My (N*m) on the rotating ring, unbalance included
