@@ -58,18 +58,22 @@ def frequencies(bearing, ring_speed_rad_s):
 
 
 def simulate(bearing, force_N, ring_speed_rad_s, moment_Nm=(0.0, 0.0), duration_s=1.0, sample_rate_hz=10000.0,
-             substeps=0, integrator="adams_pec"):
+             substeps=0, integrator="adams_pec", allow_long_run=False):
     """A fixed-load, fixed-speed dynamic run from the static equilibrium (bearing_tool simulate).
     integrator: adams_pec (default), adams_pece, etdrk4 or rk4 (docs/model.md, section 10).
+    sample_rate_hz at most 1e6; a run estimated (from a short probe) to take over an hour is
+    refused unless allow_long_run=True (bearing_tool's --allow-long-run); Ctrl-C stops it.
     Returns time_s, displacement and acceleration (samples x 5) and the run's summary."""
     return load_bearing(bearing).simulate(list(force_N), ring_speed_rad_s, list(moment_Nm), duration_s,
-                                          sample_rate_hz, substeps, integrator)
+                                          sample_rate_hz, substeps, integrator, allow_long_run)
 
 
-def generate(scenario, seed=None, duration_s=None, label_rate_hz=10.0, base_dir=None):
+def generate(scenario, seed=None, duration_s=None, label_rate_hz=10.0, base_dir=None, allow_long_run=False):
     """Runs a scenario (a file path or a dict with the keys of docs/scenarios.md) exactly as
     `bearing_tool generate`. A dict's relative bearing and sensor files resolve against
     base_dir (default: the working directory), else its ../bearings and ../sensors.
+    duration_s (default: the scenario's) at most 1e7 s, as a scenario file's; a run estimated to
+    take over an hour is refused unless allow_long_run=True (--allow-long-run); Ctrl-C stops it.
     Returns vibration (measured, float32 samples x 3), vibration_ideal, labels and info."""
     if isinstance(scenario, dict):
         text = yaml_text(scenario)
@@ -81,7 +85,7 @@ def generate(scenario, seed=None, duration_s=None, label_rate_hz=10.0, base_dir=
                 text = f.read()
         except OSError as e:
             raise ConfigError(f'{source}: cannot read the scenario file: {e.strerror}') from None
-    return _core.generate_from_yaml(text, source, seed, duration_s, label_rate_hz)
+    return _core.generate_from_yaml(text, source, seed, duration_s, label_rate_hz, allow_long_run)
 
 
 def analyze(signal, sample_rate_hz, bearing, inner_rad_s=0.0, outer_rad_s=0.0, window_s=0.0, resonance_hz=0.0,

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <memory>
+#include <sstream>
 
 #include "binding_common.hpp"
 #include "bearing_sim/core/bearing_config.hpp"
@@ -57,7 +58,56 @@ py::dict static_dict(const StaticSolution& s) {
   return d;
 }
 
+std::string duration_text(double s) {
+  std::ostringstream o;
+  o.precision(3);
+  if (s >= 86400.0 * 365.0) o << s / (86400.0 * 365.0) << " years";
+  else if (s >= 86400.0) o << s / 86400.0 << " days";
+  else if (s >= 3600.0) o << s / 3600.0 << " hours";
+  else if (s >= 60.0) o << s / 60.0 << " minutes";
+  else o << s << " s";
+  return o.str();
+}
+
 }  // namespace
+
+double probe_seconds_per_sample(const BearingModel& model, const Vector5& load, double ring_speed_rad_s,
+                                double sample_rate_hz, int substeps, IntegrationMethod method) {
+  using Clock = std::chrono::steady_clock;
+  try {
+    BearingDynamics dynamics(model, load, ring_speed_rad_s, DynamicsOptions{sample_rate_hz, substeps, true, method});
+    const Clock::time_point start = Clock::now();
+    int n = 0;
+    double elapsed = 0.0;
+    while (n < 200 && elapsed < 0.2) {
+      try {
+        dynamics.step();
+      } catch (const DivergenceError&) {
+        dynamics.reset_to_equilibrium();
+      }
+      ++n;
+      elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    }
+    return elapsed / n;
+  } catch (const LoadNotCarriedError&) {
+    return 0.0;
+  }
+}
+
+void check_long_run(double samples, double seconds_per_sample, bool allow_long_run, const std::string& what) {
+  const double estimate_s = samples * seconds_per_sample;
+  if (!(estimate_s > kAnnounceRunS)) return;
+  std::ostringstream text;
+  text.precision(4);
+  text << what << ": " << samples << " samples at the ";
+  text.precision(3);
+  text << seconds_per_sample * 1e6 << " us per sample measured on this machine: about " << duration_text(estimate_s);
+  if (estimate_s > kLongRunLimitS && !allow_long_run)
+    throw InvalidInputError(text.str() + ", more than " + duration_text(kLongRunLimitS) +
+                            " (the limit of bearing_tool without --allow-long-run); give allow_long_run=True "
+                            "to start it anyway");
+  if (PyErr_WarnEx(PyExc_UserWarning, text.str().c_str(), 1) != 0) throw py::error_already_set();
+}
 
 void bind_bearing(py::module_& m) {
   py::class_<PyBearing>(m, "Bearing", "A bearing file (docs/bearing_file.md), loaded and validated")
@@ -120,7 +170,7 @@ void bind_bearing(py::module_& m) {
           "simulate",
           [](const PyBearing& b, const std::vector<double>& force, double ring_speed_rad_s,
              const std::vector<double>& moment, double duration_s, double sample_rate_hz, int substeps,
-             const std::string& integrator) {
+             const std::string& integrator, bool allow_long_run) {
             SimulationRequest r;
             r.load = make_load(force, moment);
             r.ring_speed_rad_s = ring_speed_rad_s;
@@ -137,16 +187,38 @@ void bind_bearing(py::module_& m) {
             if (!(duration_s > 0.0) || !std::isfinite(duration_s)) throw InvalidInputError("duration_s must be > 0");
             if (!(sample_rate_hz > 0.0) || !std::isfinite(sample_rate_hz))
               throw InvalidInputError("sample_rate_hz must be > 0");
+            if (sample_rate_hz > kMaxSampleRateHz) {
+              std::ostringstream text;
+              text << "sample_rate_hz " << sample_rate_hz << ": at most " << kMaxSampleRateHz
+                   << " Hz (as bearing_tool simulate --rate and a scenario's sample_rate_hz)";
+              throw InvalidInputError(text.str());
+            }
             if (substeps < 0) throw InvalidInputError("substeps must be >= 0 (0: automatic)");
+            // The CLI's rules (bearing_tool simulate): a probe for runs over 1000 samples of a
+            // bearing with dynamics; the core refuses a run of fewer than 4 or over 1e9 samples.
+            const double samples = std::round(duration_s * sample_rate_hz);
+            if (samples > 1000.0 && samples <= 1e9 && b.model->config().has_dynamics()) {
+              double per_sample = 0.0;
+              {
+                py::gil_scoped_release release;
+                per_sample =
+                    probe_seconds_per_sample(*b.model, r.load, ring_speed_rad_s, sample_rate_hz, substeps, r.method);
+              }
+              check_long_run(samples, per_sample, allow_long_run, "bearing_sim.simulate");
+            }
             std::vector<double> time, displacement, acceleration;
             SimulationSummary s;
-            {
+            SignalCheck signals;
+            try {
               py::gil_scoped_release release;
               s = run_simulation(*b.model, r, [&](const DynamicSample& x) {
                 time.push_back(x.time_s);
                 displacement.insert(displacement.end(), x.displacement.data(), x.displacement.data() + 5);
                 acceleration.insert(acceleration.end(), x.acceleration.data(), x.acceleration.data() + 5);
+                signals.poll();
               });
+            } catch (const SignalCheck::Interrupted&) {
+              throw py::error_already_set();
             }
             const auto n = static_cast<py::ssize_t>(time.size());
             py::dict d;
@@ -165,8 +237,11 @@ void bind_bearing(py::module_& m) {
           py::arg("force_N"), py::arg("ring_speed_rad_s"), py::arg("moment_Nm") = std::vector<double>{0.0, 0.0},
           py::arg("duration_s") = 1.0, py::arg("sample_rate_hz") = 10000.0, py::arg("substeps") = 0,
           py::arg("integrator") = std::string(integration_method_name(kDefaultIntegrationMethod)),
-          "Dynamic run at a fixed load and speed from the static equilibrium (the GIL is released): time_s, "
-          "displacement and acceleration (samples x 5) and the summary of `bearing_tool simulate`")
+          py::arg("allow_long_run") = false,
+          "Dynamic run at a fixed load and speed from the static equilibrium (the GIL is released, Ctrl-C "
+          "stops it within ~0.1 s): time_s, displacement and acceleration (samples x 5) and the summary of "
+          "`bearing_tool simulate`. sample_rate_hz at most 1e6; a run estimated over an hour needs "
+          "allow_long_run=True (--allow-long-run)")
       .def("__repr__", [](const PyBearing& b) {
         return "<bearing_sim.Bearing '" + b.model->config().name + "' from " + b.source + ">";
       });

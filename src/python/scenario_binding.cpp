@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "binding_common.hpp"
+#include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/scenario.hpp"
 #include "scenario_simulation.hpp"
@@ -98,7 +99,7 @@ py::dict labels_dict(const std::vector<tool::LabelState>& labels) {
 }
 
 py::dict generate(const std::string& text, const std::string& source, std::optional<std::uint64_t> seed,
-                  std::optional<double> duration_s, double label_rate_hz) {
+                  std::optional<double> duration_s, double label_rate_hz, bool allow_long_run) {
   tool::GenerateSettings settings;
   settings.seed = seed;
   settings.duration_s = duration_s;
@@ -107,10 +108,29 @@ py::dict generate(const std::string& text, const std::string& source, std::optio
   MemorySink sink;
   tool::RunStats stats;
   std::optional<tool::ScenarioSimulation> simulation;
+  double samples = 0.0, per_sample = 0.0;
   {
     py::gil_scoped_release release;
     simulation.emplace(Scenario::from_string(text, source), source, settings);
-    stats = simulation->run({&sink});
+    // bearing_tool generate's estimate: the dynamics alone at half time, for runs over 1000 samples
+    // (the duration is at most kMaxScenarioDurationS, checked by ScenarioSimulation).
+    const Scenario& sc = simulation->scenario();
+    const tool::DatasetInfo& info = simulation->info();
+    samples = static_cast<double>(info.ideal_samples);
+    if (samples > 1000.0) {
+      const BearingModel model(load_bearing_config(sc.bearing_file()));
+      const double t = 0.5 * info.duration_s;
+      per_sample = probe_seconds_per_sample(model, sc.load_at(t), sc.ring_speed_at(t), info.sample_rate_hz, 0,
+                                            kDefaultIntegrationMethod);
+    }
+  }
+  check_long_run(samples, per_sample, allow_long_run, "bearing_sim.generate");
+  SignalCheck signals;
+  try {
+    py::gil_scoped_release release;
+    stats = simulation->run({&sink}, [&signals](double) { signals.poll(); });
+  } catch (const SignalCheck::Interrupted&) {
+    throw py::error_already_set();
   }
   py::dict d;
   d["vibration"] = rows3(sink.measured_);
@@ -135,10 +155,12 @@ py::dict check(const std::string& text, const std::string& source) {
 
 void bind_scenario(py::module_& m) {
   m.def("generate_from_yaml", &generate, py::arg("text"), py::arg("source"), py::arg("seed") = py::none(),
-        py::arg("duration_s") = py::none(), py::arg("label_rate_hz") = 10.0,
+        py::arg("duration_s") = py::none(), py::arg("label_rate_hz") = 10.0, py::arg("allow_long_run") = false,
         "Runs a scenario given as YAML text (docs/scenarios.md) as `bearing_tool generate` does; relative "
-        "bearing and sensor files resolve against the directory of `source`. The GIL is released. Returns "
-        "vibration (measured, float32 samples x 3), vibration_ideal, labels, info");
+        "bearing and sensor files resolve against the directory of `source`. The GIL is released, Ctrl-C "
+        "stops the run within ~0.1 s. duration_s at most 1e7 s; a run estimated over an hour needs "
+        "allow_long_run=True (--allow-long-run). Returns vibration (measured, float32 samples x 3), "
+        "vibration_ideal, labels, info");
   m.def("check_scenario", &check, py::arg("text"), py::arg("source"),
         "Loads a scenario with its bearing and sensor without running it (ConfigError naming the key); "
         "returns its info");

@@ -1,0 +1,89 @@
+"""The Python API refuses what bearing_tool refuses, with the same limits (issue 31, items
+6-8): the sample rate (1e6 Hz), a scenario's duration (1e7 s), a run estimated over an hour
+without allow_long_run=True (--allow-long-run); and Ctrl-C stops a long run promptly."""
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import pytest
+
+import bearing_sim
+from conftest import BEARINGS
+
+B6205 = BEARINGS / 'deep_groove_6205.yaml'
+
+
+def scenario(duration_s=1.0):
+    return {'name': 'limits', 'duration_s': duration_s, 'seed': 1, 'bearing_file': str(B6205),
+            'speed': {'initial_speed_rpm': 1200.0}, 'load': {'initial': {'force_N': [1000.0, 0.0, 0.0]}}}
+
+
+def test_simulate_refuses_a_sample_rate_above_the_cli_limit():
+    b = bearing_sim.load_bearing(B6205)
+    with pytest.raises(bearing_sim.InvalidInputError, match=r'sample_rate_hz 1e\+09: at most 1e\+06 Hz'):
+        bearing_sim.simulate(b, [1000.0, 0.0, 0.0], ring_speed_rad_s=100.0, duration_s=0.01, sample_rate_hz=1e9)
+    # The limit itself is allowed (a short run).
+    r = bearing_sim.simulate(b, [1000.0, 0.0, 0.0], ring_speed_rad_s=100.0, duration_s=1e-4, sample_rate_hz=1e6)
+    assert len(r['time_s']) == 100
+
+
+def test_simulate_refuses_a_run_of_hours_without_allow_long_run():
+    b = bearing_sim.load_bearing(B6205)
+    start = time.monotonic()
+    with pytest.raises(bearing_sim.InvalidInputError,
+                       match=r'bearing_sim\.simulate: 1e\+09 samples .* measured on this machine: about .*'
+                             r'more than 1 hours.*allow_long_run=True'):
+        # 1e9 samples (the most a run holds) of 200 integration steps each: days at any speed.
+        bearing_sim.simulate(b, [1000.0, 0.0, 0.0], ring_speed_rad_s=100.0, duration_s=1e5, substeps=200)
+    assert time.monotonic() - start < 30.0  # the probe only, nothing allocated for the run
+
+
+def test_generate_refuses_a_duration_above_a_scenario_files_limit():
+    with pytest.raises(bearing_sim.InvalidInputError, match=r'duration 1e\+09 s: at most 1e\+07 s'):
+        bearing_sim.generate(scenario(), duration_s=1e9)
+    # The scenario file's own cap (ConfigError naming the key), unchanged.
+    with pytest.raises(bearing_sim.ConfigError, match=r'duration_s.*at most 1e7'):
+        bearing_sim.generate(scenario(duration_s=1e8))
+
+
+def test_generate_refuses_a_run_of_hours_without_allow_long_run():
+    start = time.monotonic()
+    with pytest.raises(bearing_sim.InvalidInputError,
+                       match=r'bearing_sim\.generate: 1e\+11 samples .*more than 1 hours.*allow_long_run=True'):
+        # 1e11 samples, the longest duration a scenario may have: years at any speed.
+        bearing_sim.generate(scenario(), duration_s=1e7)
+    assert time.monotonic() - start < 30.0
+
+
+INTERRUPTED_CHILD = textwrap.dedent('''
+    import sys, bearing_sim
+    print('starting', flush=True)
+    {call}
+    print('finished', flush=True)
+''')
+
+
+@pytest.mark.parametrize('call', [
+    'bearing_sim.generate({scenario!r}, duration_s=5000.0, allow_long_run=True)',
+    'bearing_sim.simulate({bearing!r}, [1000.0, 0.0, 0.0], ring_speed_rad_s=100.0, duration_s=5000.0, '
+    'allow_long_run=True)',
+], ids=['generate', 'simulate'])
+def test_ctrl_c_stops_a_long_run(call):
+    code = INTERRUPTED_CHILD.format(call=call.format(scenario=scenario(), bearing=str(B6205)))
+    child = subprocess.Popen([sys.executable, '-c', code], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             text=True, env=dict(os.environ))
+    try:
+        assert child.stdout.readline().strip() == 'starting'
+        time.sleep(1.5)  # into the run (the load, the probe, the first samples)
+        child.send_signal(signal.SIGINT)
+        out, err = child.communicate(timeout=20)
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.wait()
+    assert 'finished' not in out
+    assert child.returncode != 0
+    assert 'KeyboardInterrupt' in err, err
