@@ -79,7 +79,7 @@ EnvelopeEvidence envelope_evidence(const std::vector<double>& demodulated, doubl
   for (FaultKind k : kKinds) {
     FaultIndicator f;
     f.kind = k;
-    f.envelope_peak = series_peak(e.envelope, fault_frequency_hz(freq, k), series_lines_hz(freq, k, 5, o.thresholds.line_neighbourhood_rel), o, context);
+    f.envelope_peak = series_peak(e.envelope, fault_frequency_hz(freq, k), series_lines_hz(freq, k, 5), o, context);
     f.modulation = e.envelope_mean > 0.0 ? f.envelope_peak.amplitude / e.envelope_mean : 0.0;
     if (k != FaultKind::Cage && line_found(f.envelope_peak, context.fault_snr_db, o.thresholds)) context.present.push_back(k);
     e.faults.push_back(f);

@@ -116,10 +116,8 @@ bool lines_on_compliance_comb(const FaultIndicator& f, const BearingFrequencies&
 }
 }  // namespace
 
-std::vector<double> series_lines_hz(const BearingFrequencies& freq, FaultKind kind, int harmonics,
-                                    double neighbourhood_rel) {
+std::vector<double> series_lines_hz(const BearingFrequencies& freq, FaultKind kind, int harmonics) {
   const double f0 = fault_frequency_hz(freq, kind), fm = modulation_frequency_hz(freq, kind);
-  (void)neighbourhood_rel;
   const int orders = fm > 0.0 ? 2 : 0;  // the sidebands rule 6 counts as the series' own
   std::vector<double> lines;
   for (int n = 1; n <= harmonics; ++n)
@@ -178,7 +176,7 @@ void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& 
                             const EvidenceContext& context, const BandKurtosis& band, FaultIndicator* f) {
   const DiagnosisThresholds& t = o.thresholds;
   const double min_hz = resolvable_hz(envelope, o);
-  const std::vector<double> own = series_lines_hz(freq, f->kind, kHarmonics + 1, o.thresholds.line_neighbourhood_rel);
+  const std::vector<double> own = series_lines_hz(freq, f->kind, kHarmonics + 1);
   // Visible: above the lowest resolvable frequency, and within what the envelope of the band
   // can carry (its width) and its spectrum shows (below its last bins).
   const double expected_hz = f->envelope_peak.expected_hz;

@@ -18,11 +18,9 @@ struct EvidenceContext {
   double band_width_hz = 0.0;  // of the demodulated band: the highest envelope frequency it carries
 };
 
-// The lines a series' hypothesis predicts: n f_fault + j f_mod, n = 1 .. harmonics, every
-// sideband order j up to the neighbourhood (+-neighbourhood_rel) of the highest harmonic
-// (at least 2, at most 10; j = 0 alone without modulation).
-std::vector<double> series_lines_hz(const BearingFrequencies& freq, FaultKind kind, int harmonics,
-                                    double neighbourhood_rel);
+// The lines a series' hypothesis predicts: n f_fault + j f_mod, n = 1 .. harmonics,
+// j = -2 .. 2 (j = 0 alone without modulation): the sidebands rule 6 counts as its own.
+std::vector<double> series_lines_hz(const BearingFrequencies& freq, FaultKind kind, int harmonics);
 
 // A peak searched at expected_hz with its SNR and its chance (line_chance against the
 // series' other lines).
