@@ -217,7 +217,7 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
   // bins below the sensor floor (a noise-free simulation) it is not tried.
   double share_below_floor = 1.0;
   const std::vector<double> whitened =
-      o.prewhiten ? prewhiten(x, white_noise_bin_magnitude(o.prewhiten_floor_m_s2_per_sqrt_hz, n, fs), &share_below_floor)
+      o.prewhiten ? prewhiten(x, white_noise_bin_magnitude(o.sensor_floor_m_s2_per_sqrt_hz, n, fs), &share_below_floor)
                   : std::vector<double>();
   const bool broadband_floor = o.prewhiten && share_below_floor < 0.5;
   EnvelopeEvidence from_whitened;

@@ -40,7 +40,7 @@ EnvelopeBandChoice choose_envelope_band(const std::vector<double>& x, double fs,
     c.source = "resonance";
   } else if (band == EnvelopeBand::Kurtogram && kurtogram_fits(fs, highest_hz, lowest_edge_hz)) {
     // The most impulsive band wide enough to hold harmonics 1-3 of every fault line.
-    const Kurtogram k = fast_kurtogram(x, fs, 3.0 * highest_hz, lowest_edge_hz);
+    const Kurtogram k = fast_kurtogram(x, fs, 3.0 * highest_hz, lowest_edge_hz, 64, o.sensor_floor_m_s2_per_sqrt_hz);
     c.low_hz = k.best.low_hz;
     c.high_hz = k.best.high_hz;
     c.source = "kurtogram";
@@ -57,7 +57,7 @@ EnvelopeBandChoice choose_envelope_band(const std::vector<double>& x, double fs,
                             detail::fixed_decimals(nyquist, 0) + " Hz (raise the sample rate or give resonance_hz)");
   // The band's impulsiveness, whichever way it was chosen (the evidence rule asks it of a
   // series without sidebands); the kurtogram has it already, by the same computation.
-  if (!c.kurtosis.valid) c.kurtosis = band_spectral_kurtosis(x, fs, c.low_hz, c.high_hz);
+  if (!c.kurtosis.valid) c.kurtosis = band_spectral_kurtosis(x, fs, c.low_hz, c.high_hz, o.sensor_floor_m_s2_per_sqrt_hz);
   return c;
 }
 

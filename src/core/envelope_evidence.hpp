@@ -13,7 +13,7 @@ namespace bearing_sim {
 struct EnvelopeBandChoice {
   double low_hz = 0.0, high_hz = 0.0;
   std::string source;  // "resonance", "kurtogram" or "fixed"
-  BandKurtosis kurtosis;  // of the signal as recorded in that band
+  BandKurtosis kurtosis;  // of the signal as recorded in that band, the sensor floor added
 };
 
 // The band for this path: resonance_hz when given, else by `band` (the kurtogram of x, or

@@ -211,8 +211,11 @@ std::vector<Complex> tapered_spectrum(const std::vector<double>& x) {
 // of a tapered spectrum: the band's bins moved to baseband, zero-padded to a power of two
 // >= 2 x their count, inverse-transformed, the tapered ends left out. Also the number of
 // bins (independent complex samples). False when the band holds too few bins.
-bool band_kurtosis(const std::vector<Complex>& spectrum, double fs, double low_hz, double high_hz, double* kurtosis,
-                   std::size_t* bins) {
+// With a floor density d > 0 (units/sqrt(Hz)) the kurtosis is the one the band would show
+// with white noise of that density added: independent circular Gaussian noise of power
+// P_n beside a band power P_c scales it by (P_c / (P_c + P_n))^2 (Antoni, MSSP 20, 2006).
+bool band_kurtosis(const std::vector<Complex>& spectrum, double fs, double low_hz, double high_hz,
+                   double floor_density, double* kurtosis, std::size_t* bins) {
   const std::size_t n = spectrum.size();
   const double df = fs / static_cast<double>(n);
   // Bins in [low, high) (the last band up to, not including, Nyquist; never DC).
@@ -238,7 +241,12 @@ bool band_kurtosis(const std::vector<Complex>& spectrum, double fs, double low_h
   }
   m2 /= static_cast<long double>(m - 2 * skip);
   m4 /= static_cast<long double>(m - 2 * skip);
-  *kurtosis = m2 > 0.0L ? static_cast<double>(m4 / (m2 * m2)) - 2.0 : 0.0;
+  // The floor's envelope power: each of the count bins has E|X|^2 = n (fs / 2) d^2 in the
+  // untapered middle of the window, and the inverse transform divides by m.
+  const long double noise = static_cast<long double>(count) * 0.5L * static_cast<long double>(n) * fs *
+                            floor_density * floor_density / (static_cast<long double>(m) * m);
+  const long double share = m2 > 0.0L ? m2 / (m2 + noise) : 0.0L;
+  *kurtosis = m2 > 0.0L ? static_cast<double>((m4 / (m2 * m2) - 2.0L) * share * share) : 0.0;
   *bins = count;
   return true;
 }
@@ -247,18 +255,19 @@ bool band_kurtosis(const std::vector<Complex>& spectrum, double fs, double low_h
 double independent_samples(std::size_t bins) { return static_cast<double>(bins) * (1.0 - 2.0 * kTaper); }
 }  // namespace
 
-BandKurtosis band_spectral_kurtosis(const std::vector<double>& x, double fs, double low_hz, double high_hz) {
+BandKurtosis band_spectral_kurtosis(const std::vector<double>& x, double fs, double low_hz, double high_hz,
+                                    double floor_density) {
   check_signal(x, fs, "band kurtosis");
   check_band(low_hz, high_hz, "band kurtosis");
   BandKurtosis b;
   std::size_t bins = 0;
-  b.valid = band_kurtosis(tapered_spectrum(x), fs, low_hz, high_hz, &b.kurtosis, &bins);
+  b.valid = band_kurtosis(tapered_spectrum(x), fs, low_hz, high_hz, floor_density, &b.kurtosis, &bins);
   b.independent_samples = independent_samples(bins);
   return b;
 }
 
 Kurtogram fast_kurtogram(const std::vector<double>& x, double fs, double min_width_hz, double min_low_hz,
-                         int max_bands) {
+                         int max_bands, double floor_density) {
   check_signal(x, fs, "kurtogram");
   const std::vector<Complex> spectrum = tapered_spectrum(x);
   const double nyquist = 0.5 * fs;
@@ -277,7 +286,7 @@ Kurtogram fast_kurtogram(const std::vector<double>& x, double fs, double min_wid
         b.high_hz = (i + 1) * width;
         if (b.low_hz < min_low_hz) continue;
         std::size_t bins = 0;
-        if (!band_kurtosis(spectrum, fs, b.low_hz, b.high_hz, &b.kurtosis, &bins)) continue;
+        if (!band_kurtosis(spectrum, fs, b.low_hz, b.high_hz, floor_density, &b.kurtosis, &bins)) continue;
         b.independent_samples = independent_samples(bins);
         k.bands.push_back(b);
         if (!have_best || b.kurtosis > k.best.kurtosis) {
@@ -350,17 +359,30 @@ SpectralPeak find_peak(const Spectrum& s, double expected_hz, const PeakSearchOp
 
 namespace bearing_sim {
 
+namespace {
+// The share of bins below floor in the Hann-windowed spectrum (window scaled to unit RMS, so
+// white noise has the bin magnitudes of the plain transform). Counted with a window because
+// a strong line's leakage in the plain transform falls only as 1/distance: the lines of a
+// noise-free periodic signal would fill every bin with leakage and pass for a noise floor.
+double share_of_bins_below(const std::vector<double>& x, double floor) {
+  const std::vector<double> w = hann(x.size());
+  std::vector<double> windowed(x.size());
+  const double unit_rms = std::sqrt(8.0 / 3.0);  // the periodic Hann window's energy is 3/8
+  const double m = mean_of(x);
+  for (std::size_t i = 0; i < x.size(); ++i) windowed[i] = unit_rms * w[i] * (x[i] - m);
+  const std::vector<Complex> spectrum = forward(windowed);
+  std::size_t below = 0;
+  for (const Complex& c : spectrum) below += std::abs(c) < floor ? 1 : 0;
+  return static_cast<double>(below) / static_cast<double>(spectrum.size());
+}
+}  // namespace
+
 std::vector<double> prewhiten(const std::vector<double>& x, double floor_per_bin, double* share_below_floor) {
   check_signal(x, 1.0, "prewhiten");
   std::vector<Complex> spectrum = forward(x);
   const double floor = std::max(floor_per_bin, std::numeric_limits<double>::min());
-  std::size_t below = 0;
-  for (Complex& c : spectrum) {
-    const double magnitude = std::abs(c);
-    below += magnitude < floor ? 1 : 0;
-    c /= std::max(magnitude, floor);
-  }
-  if (share_below_floor) *share_below_floor = static_cast<double>(below) / static_cast<double>(spectrum.size());
+  if (share_below_floor) *share_below_floor = share_of_bins_below(x, floor);
+  for (Complex& c : spectrum) c /= std::max(std::abs(c), floor);
   std::vector<Complex> z;
   Eigen::FFT<double> fft;
   fft.inv(z, spectrum);

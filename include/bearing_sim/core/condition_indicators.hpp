@@ -57,10 +57,6 @@ struct DiagnosisThresholds {
   double line_chance_max = 0.1;
   // The neighbourhood (+- this fraction of the frequency) that line_chance counts lines in.
   double line_neighbourhood_rel = 0.2;
-  // A series of the pre-whitened envelope whose carrier stands this far (dB of power) over
-  // the band's mean as a discrete comb in the recorded spectrum is strictly periodic, not
-  // impacts (rule 10). White noise: about 3 dB.
-  double deterministic_comb_db = 10.0;
   double kurtosis_warn = 6.0;    // impulsive signal -> WARN (Gaussian noise: 3); <= 0 disables
   VelocityZone warn_zone = VelocityZone::C;   // velocity zone at or above: WARN
   VelocityZone error_zone = VelocityZone::D;  // ... ERROR
@@ -82,14 +78,16 @@ struct AnalysisOptions {
   double resonance_hz = 0.0;
   double envelope_band_width_hz = 2000.0;
   EnvelopeBand envelope_band = EnvelopeBand::Kurtogram;  // of the path as recorded
+  // The noise floor of the best real measurement chain (1e-5: 1 ug/sqrt(Hz), below the best
+  // IEPE sensors): the analysis sees a signal as such a sensor would record it. Bands'
+  // spectral kurtosis is taken with this floor added (fast_kurtogram), so that a noise-free
+  // simulation's faint periodic bursts are not impacts, and pre-whitening leaves the bins
+  // below it relative to it.
+  double sensor_floor_m_s2_per_sqrt_hz = 1e-5;
   // Cepstral pre-whitening of the window before the envelope (prewhiten, spectrum.hpp):
-  // the machine's discrete lines and the path's resonances flattened, impacts kept. Bins
-  // below a sensor floor of prewhiten_floor_m_s2_per_sqrt_hz (1e-5: 1 ug/sqrt(Hz), below
-  // the best IEPE sensors) are left relative to that floor, so a noise-free simulation's
-  // rounding noise is not raised. The band's spectral kurtosis is always of the signal as
-  // recorded.
+  // the machine's discrete lines and the path's resonances flattened, impacts kept. The
+  // band's spectral kurtosis is always of the signal as recorded.
   bool prewhiten = true;
-  double prewhiten_floor_m_s2_per_sqrt_hz = 1e-5;
   // Take the turning ring's speed from its 1-3 x lines where they stand clear and agree
   // (estimate_speed_scale), the fault frequencies scaled with it.
   bool measure_speed = true;

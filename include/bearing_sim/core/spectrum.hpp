@@ -101,9 +101,12 @@ struct Kurtogram {
 };
 // Bands narrower than min_width_hz (at least the envelope lines one wants to see) or with a
 // low edge below min_low_hz are skipped; levels up to bands_in_level <= max_bands.
+// floor_density > 0 (units/sqrt(Hz)): each band's kurtosis as it would be with white noise
+// of that density added (a sensor's floor), SK (P / (P + P_floor))^2 for the band power P:
+// a noise-free signal's faint bursts are not the most impulsive band.
 // Throws InvalidInputError when no band qualifies.
 Kurtogram fast_kurtogram(const std::vector<double>& x, double sample_rate_hz, double min_width_hz,
-                         double min_low_hz = 0.0, int max_bands = 64);
+                         double min_low_hz = 0.0, int max_bands = 64, double floor_density = 0.0);
 
 // Spectral kurtosis of one band [low_hz, high_hz), computed as a kurtogram band is (the
 // tapered window, the band's complex envelope, its tapered ends left out). For Gaussian
@@ -115,7 +118,8 @@ struct BandKurtosis {
   double kurtosis = 0.0;
   double independent_samples = 0.0;
 };
-BandKurtosis band_spectral_kurtosis(const std::vector<double>& x, double sample_rate_hz, double low_hz, double high_hz);
+BandKurtosis band_spectral_kurtosis(const std::vector<double>& x, double sample_rate_hz, double low_hz, double high_hz,
+                                    double floor_density = 0.0);  // as for fast_kurtogram
 
 // Peak search around an expected frequency.
 struct PeakSearchOptions {
