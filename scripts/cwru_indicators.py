@@ -27,36 +27,48 @@ DEPTH_UM = 0.011 * 25400.0  # the EDM faults' depth
 SURFACE = {'inner race': 'inner_race', 'ball': 'ball', 'outer race @6:00': 'outer_race'}
 LABEL = {'inner race': 'BPFI', 'ball': '2xBSF', 'outer race @6:00': 'BPFO'}
 G = 9.80665
+OUTPUT_RATE_HZ = 12000.0  # the set's drive-end records
+RADIAL_LOAD_N = 49.0  # the 5 kg rotor share's weight, along x (down): config/scenarios/cwru_drive_end_*hp.yaml
+NOISE_UG = 10.0  # ug/sqrt(Hz): a good sensor's, so that the simulated columns show the fault's own signal
 LOW_HZ = 1000.0  # the power below: the radial mode (~440 Hz) and the fault lines' low harmonics
+
+
+def housing_sensor(noise_ug=NOISE_UG):
+    """The sensor mapping of config/sensors/ct_gantry_housing_accelerometer.yaml adapted to the
+    CWRU drive end: a housing accelerometer (the set's sensors sit on the motor housing),
+    sampling at the set's 12 kHz, with a range no case reaches, of noise_ug ug/sqrt(Hz)."""
+    with open(CONFIG / 'sensors' / 'ct_gantry_housing_accelerometer.yaml', encoding='utf-8') as f:
+        sensor = yaml.safe_load(f)['sensor']
+    sensor.update(name='CWRU drive end, housing', mount_point_mm=[26.0, 0.0, 0.0], output_rate_Hz=OUTPUT_RATE_HZ,
+                  range_g=5000.0, sensitivity_mV_per_g=100.0, noise_density_ug_per_sqrt_Hz=noise_ug, seed=1)
+    return sensor
+
+
+def spall(kind, size_in, position_deg=0.0):
+    """The scenario defect of a CWRU seeded fault: kind one of SURFACE's keys (or a surface
+    name), EDM width size_in inches, the set's depth; position 0 is 6:00 (the load, along x)."""
+    defect = {'type': 'spall', 'at_s': 0.0, 'surface': SURFACE.get(kind, kind), 'position_deg': position_deg,
+              'width_mm': size_in * 25.4, 'depth_um': DEPTH_UM}
+    if defect['surface'] == 'ball':
+        defect['ball'] = 0
+    return defect
 
 
 def scenario(hp, kind, size_in, noise_ug, work):
     import bearing_sim
-    with open(CONFIG / 'sensors' / 'ct_gantry_housing_accelerometer.yaml', encoding='utf-8') as f:
-        sensor = yaml.safe_load(f)['sensor']
-    # A housing accelerometer on the drive end (the set's sensors sit on the motor housing),
-    # sampling at the set's 12 kHz, with a range no case reaches.
-    sensor.update(name='CWRU drive end, housing', mount_point_mm=[26.0, 0.0, 0.0], output_rate_Hz=12000.0,
-                  range_g=5000.0, sensitivity_mV_per_g=100.0, noise_density_ug_per_sqrt_Hz=noise_ug, seed=1)
     sensor_file = pathlib.Path(work) / 'sensor.yaml'
-    sensor_file.write_text(bearing_sim.yaml_text({'sensor': sensor}), encoding='utf-8')
-    defects = []
-    if kind != 'normal':
-        spall = {'type': 'spall', 'at_s': 0.0, 'surface': SURFACE[kind], 'position_deg': 0.0,
-                 'width_mm': size_in * 25.4, 'depth_um': DEPTH_UM}
-        if kind == 'ball':
-            spall['ball'] = 0
-        defects.append(spall)
-    return {'name': 'cwru_indicators', 'duration_s': 1.1, 'seed': 1, 'sample_rate_hz': 12000.0,
+    sensor_file.write_text(bearing_sim.yaml_text({'sensor': housing_sensor(noise_ug)}), encoding='utf-8')
+    defects = [] if kind == 'normal' else [spall(kind, size_in)]
+    return {'name': 'cwru_indicators', 'duration_s': 1.1, 'seed': 1, 'sample_rate_hz': OUTPUT_RATE_HZ,
             'bearing_file': str(CONFIG / 'bearings' / 'cwru_6205_drive_end.yaml'), 'sensor_file': str(sensor_file),
-            'speed': {'initial_speed_rpm': RPM[hp]}, 'load': {'initial': {'force_N': [49.0, 0.0, 0.0]}},
+            'speed': {'initial_speed_rpm': RPM[hp]}, 'load': {'initial': {'force_N': [RADIAL_LOAD_N, 0.0, 0.0]}},
             'defects': defects}
 
 
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     p.add_argument('--hp', type=int, choices=sorted(RPM), default=0, help='motor load (sets the speed)')
-    p.add_argument('--noise-ug', type=float, default=10.0, help='sensor noise density, ug/sqrt(Hz)')
+    p.add_argument('--noise-ug', type=float, default=NOISE_UG, help='sensor noise density, ug/sqrt(Hz)')
     args = p.parse_args(argv)
     import math
     import numpy as np

@@ -1,0 +1,84 @@
+"""Measures of an acceleration record that compare real and simulated CWRU drive-end data
+(scripts/cwru_rig_compare.py) and serve as a classifier's features
+(scripts/cwru_classifier_check.py): the power spectral density, the shares of the power in
+frequency bands and in discrete lines, and envelope-spectrum levels at given frequencies.
+Pure functions of numpy arrays (SI units: m/s^2, Hz); tested in
+test/python/test_cwru_measures.py."""
+import numpy as np
+
+# The bands of issue 30's comparison, Hz: below the rotor's radial mode and the fault lines'
+# low harmonics, then octaves up to the 12 kHz records' Nyquist frequency.
+BANDS_HZ = ((0.0, 500.0), (500.0, 1000.0), (1000.0, 2000.0), (2000.0, 4000.0), (4000.0, 6000.0))
+# Discrete lines: PSD bins of a 1 s Hann Welch estimate standing more than LINE_THRESHOLD_DB
+# over the running median of the PSD across LINE_MEDIAN_HZ. 10 dB: a bin of a Gaussian floor
+# exceeds its median by 10 dB with probability exp(-10 ln 2) = 1e-3 (one segment, chi^2 with
+# 2 degrees of freedom), so the floor contributes almost nothing; 51 Hz spans more than the
+# line spacing of the rig's families (30 Hz shaft orders) so the median is the floor's.
+LINE_THRESHOLD_DB = 10.0
+LINE_MEDIAN_HZ = 51.0
+SEGMENT_S = 1.0  # Welch segment: 1 Hz resolution, the analyser's with window_s = 1
+
+
+def psd(signal, sample_rate_hz, segment_s=SEGMENT_S):
+    """One-sided PSD ((m/s^2)^2/Hz) of a record: Welch, Hann segments of segment_s (the whole
+    record when shorter), 50 % overlap, mean removed per segment. Returns (frequencies_hz, psd)."""
+    from scipy.signal import welch
+    x = np.asarray(signal, dtype=float)
+    n = min(x.size, int(round(segment_s * sample_rate_hz)))
+    return welch(x, fs=sample_rate_hz, window='hann', nperseg=n, noverlap=n // 2, detrend='constant')
+
+
+def band_shares(frequencies_hz, density, bands_hz=BANDS_HZ):
+    """Share (0-1) of the power of a PSD in each band [low, high) (the last band includes the
+    Nyquist bin); the shares of bands that tile 0..Nyquist sum to 1."""
+    f, p = np.asarray(frequencies_hz), np.asarray(density)
+    total = p.sum()
+    shares = []
+    for i, (low, high) in enumerate(bands_hz):
+        inside = (f >= low) & ((f < high) if i < len(bands_hz) - 1 else (f <= high))
+        shares.append(float(p[inside].sum() / total) if total > 0 else 0.0)
+    return shares
+
+
+def line_floor(frequencies_hz, density, median_hz=LINE_MEDIAN_HZ):
+    """The PSD's running median across median_hz (an odd number of bins): the floor under lines."""
+    from scipy.ndimage import median_filter
+    resolution = frequencies_hz[1] - frequencies_hz[0]
+    bins = max(3, int(round(median_hz / resolution)) | 1)
+    return median_filter(np.asarray(density, dtype=float), size=bins, mode='nearest')
+
+
+def line_share(frequencies_hz, density, threshold_db=LINE_THRESHOLD_DB, median_hz=LINE_MEDIAN_HZ):
+    """Share (0-1) of a PSD's power in discrete lines: the excess over the running-median floor
+    of the bins more than threshold_db above it, over the total power (the DC bin left out:
+    the mean is removed)."""
+    p = np.asarray(density, dtype=float)[1:]
+    floor = line_floor(frequencies_hz, density, median_hz)[1:]
+    above = p > floor * 10.0 ** (threshold_db / 10.0)
+    total = p.sum()
+    return float((p[above] - floor[above]).sum() / total) if total > 0 else 0.0
+
+
+def envelope_spectrum(signal, sample_rate_hz, band_hz):
+    """Squared-envelope spectrum of the signal band-passed to band_hz (Butterworth order 4,
+    zero phase): (frequencies_hz, amplitude), mean removed, normalised by the sample count."""
+    from scipy.signal import butter, hilbert, sosfiltfilt
+    nyquist = sample_rate_hz / 2.0
+    high = min(band_hz[1], 0.98 * nyquist)
+    sos = butter(4, [band_hz[0] / nyquist, high / nyquist], btype='bandpass', output='sos')
+    envelope = np.abs(hilbert(sosfiltfilt(sos, np.asarray(signal, dtype=float)))) ** 2
+    envelope -= envelope.mean()
+    amplitude = np.abs(np.fft.rfft(envelope)) / envelope.size
+    return np.fft.rfftfreq(envelope.size, 1.0 / sample_rate_hz), amplitude
+
+
+def line_level_db(frequencies_hz, amplitude, line_hz, tolerance=0.02, floor_hz=(5.0, 500.0)):
+    """Level (dB) of the highest envelope-spectrum bin within +-tolerance (relative) of line_hz
+    over the median of the spectrum in floor_hz: how far a fault line stands out of the floor,
+    whatever the record's unit and level. The tolerance covers slip and speed error (1-2 %)."""
+    f, a = np.asarray(frequencies_hz), np.asarray(amplitude)
+    near = np.abs(f - line_hz) <= tolerance * line_hz
+    floor = np.median(a[(f >= floor_hz[0]) & (f <= floor_hz[1])])
+    if not near.any() or floor <= 0.0:
+        return 0.0
+    return float(20.0 * np.log10(a[near].max() / floor))

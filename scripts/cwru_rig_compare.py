@@ -1,0 +1,340 @@
+#!/usr/bin/python3
+"""Real and simulated CWRU drive-end records side by side, per condition (issue 30, item 3).
+
+For each condition of the CWRU 12 kHz drive-end set found in CWRU_DIR (normal; inner race,
+ball and outer race at 0.007 / 0.014 / 0.021 in; the motor loads asked for) the package
+simulates the same condition: config/bearings/cwru_6205_drive_end.yaml at the real file's
+speed, the seeded fault (scripts/cwru_indicators.py: EDM width, 0.011 in deep; outer race at
+6:00 in the load along x, 3:00 at 90 deg, 12:00 at 180 deg), the radial load of the
+scenarios (49 N), a sensor file sampling at 12 kHz, the dynamics at --dynamics-rate-hz. Real
+and simulated records are measured alike over the same window: RMS, crest factor and
+kurtosis and the fault line's envelope SNR and verdict of bearing_sim.analyze (the call of
+bearing_sim.cwru_benchmark: the record's speed, default options), the shares of the power
+in the bands of scripts/cwru_measures.BANDS_HZ and in discrete lines (line_share: the excess
+of PSD bins > 10 dB over the PSD's 51 Hz running median, 1 s Hann Welch).
+
+Writes into --out: summary.md (the table and issue 30's three targets, pass or fail),
+comparison.csv (a row per condition, every measure real and simulated) and spectra_<fault>.png
+(real and simulated PSDs, 0 and 3 hp, per fault type). Prints the targets; exit 0 when all
+three pass, 1 when one fails, 2 for bad input. The record 97
+(normal, 48 kHz) is decimated to 12 kHz (FIR, zero phase) first.
+
+    source scripts/env.sh; source build/devel/setup.bash
+    /usr/bin/python3 scripts/cwru_rig_compare.py /work/cwru --out /tmp/cwru_rig_compare
+    /usr/bin/python3 scripts/cwru_rig_compare.py /work/cwru --out /tmp/x --hp 0,3 --positions @6,@3,@12 --window-s 1
+
+Data: CWRU Bearing Data Center, Case Western Reserve University,
+https://engineering.case.edu/bearingdatacenter (not shipped: read from CWRU_DIR).
+"""
+import argparse
+import csv
+import math
+import pathlib
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+import cwru_indicators
+import cwru_measures
+
+SOURCE = pathlib.Path(__file__).resolve().parents[1]
+CONFIG = SOURCE / 'config'
+BEARING_FILE = CONFIG / 'bearings' / 'cwru_6205_drive_end.yaml'
+CWRU_SENSOR_FILE = CONFIG / 'sensors' / 'cwru_drive_end_accelerometer.yaml'
+# Outer-race fault positions on the standing ring, deg from the load (x, down): the
+# scenarios' convention (config/scenarios/cwru_drive_end_*hp.yaml); config/campaigns/cwru_rig.yaml
+# uses the same.
+POSITION_DEG = {'@6': 0.0, '@3': 90.0, '@12': 180.0}
+FAULT_LINE = {'inner race': 'BPFI', 'ball': '2xBSF', 'outer race': 'BPFO'}  # the analyser's labels
+FAULT_ORDER = ('none', 'inner race', 'ball', 'outer race')
+SIZES_IN = cwru_indicators.SIZES_IN  # the SKF records' sizes
+G = cwru_indicators.G
+RMS_FACTOR = 2.0            # target 1: healthy RMS within this factor of the real
+BAND_POINTS = 10.0          # target 2: every band share within this many percentage points
+VERDICT_SHARE = 0.8         # target 3: the same verdict on this share of the conditions
+PLOT_HP = (0, 3)
+PLOT_SEGMENT_S = 0.25       # 4 Hz resolution: the plots' PSDs are smoother than the measures'
+
+
+def comma_list(kind):
+    def parse(text):
+        try:
+            return [kind(v) for v in text.split(',') if v.strip()]
+        except ValueError:
+            raise argparse.ArgumentTypeError(f'not a comma-separated list: {text!r}') from None
+    return parse
+
+
+def parser():
+    p = argparse.ArgumentParser(description=__doc__.split('\n\n')[0], epilog=__doc__.split('\n\n', 1)[1],
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument('cwru_dir', type=pathlib.Path, help='directory of the CWRU .mat files (searched recursively)')
+    p.add_argument('--out', type=pathlib.Path, required=True, help='output directory (created)')
+    p.add_argument('--hp', type=comma_list(int), default=[0, 1, 2, 3],
+                   help='motor loads, comma-separated (default 0,1,2,3; the normal record is at 0 hp only)')
+    p.add_argument('--positions', type=comma_list(str), default=['@6'],
+                   help=f"outer-race fault positions, comma-separated, of {', '.join(POSITION_DEG)} (default @6)")
+    p.add_argument('--sensor', type=pathlib.Path,
+                   help=f'sensor file of the simulation; it must sample at 12 kHz (default: {CWRU_SENSOR_FILE.name} '
+                        'if present, else ct_gantry_housing_accelerometer.yaml adapted as scripts/cwru_indicators.py '
+                        'does, with --noise-ug)')
+    p.add_argument('--noise-ug', type=float, default=cwru_indicators.NOISE_UG,
+                   help='noise density of the adapted CT sensor, ug/sqrt(Hz) (default %(default)s; not used with a '
+                        'CWRU or --sensor file)')
+    p.add_argument('--dynamics-rate-hz', type=float, default=48000.0,
+                   help='sample rate of the dynamics, a multiple of 12 kHz (default 48000: the impacts do not alias)')
+    p.add_argument('--window-s', type=float, default=10.0,
+                   help='seconds analysed, the last of the real record (~10 s) and of the simulation (default 10)')
+    p.add_argument('--settle-s', type=float, default=0.2,
+                   help='simulated seconds before the window, dropped (the start from static equilibrium)')
+    p.add_argument('--seed', type=int, default=1, help='seed of the simulations (default 1)')
+    return p
+
+
+def sensor_file(args, work):
+    """The sensor file to simulate with, and a note saying which it is."""
+    import bearing_sim
+    if args.sensor:
+        return args.sensor, f'{args.sensor}'
+    if CWRU_SENSOR_FILE.is_file():
+        return CWRU_SENSOR_FILE, f'{CWRU_SENSOR_FILE.relative_to(SOURCE)}'
+    path = pathlib.Path(work) / 'sensor.yaml'
+    path.write_text(bearing_sim.yaml_text({'sensor': cwru_indicators.housing_sensor(args.noise_ug)}), encoding='utf-8')
+    return path, (f'config/sensors/ct_gantry_housing_accelerometer.yaml adapted as scripts/cwru_indicators.py does, '
+                  f'{args.noise_ug:g} ug/sqrt(Hz)')
+
+
+def conditions(args, table):
+    """The records to compare: the normal one(s) and the SKF 12 kHz drive-end fault records of the
+    asked loads and positions, in the table's fault order."""
+    wanted = []
+    for meta in table.values():
+        if meta['channel'] != 'DE' or meta['load_hp'] not in args.hp:
+            continue
+        if meta['fault'] == 'none':
+            wanted.append(meta)
+        elif meta['sample_rate_hz'] == 12000.0 and meta['size_in'] in SIZES_IN and \
+                (meta['fault'] != 'outer race' or meta['position'] in args.positions):
+            wanted.append(meta)
+    return sorted(wanted, key=lambda m: (FAULT_ORDER.index(m['fault']), m['position'], m['size_in'] or 0.0,
+                                         m['load_hp']))
+
+
+def real_signal(path, meta, rate_hz):
+    """The record's drive-end signal (m/s^2) at rate_hz, and its speed (rpm)."""
+    from bearing_sim import cwru_records
+    from scipy.signal import decimate
+    record = cwru_records.load_record(path, meta)
+    x = record['signal']
+    ratio = int(round(meta['sample_rate_hz'] / rate_hz))
+    if ratio > 1:
+        x = decimate(x, ratio, ftype='fir', zero_phase=True)
+    return x, record['rpm']
+
+
+def simulated_signal(meta, rpm, sensor, args):
+    """The simulated record of a condition (m/s^2, channel 0: the sensor's axis, along the load)."""
+    import bearing_sim
+    defects = []
+    if meta['fault'] != 'none':
+        surface = meta['fault'].replace(' ', '_')  # the table's 'inner race' is the scenario's inner_race
+        defects.append(cwru_indicators.spall(surface, meta['size_in'], POSITION_DEG.get(meta['position'], 0.0)))
+    scenario = {'name': f"cwru_rig_compare_{meta['record']}", 'duration_s': args.settle_s + args.window_s,
+                'seed': args.seed, 'sample_rate_hz': args.dynamics_rate_hz, 'bearing_file': str(BEARING_FILE),
+                'sensor_file': str(sensor), 'speed': {'initial_speed_rpm': rpm},
+                'load': {'initial': {'force_N': [cwru_indicators.RADIAL_LOAD_N, 0.0, 0.0]}}, 'defects': defects}
+    result = bearing_sim.generate(scenario)
+    rate = result['info']['measured_rate_hz']
+    if rate != cwru_indicators.OUTPUT_RATE_HZ:
+        raise SystemExit(f'cwru_rig_compare: the sensor samples at {rate:g} Hz; the records are at 12 kHz')
+    return result['vibration'][:, 0].astype(float)
+
+
+def measure(x, rate_hz, rpm, fault, bearing):
+    """The measures of one record (m/s^2 at rate_hz)."""
+    import bearing_sim
+    from bearing_sim import cwru_scoring
+    result = bearing_sim.analyze(x, rate_hz, bearing, inner_rad_s=2.0 * math.pi * rpm / 60.0)
+    line = next((f for f in result['faults'] if f['label'] == FAULT_LINE.get(fault)), None)
+    f, p = cwru_measures.psd(x, rate_hz)
+    return {'rms_g': result['rms_m_s2'] / G, 'crest_factor': result['crest_factor'], 'kurtosis': result['kurtosis'],
+            **{f'band_{i}': s for i, s in enumerate(cwru_measures.band_shares(f, p))},
+            'line_share': cwru_measures.line_share(f, p),
+            'fault_snr_db': line['snr_db'] if line else math.nan,
+            'verdict': cwru_scoring.classify(cwru_scoring.verdict_of(result))}
+
+
+def condition_name(meta):
+    if meta['fault'] == 'none':
+        return f"normal {meta['load_hp']} hp"
+    position = f" {meta['position']}" if meta['position'] else ''
+    return f"{meta['fault']}{position} {meta['size_in']:.3f} in {meta['load_hp']} hp"
+
+
+BAND_NAMES = [f'{lo / 1000:g}-{hi / 1000:g} kHz' for lo, hi in cwru_measures.BANDS_HZ]
+MEASURES = ['rms_g', 'crest_factor', 'kurtosis'] + [f'band_{i}' for i in range(len(BAND_NAMES))] + \
+    ['line_share', 'fault_snr_db', 'verdict']
+
+
+def targets(rows):
+    """Issue 30's three targets over the rows: (text lines, all passed)."""
+    lines, passed = [], True
+    normal = [r for r in rows if r['fault'] == 'none']
+    ratios = [r['sim_rms_g'] / r['real_rms_g'] for r in normal]
+    ok = bool(normal) and all(1.0 / RMS_FACTOR <= q <= RMS_FACTOR for q in ratios)
+    passed &= ok
+    lines.append(f"1. healthy RMS within a factor of {RMS_FACTOR:g}: {'PASS' if ok else 'FAIL'} "
+                 f"(simulated / real: {', '.join(f'{q:.3g}' for q in ratios) or 'no normal record'})")
+    faults = [r for r in rows if r['fault'] != 'none']
+    worst = [max(abs(r[f'sim_band_{i}'] - r[f'real_band_{i}']) for i in range(len(BAND_NAMES))) * 100.0
+             for r in faults]
+    within = sum(w <= BAND_POINTS for w in worst)
+    ok = bool(faults) and within == len(faults)
+    passed &= ok
+    lines.append(f"2. band-power shares of each fault condition within {BAND_POINTS:g} points: "
+                 f"{'PASS' if ok else 'FAIL'} ({within} of {len(faults)} conditions; largest difference per "
+                 f"condition median {np.median(worst) if worst else math.nan:.0f}, max "
+                 f"{max(worst) if worst else math.nan:.0f} points)")
+    same = sum(r['sim_verdict'] == r['real_verdict'] for r in rows)
+    ok = bool(rows) and same >= VERDICT_SHARE * len(rows)
+    passed &= ok
+    lines.append(f"3. the analyser's verdict the same on the simulated record for >= {VERDICT_SHARE:.0%} of the "
+                 f"conditions: {'PASS' if ok else 'FAIL'} ({same} of {len(rows)}, {same / max(len(rows), 1):.0%})")
+    return lines, passed
+
+
+def fmt(value, name):
+    if isinstance(value, str):
+        return value
+    if math.isnan(value):
+        return '-'
+    if name.startswith('band_') or name == 'line_share':
+        return f'{100.0 * value:.0f}'
+    if name == 'rms_g':
+        return f'{value:.3g}'
+    if name == 'fault_snr_db':
+        return f'{round(value) + 0:.0f}'  # + 0: no '-0'
+    return f'{value:.1f}'
+
+
+def markdown(rows, target_lines, notes):
+    head = (['condition', 'record', 'rpm', 'RMS (g)', 'crest factor', 'kurtosis']
+            + [f'{b} (%)' for b in BAND_NAMES] + ['lines (%)', 'fault line SNR (dB)', 'verdict'])
+    out = ['# CWRU drive end: real and simulated, per condition', '',
+           'Each cell: real / simulated. Bands and lines: share of the power (%); lines: the PSD bins > 10 dB over '
+           'its 51 Hz running median (scripts/cwru_measures.py). Fault line SNR: the envelope SNR of the record\'s '
+           'fault series (BPFI, 2xBSF, BPFO) from bearing_sim.analyze; verdict: its class (bearing_sim.cwru_scoring).',
+           '', *notes, '', '| ' + ' | '.join(head) + ' |', '|' + '---|' * len(head)]
+    for r in rows:
+        cells = [r['condition'], str(r['record']), f"{r['rpm']:.0f}"]
+        cells += [f"{fmt(r['real_' + m], m)} / {fmt(r['sim_' + m], m)}" for m in MEASURES]
+        out.append('| ' + ' | '.join(cells) + ' |')
+    out += ['', '## Targets (issue 30)', '', *target_lines, '',
+            'Data: CWRU Bearing Data Center, Case Western Reserve University, '
+            'https://engineering.case.edu/bearingdatacenter', '']
+    return '\n'.join(out)
+
+
+def plot(rows, signals, out_dir):
+    """spectra_<fault>.png: real and simulated PSDs of the conditions at PLOT_HP, a panel each."""
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    written = []
+    for fault in FAULT_ORDER:
+        chosen = [r for r in rows if r['fault'] == fault and r['load_hp'] in PLOT_HP]
+        if not chosen:
+            continue
+        columns = min(3, len(chosen))
+        lines = math.ceil(len(chosen) / columns)
+        fig, axes = plt.subplots(lines, columns, figsize=(5.0 * columns, 3.2 * lines), squeeze=False,
+                                 sharex=True, sharey=True)
+        for ax, r in zip(axes.flat, chosen):
+            for which, color in (('real', 'k'), ('simulated', 'tab:red')):
+                f, p = cwru_measures.psd(signals[(r['record'], which)], cwru_indicators.OUTPUT_RATE_HZ,
+                                         PLOT_SEGMENT_S)
+                ax.semilogy(f / 1000.0, p, color=color, lw=0.6, label=which)
+            ax.set_title(f"{r['condition']} ({r['record']})", fontsize=9)
+            ax.grid(True, alpha=0.3)
+        for ax in axes.flat[len(chosen):]:
+            ax.set_visible(False)
+        for ax in axes[-1]:
+            ax.set_xlabel('frequency (kHz)')
+        for ax in axes[:, 0]:
+            ax.set_ylabel('PSD ((m/s$^2$)$^2$/Hz)')
+        axes.flat[0].legend(fontsize=8)
+        fig.suptitle(f"CWRU drive end, {'normal' if fault == 'none' else fault}: real (CWRU Bearing Data Center) "
+                     f"and simulated", fontsize=10)
+        fig.tight_layout()
+        name = out_dir / f"spectra_{'normal' if fault == 'none' else fault.replace(' ', '_')}.png"
+        fig.savefig(name, dpi=90)
+        plt.close(fig)
+        written.append(name)
+    return written
+
+
+def main(argv=None):
+    args = parser().parse_args(argv)
+    import bearing_sim
+    from bearing_sim import cwru_records
+    bad = [p for p in args.positions if p not in POSITION_DEG]
+    if bad or args.window_s <= 0.0 or args.settle_s < 0.0:
+        print(f'cwru_rig_compare: positions must be of {list(POSITION_DEG)}, --window-s > 0, --settle-s >= 0',
+              file=sys.stderr)
+        return 2
+    table = cwru_records.metadata()
+    wanted = conditions(args, table)
+    found, _ = cwru_records.find_records(args.cwru_dir, table, {m['record'] for m in wanted})
+    paths = dict(found)
+    missing = [m['record'] for m in wanted if m['record'] not in paths]
+    if not paths:
+        print(f'cwru_rig_compare: {args.cwru_dir}: none of the records {sorted(m["record"] for m in wanted)}',
+              file=sys.stderr)
+        return 2
+    bearing = bearing_sim.load_bearing(BEARING_FILE)
+    rate = cwru_indicators.OUTPUT_RATE_HZ
+    window = int(round(args.window_s * rate))
+    rows, signals = [], {}
+    start = time.perf_counter()
+    with tempfile.TemporaryDirectory() as work:
+        sensor, sensor_note = sensor_file(args, work)
+        for meta in wanted:
+            if meta['record'] not in paths:
+                continue
+            real, rpm = real_signal(paths[meta['record']], meta, rate)
+            sim = simulated_signal(meta, rpm, sensor, args)
+            real, sim = real[-window:], sim[-window:]
+            signals[(meta['record'], 'real')], signals[(meta['record'], 'simulated')] = real, sim
+            row = {'condition': condition_name(meta), 'record': meta['record'], 'fault': meta['fault'],
+                   'size_in': meta['size_in'] or '', 'position': meta['position'], 'load_hp': meta['load_hp'],
+                   'rpm': rpm, 'seconds': len(real) / rate}
+            for which, x in (('real', real), ('sim', sim)):
+                row.update({f'{which}_{k}': v for k, v in measure(x, rate, rpm, meta['fault'], bearing).items()})
+            rows.append(row)
+            print(f"{row['condition']:32s} RMS {row['real_rms_g']:.3g} / {row['sim_rms_g']:.3g} g, verdict "
+                  f"{row['real_verdict']} / {row['sim_verdict']}", file=sys.stderr)
+    wall_s = time.perf_counter() - start
+    target_lines, passed = targets(rows)
+    notes = [f'Simulation: {BEARING_FILE.relative_to(SOURCE)}, {cwru_indicators.RADIAL_LOAD_N:g} N radial, the real '
+             f"file's speed, dynamics at {args.dynamics_rate_hz / 1000:g} kHz, sensor {sensor_note}; seed {args.seed}.",
+             f'Window: the last {args.window_s:g} s of each record (the real ones hold ~10 s); record 97 (48 kHz) '
+             f'decimated to 12 kHz. {len(rows)} conditions, {wall_s:.0f} s of wall time on '
+             f'{bearing_sim.cpu_model_name()}.']
+    if missing:
+        notes.append(f"Records not found in {args.cwru_dir}: {', '.join(map(str, missing))}.")
+    args.out.mkdir(parents=True, exist_ok=True)
+    (args.out / 'summary.md').write_text(markdown(rows, target_lines, notes), encoding='utf-8')
+    with open(args.out / 'comparison.csv', 'w', encoding='utf-8', newline='') as f:
+        writer = csv.DictWriter(f, list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    plots = plot(rows, signals, args.out)
+    print('\n'.join(notes + target_lines))
+    print(f"wrote {args.out / 'summary.md'}, {args.out / 'comparison.csv'}, {', '.join(p.name for p in plots)}")
+    return 0 if passed else 1
+
+
+if __name__ == '__main__':
+    sys.exit(main())
