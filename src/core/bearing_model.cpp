@@ -99,7 +99,7 @@ void BearingModel::update_race_spalls_in_kernel() {
     windows_follow_inner_ = windows_follow_inner_ || s.surface == Surface::InnerRace;
     grows = grows || s.width_growth_m_per_s != 0.0 || s.depth_growth_m_per_s != 0.0;
   }
-  if (grows) return;
+  if (grows || imperfections_.spall_windows_wander()) return;
   standing_window_count_ = make_kernel_windows(RollingPhase{}, standing_windows_);
 }
 

@@ -11,6 +11,7 @@
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "harmonic_sums.hpp"
+#include "smooth_noise.hpp"
 #include "yaml_reader.hpp"
 
 namespace bearing_sim {
@@ -88,7 +89,8 @@ ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML
     detail::Reader r(imperfections, source, "imperfections.");
     r.check_keys({"seed", "waviness", "ball_diameter_variation_um", "roughness_rms_um", "roughness_row",
                   "ball_spacing_jitter_mm", "cage_slip_percent", "cage_slip_variation_percent",
-                  "cage_slip_correlation_s"});
+                  "cage_slip_correlation_s", "ball_place_wander_mm", "ball_place_wander_correlation_s",
+                  "ball_spin_axis_wander_deg", "ball_spin_axis_wander_correlation_s"});
     const int seed = r.integer("seed", 1);
     r.require(seed >= 0, "seed", "must be >= 0");
     spec.seed = static_cast<std::uint64_t>(seed);
@@ -106,6 +108,19 @@ ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML
               "must be in [0, 5)");
     spec.cage_slip_correlation_s = r.number("cage_slip_correlation_s", 0.05);
     r.require(spec.cage_slip_correlation_s > 0.0, "cage_slip_correlation_s", "must be > 0");
+    // A pocket clearance is a fraction of a millimetre; 2 mm is past any cage.
+    spec.ball_place_wander_m = r.number("ball_place_wander_mm", 0.0) * 1e-3;
+    r.require(spec.ball_place_wander_m >= 0.0 && spec.ball_place_wander_m < 2e-3, "ball_place_wander_mm",
+              "must be in [0, 2) mm");
+    spec.ball_place_wander_correlation_s = r.number("ball_place_wander_correlation_s", 0.05);
+    r.require(spec.ball_place_wander_correlation_s >= 1e-4 && spec.ball_place_wander_correlation_s <= 1e3,
+              "ball_place_wander_correlation_s", "must be in [1e-4, 1e3] s");
+    spec.ball_spin_axis_wander_rad = r.number("ball_spin_axis_wander_deg", 0.0) * kPi / 180.0;
+    r.require(spec.ball_spin_axis_wander_rad >= 0.0 && spec.ball_spin_axis_wander_rad < 0.5 * kPi,
+              "ball_spin_axis_wander_deg", "must be in [0, 90) deg");
+    spec.ball_spin_axis_wander_correlation_s = r.number("ball_spin_axis_wander_correlation_s", 0.1);
+    r.require(spec.ball_spin_axis_wander_correlation_s >= 1e-4 && spec.ball_spin_axis_wander_correlation_s <= 1e3,
+              "ball_spin_axis_wander_correlation_s", "must be in [1e-4, 1e3] s");
     const YAML::Node list = imperfections["waviness"];
     if (list) {
       if (!list.IsSequence()) r.fail("waviness", "expected a list of {surface, order, amplitude_um, phase_deg}");
@@ -337,7 +352,9 @@ int Imperfections::spall_windows(const RollingPhase& phase, SpallWindow* windows
     } else {
       grown_window(s, phase.time_s, &w);
     }
-    const double centre = ring_angle(phase, s.surface) + s.position_rad;
+    double centre = ring_angle(phase, s.surface) + s.position_rad;
+    if (spec_.ball_place_wander_m > 0.0)
+      centre -= place_shift_rad(i, s, phase.cage - centre, std::asin(w.sin_half_width) * 2.0, phase.time_s);
     if (count < kKeptCentres && kept_centres[count].centre == centre) {
       w.cos_centre = kept_centres[count].c;
       w.sin_centre = kept_centres[count].s;
@@ -349,6 +366,43 @@ int Imperfections::spall_windows(const RollingPhase& phase, SpallWindow* windows
     ++count;
   }
   return count;
+}
+
+double Imperfections::place_shift_rad(std::size_t index, const Spall& s, double start, double angular_width,
+                                      double time_s) const {
+  const int z = geometry_.balls_per_row;
+  const double pitch = kTwoPi / z;
+  // The ball of the row nearest the spall: ball j sits at base_0 + j pitch + start (mod 2 pi).
+  const double nearest = -(start + geometry_.base_azimuth[s.row * z]) / pitch;
+  long j = std::lround(nearest) % z;
+  if (j < 0) j += z;
+  const std::uint64_t key = detail::mix64(spec_.seed ^ 0x9a1b3c5d7e9f1a3bull) ^ detail::mix64(index * 4096 + s.row * z + j);
+  const double pitch_radius = 0.5 * (geometry_.outer_race_radius_m + geometry_.inner_race_radius_m);
+  const double shift = spec_.ball_place_wander_m / pitch_radius *
+                       detail::smooth_normal(key, time_s / spec_.ball_place_wander_correlation_s);
+  // The nearest ball changes half a pitch from the centre: no ball is over the spall there
+  // as long as half its width plus the shift stays inside half a pitch.
+  const double bound = std::max(0.0, 0.45 * pitch - 0.5 * angular_width);
+  return std::clamp(shift, -bound, bound);
+}
+
+void Imperfections::struck_chord(std::size_t index, double time_s, double* angular_width, double* depth) const {
+  if (spec_.ball_spin_axis_wander_rad <= 0.0) return;
+  const std::uint64_t key = detail::mix64(spec_.seed ^ 0x3c6ef372fe94f82bull) ^ detail::mix64(index);
+  const double latitude = spec_.ball_spin_axis_wander_rad *
+                          detail::smooth_normal(key, time_s / spec_.ball_spin_axis_wander_correlation_s);
+  // The spall as a disc of the given width: the chord at this latitude, and the depth a ball
+  // reaches in it (w^2 / (4 D), the spall's depth at most).
+  const double half_width = 0.5 * *angular_width;
+  const double chord = 1.0 - (latitude * latitude) / (half_width * half_width);
+  if (chord <= 0.0) {
+    *depth = 0.0;
+    return;
+  }
+  const double width = *angular_width * std::sqrt(chord);
+  const double width_m = width * 0.5 * geometry_.ball_diameter_m;
+  *depth = std::min(*depth, width_m * width_m / (4.0 * geometry_.ball_diameter_m));
+  *angular_width = width;
 }
 
 void Imperfections::grown_window(const Spall& s, double time_s, SpallWindow* w) const {
@@ -486,19 +540,26 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
       // The spot faces the outer and the inner race once each per spin turn.
       const int entry = set.entry_of_ball[s.ball];
       if (entry < 0) continue;
+      struck_chord(i, phase.time_s, &angular_width, &depth);
+      if (depth <= 0.0) continue;
       const double x = std::remainder(phase.ball_spin + ball_phase_[s.ball] - s.position_rad, kPi);
       out[entry] -= spall_dip(x, angular_width, depth);
     } else {
       // Only the few balls within half a width of the spall centre: find them by index,
       // since the balls of a row are evenly spaced.
-      const double start = phase.cage - ring_angle(phase, s.surface) - s.position_rad;
+      double start = phase.cage - ring_angle(phase, s.surface) - s.position_rad;
+      double shift = 0.0;
+      if (spec_.ball_place_wander_m > 0.0) {
+        shift = place_shift_rad(i, s, start, angular_width, phase.time_s);
+        start += shift;  // the nearest ball's place error, as in spall_windows
+      }
       const int z = geometry_.balls_per_row;
       const double* all_base = geometry_.base_azimuth.data();
       const double pitches_per_rad = z / kTwoPi;
       // Ball j of a row sits within the spacing error of row_phase + j pitch: the spall's
       // half width plus that error, in pitches, either side of its centre. Floor and ceil
       // keep a ball of slack against rounding (two balls to look at for a narrow spall).
-      const double reach = (0.5 * angular_width + max_spacing_error_) * pitches_per_rad;
+      const double reach = (0.5 * angular_width + max_spacing_error_ + std::abs(shift)) * pitches_per_rad;
       {  // the spall's own row only
         const int row = s.row;
         const double centre = -(start + all_base[row * z]) * pitches_per_rad;

@@ -64,10 +64,22 @@ struct ImperfectionSpec {
   double cage_slip = 0.0;                  // mean fraction the cage lags its kinematic speed
   double cage_slip_variation = 0.0;        // standard deviation of the slip fluctuation
   double cage_slip_correlation_s = 0.05;   // correlation time of the fluctuation
+  // A ball's place in its cage pocket wanders within the pocket clearance: it meets a race
+  // spall early or late by its place error, so the impacts scatter about their periodic grid
+  // without the scatter accumulating (the cage keeps the mean period). Applied where a ball
+  // meets a race spall's sharp edges; the smooth load distribution does not notice it.
+  double ball_place_wander_m = 0.0;              // standard deviation along the pitch circle
+  double ball_place_wander_correlation_s = 0.05;
+  // A ball's spin axis wanders, carrying a ball spall in and out of the rolling track: the
+  // spall is struck along a chord of its width at its latitude from the track, and not at
+  // all while that latitude exceeds its half width.
+  double ball_spin_axis_wander_rad = 0.0;        // standard deviation of the spall's latitude
+  double ball_spin_axis_wander_correlation_s = 0.1;
   std::vector<Spall> spalls;
   bool empty() const {
     return waviness.empty() && ball_diameter_variation_m == 0.0 && roughness_rms_m == 0.0 && spalls.empty() &&
-           ball_spacing_jitter_m == 0.0 && cage_slip == 0.0 && cage_slip_variation == 0.0;
+           ball_spacing_jitter_m == 0.0 && cage_slip == 0.0 && cage_slip_variation == 0.0 &&
+           ball_place_wander_m == 0.0 && ball_spin_axis_wander_rad == 0.0;
   }
 };
 
@@ -140,6 +152,8 @@ class Imperfections {
   // more than `capacity`.
   int spall_windows(const RollingPhase& phase, SpallWindow* windows, int capacity) const;
   bool has_race_spalls() const { return race_spall_count_ > 0; }
+  // Whether a fixed-size spall's window still moves with time (the balls' place wander).
+  bool spall_windows_wander() const { return spec_.ball_place_wander_m > 0.0 && race_spall_count_ > 0; }
   // Whether anything but race spalls moves the offsets (waviness, roughness, ball spalls).
   bool offsets_vary_without_race_spalls() const {
     return !race_waviness_.empty() || has_roughness_ || !ball_waviness_.empty() ||
@@ -169,6 +183,13 @@ class Imperfections {
   void spall_size(const Spall& s, double time_s, double* angular_width, double* depth) const;
   // A growing spall's window terms at time t (spall_windows).
   void grown_window(const Spall& s, double time_s, SpallWindow* w) const;
+  // How far the ball nearest race spall `index` is from its even place at time t, as an
+  // angle, for a spall of that angular width (bounded so that the nearest ball changes only
+  // while no ball is over the spall). `start` is cage - ring - spall position.
+  double place_shift_rad(std::size_t index, const Spall& s, double start, double angular_width,
+                         double time_s) const;
+  // A ball spall's chord at time t: the width and depth struck, from its latitude.
+  void struck_chord(std::size_t index, double time_s, double* angular_width, double* depth) const;
 
   ImperfectionSpec spec_;
   Geometry geometry_;
