@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "bearing_sim/core/errors.hpp"
-#include "bearing_sim/core/signal_statistics.hpp"
 #include "fault_evidence.hpp"
 #include "fixed_decimals.hpp"
 
@@ -66,9 +65,8 @@ EnvelopeEvidence envelope_evidence(const std::vector<double>& demodulated, doubl
   EnvelopeEvidence e;
   e.band = band;
   e.envelope = averaged_envelope_spectrum(demodulated, fs, band.low_hz, band.high_hz, settings.segment_samples,
-                                          &e.segments);
+                                          &e.segments, &e.envelope_mean);
   e.segment_s = static_cast<double>(settings.segment_samples) / fs;
-  e.envelope_mean = signal_statistics(band_envelope(demodulated, fs, band.low_hz, band.high_hz)).mean;
   const double averages = equivalent_averages(e.segments);
   EvidenceContext context;
   context.fault_snr_db = e.fault_snr_db_used = averaged_threshold_db(o.thresholds.fault_snr_db, averages);

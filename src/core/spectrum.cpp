@@ -396,8 +396,9 @@ double white_noise_bin_magnitude(double density_per_sqrt_hz, std::size_t n, doub
 }
 
 Spectrum averaged_envelope_spectrum(const std::vector<double>& x, double fs, double low_hz, double high_hz,
-                                    std::size_t segment_samples, std::size_t* segments_out) {
+                                    std::size_t segment_samples, std::size_t* segments_out, double* envelope_mean_out) {
   const std::vector<double> envelope = band_envelope(x, fs, low_hz, high_hz);
+  if (envelope_mean_out) *envelope_mean_out = mean_of(envelope);
   const std::size_t n = std::min(std::max<std::size_t>(segment_samples, 8), envelope.size());
   const std::size_t step = std::max<std::size_t>(n / 2, 1);
   Spectrum sum;

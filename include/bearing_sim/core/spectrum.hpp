@@ -56,9 +56,11 @@ double white_noise_bin_magnitude(double density_per_sqrt_hz, std::size_t n, doub
 // amplitude-corrected bins (a line of amplitude A reads A). Averaging keeps the lines and
 // narrows the spread of the noise bins (K segments: a chi-square of about 2K degrees of
 // freedom per bin instead of 2), which is what makes weak lines of a long record
-// significant; short segments follow a wandering speed. segments_out: K.
+// significant; short segments follow a wandering speed. segments_out: K; envelope_mean_out:
+// the mean of the whole envelope.
 Spectrum averaged_envelope_spectrum(const std::vector<double>& x, double sample_rate_hz, double low_hz, double high_hz,
-                                    std::size_t segment_samples, std::size_t* segments_out = nullptr);
+                                    std::size_t segment_samples, std::size_t* segments_out = nullptr,
+                                    double* envelope_mean_out = nullptr);
 // The number of independent spectra that K Hann segments overlapping by half are worth
 // (Welch 1967: the overlap correlates neighbours by 0.167 in power): K / (1 + 2 0.167^2)
 // for K > 1, else K.
