@@ -394,8 +394,10 @@ def summarize(rows):
     by_size = {str(s): scores([r for r in spalls if r['size_w_over_d'] == s]) for s in sizes}
 
     def size_threshold(table):
-        for s in sizes:
-            if all(table[str(t)]['right_type']['rate'] >= RIGHT_TYPE_TARGET for t in sizes if t >= s):
+        # Only the sizes that have cases in this table (a --limit subset or one bearing may miss some).
+        measured = [t for t in sizes if table.get(str(t), {}).get('right_type', {}).get('rate') is not None]
+        for s in measured:
+            if all(table[str(t)]['right_type']['rate'] >= RIGHT_TYPE_TARGET for t in measured if t >= s):
                 return s
         return None
     threshold = size_threshold(by_size)
@@ -488,7 +490,8 @@ def plot(rows, summary, path):
         ax.axhline(100 * RIGHT_TYPE_TARGET, color='r', lw=0.8, ls=':')
         if summary['size_threshold_w_over_d'] is not None:
             ax.axvline(summary['size_threshold_w_over_d'], color='g', lw=0.8, ls=':')
-        ax.set_xscale('log')
+        if sizes:  # a --limit subset may hold no spall case of this bearing: nothing to put on a log axis
+            ax.set_xscale('log')
         ax.set_ylim(-3, 103)
         d = _bearing_doc(name)['ball_diameter_mm']
         ax.set_xlabel(f'spall width / ball diameter (D = {d:g} mm)')
