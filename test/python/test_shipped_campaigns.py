@@ -1,0 +1,57 @@
+"""The shipped campaign files (config/campaigns): each loads and its template check passes (a
+run of it loads its scenario, bearing and sensor); config/campaigns/cwru_rig.yaml gives the
+labels and the channel docs/datasets.md promises, on one generated run per class."""
+import json
+
+import numpy as np
+import pytest
+import yaml
+
+from bearing_sim.campaign import Campaign
+from bearing_sim.campaign.execute import check_template, run_index
+from conftest import SOURCE
+
+CAMPAIGNS = sorted((SOURCE / 'config' / 'campaigns').glob('*.yaml'))
+CWRU_RIG = SOURCE / 'config' / 'campaigns' / 'cwru_rig.yaml'
+
+
+@pytest.mark.parametrize('path', CAMPAIGNS, ids=[p.name for p in CAMPAIGNS])
+def test_shipped_campaign_loads_and_passes_its_template_check(path):
+    campaign = Campaign.load(str(path))
+    check_template(campaign, iter(range(campaign.count)))  # raises a CampaignError naming the key
+
+
+def first_run_of_each_class(campaign, classes):
+    found = {}
+    for i in range(campaign.count):
+        defects = campaign.parameters_of(i)['defects']
+        label = defects[0]['surface'] if defects else 'none'
+        found.setdefault(label, i)
+        if len(found) == len(classes):
+            return found
+    raise AssertionError(f'classes drawn: {sorted(found)}')
+
+
+def test_cwru_rig_runs_are_labelled_none_inner_ball_outer_with_the_drive_end_sensor_in_m_s2(tmp_path):
+    text = CWRU_RIG.read_text(encoding='utf-8')
+    campaign = Campaign(text, str(CWRU_RIG))
+    classes = ('none', 'inner_race', 'ball', 'outer_race')
+    for label, index in first_run_of_each_class(campaign, classes).items():
+        run = campaign.definition(index)
+        sensor = yaml.safe_load(run.derived_files['sensor_file'][1])['sensor']
+        assert sensor['output_unit'] == 'm_s2' and sensor['axis'] == [1.0, 0.0, 0.0]
+        record = run_index(str(CWRU_RIG), text, str(tmp_path), index)
+        assert record['status'] == 'ok', record.get('error')
+        labels = record['labels']
+        assert labels['defects_at_end'] == label
+        assert labels['sample_rate_hz'] == 12000.0 and labels['samples'] >= 12000
+        rpm = labels['mean_ring_speed_rad_s'] * 60.0 / (2.0 * np.pi)
+        assert 1715.0 <= rpm <= 1800.0  # the set's 0-3 hp speeds
+        vibration = np.load(tmp_path / record['file'])
+        assert vibration.shape == (labels['samples'], 3)
+        # Channel 0 in m/s^2, not g or V: at least the sensor noise (10 ug/sqrt(Hz) over the
+        # 4.8 kHz band: 7e-4 g), at most what the largest fault gives (real records: < 0.7 g).
+        rms_g = float(np.std(vibration[-12000:, 0])) / 9.80665
+        assert 1e-4 < rms_g < 10.0, rms_g
+        status = json.loads((tmp_path / 'runs' / f'run_{index:07d}.json').read_text())
+        assert status['parameters']['defects'] == run.parameters['defects']
