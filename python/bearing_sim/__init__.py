@@ -79,12 +79,9 @@ def generate(scenario, seed=None, duration_s=None, label_rate_hz=10.0, base_dir=
         text = yaml_text(scenario)
         source = _os.path.join(_os.path.abspath(base_dir or _os.getcwd()), '<dict>.yaml')
     else:
-        source = _os.fspath(scenario)
-        try:
-            with open(source, encoding='utf-8') as f:
-                text = f.read()
-        except OSError as e:
-            raise ConfigError(f'{source}: cannot read the scenario file: {e.strerror}') from None
+        # Read by the core as bearing_tool reads it: a file that is no regular file, over 1 MiB
+        # or not YAML (binary) is a ConfigError naming it.
+        source, text = _os.fspath(scenario), None
     return _core.generate_from_yaml(text, source, seed, duration_s, label_rate_hz, allow_long_run)
 
 

@@ -98,7 +98,9 @@ py::dict labels_dict(const std::vector<tool::LabelState>& labels) {
   return d;
 }
 
-py::dict generate(const std::string& text, const std::string& source, std::optional<std::uint64_t> seed,
+// `text` None: the file `source`, read as bearing_tool generate reads it (a regular file of at
+// most 1 MiB; what is not YAML is a ConfigError naming it).
+py::dict generate(const std::optional<std::string>& text, const std::string& source, std::optional<std::uint64_t> seed,
                   std::optional<double> duration_s, double label_rate_hz, bool allow_long_run) {
   tool::GenerateSettings settings;
   settings.seed = seed;
@@ -111,7 +113,7 @@ py::dict generate(const std::string& text, const std::string& source, std::optio
   double samples = 0.0, per_sample = 0.0;
   {
     py::gil_scoped_release release;
-    simulation.emplace(Scenario::from_string(text, source), source, settings);
+    simulation.emplace(text ? Scenario::from_string(*text, source) : Scenario::load(source), source, settings);
     // bearing_tool generate's estimate: the dynamics alone at half time, for runs over 1000 samples
     // (the duration is at most kMaxScenarioDurationS, checked by ScenarioSimulation).
     const Scenario& sc = simulation->scenario();
@@ -156,7 +158,8 @@ py::dict check(const std::string& text, const std::string& source) {
 void bind_scenario(py::module_& m) {
   m.def("generate_from_yaml", &generate, py::arg("text"), py::arg("source"), py::arg("seed") = py::none(),
         py::arg("duration_s") = py::none(), py::arg("label_rate_hz") = 10.0, py::arg("allow_long_run") = false,
-        "Runs a scenario given as YAML text (docs/scenarios.md) as `bearing_tool generate` does; relative "
+        "Runs a scenario given as YAML text, or the file `source` when text is None (docs/scenarios.md), as "
+        "`bearing_tool generate` does; relative "
         "bearing and sensor files resolve against the directory of `source`. The GIL is released, Ctrl-C "
         "stops the run within ~0.1 s. duration_s at most 1e7 s; a run estimated over an hour needs "
         "allow_long_run=True (--allow-long-run). Returns vibration (measured, float32 samples x 3), "

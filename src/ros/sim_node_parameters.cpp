@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "bearing_sim/core/condition_indicators.hpp"
 #include "bearing_sim/ros/parameter_reader.hpp"
 
 namespace bearing_sim {
@@ -68,7 +69,7 @@ SimNodeParameters read_sim_node_parameters(const XmlRpc::XmlRpcValue& private_pa
   p.envelope_resonance_hz = r.optional_number("envelope_resonance_hz", 0.0, nyquist_hz, "Hz (sample_rate_hz / 2)");
   p.envelope_band_width_hz =
       r.number("envelope_band_width_hz", p.envelope_band_width_hz, 1.0, nyquist_hz, "Hz (sample_rate_hz / 2)");
-  p.fault_snr_db = r.number("fault_snr_db", p.fault_snr_db, 0.0, 60.0, "dB");
+  p.fault_snr_db = r.number("fault_snr_db", p.fault_snr_db, kMinFaultSnrDb, kMaxFaultSnrDb, "dB");
 
   // dynamic_reconfigure's parameters: the cfg's ranges (the server would clamp them silently).
   p.clearance_um = r.optional_number(kClearanceUm.name, kClearanceUm.min, kClearanceUm.max, "um");

@@ -1,5 +1,6 @@
 // bearing_tool analyze: condition indicators, envelope analysis and a diagnosis of a
 // recorded (or simulated) acceleration signal in a CSV file (docs/health.md).
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -73,7 +74,14 @@ double parse_cell(const std::string& text, const std::string& path, std::size_t 
 }
 
 // A header line of column names, then one sample per line.
-CsvSignal read_csv(const std::string& path, const std::string& wanted) {
+// The most a step of the time column may differ from the median step, as a share of it.
+// A missing sample makes a step of twice the median (100 % off), so any hole is caught, while
+// time stamps written with a microsecond's resolution at 200 kHz (steps of 5 us +- 1 us) pass.
+constexpr double kTimeStepTolerance = 0.25;
+
+// A header line of column names, then one sample per line. With `use_time` the first column
+// whose name starts with "time" gives the rate and must increase in uniform steps.
+CsvSignal read_csv(const std::string& path, const std::string& wanted, bool use_time) {
   // A directory opens but reads as empty; /dev/zero or a FIFO would be read forever.
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
@@ -84,10 +92,16 @@ CsvSignal read_csv(const std::string& path, const std::string& wanted) {
   std::string line;
   if (!std::getline(in, line)) throw InputError("--csv '" + path + "': empty file (a header line is expected)");
   const std::vector<std::string> header = split(line);
+  // Two columns of one name: which one is meant cannot be known (the last used to win).
+  for (std::size_t i = 0; i < header.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (!header[i].empty() && header[i] == header[j])
+        throw InputError("--csv '" + path + "' line 1: column '" + header[i] + "' appears twice (columns " +
+                         std::to_string(j + 1) + " and " + std::to_string(i + 1) + "); give each column its own name");
   int value_col = -1, time_col = -1;
   for (std::size_t i = 0; i < header.size(); ++i) {
     if (header[i] == wanted) value_col = static_cast<int>(i);
-    if (time_col < 0 && header[i].rfind("time", 0) == 0) time_col = static_cast<int>(i);
+    if (use_time && time_col < 0 && header[i].rfind("time", 0) == 0) time_col = static_cast<int>(i);
   }
   if (value_col < 0) {
     const std::string alias = canonical_column(wanted);
@@ -102,6 +116,7 @@ CsvSignal read_csv(const std::string& path, const std::string& wanted) {
   CsvSignal s;
   s.column = header[value_col];
   std::vector<double> time;
+  std::vector<std::size_t> time_line;  // the file's line of each time
   std::size_t line_no = 1;
   while (std::getline(in, line)) {
     ++line_no;
@@ -120,11 +135,28 @@ CsvSignal read_csv(const std::string& path, const std::string& wanted) {
                          "': time " + general(t, 12) + " does not increase (previous sample " +
                          general(time.back(), 12) + ")");
       time.push_back(t);
+      time_line.push_back(line_no);
     }
   }
   if (time.size() >= 2) {
-    const double span = time.back() - time.front();
-    if (span > 0.0) s.rate_hz = static_cast<double>(time.size() - 1) / span;
+    // A hole (samples missing) or a jump would stretch the rate (n-1)/span and smear every
+    // line of the spectrum: the steps must be uniform about their median.
+    std::vector<double> steps(time.size() - 1);
+    for (std::size_t i = 0; i + 1 < time.size(); ++i) steps[i] = time[i + 1] - time[i];
+    std::vector<double> sorted = steps;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    for (std::size_t i = 0; i < steps.size(); ++i)
+      if (std::abs(steps[i] - median) > kTimeStepTolerance * median)
+        throw InputError("--csv '" + path + "' line " + std::to_string(time_line[i + 1]) + ", column '" +
+                         header[time_col] + "': time " + general(time[i + 1], 12) + " is " +
+                         general(steps[i], 6) + " s after the previous sample (line " +
+                         std::to_string(time_line[i]) + "), the median step is " + general(median, 6) + " s (" +
+                         general(1.0 / median, 6) + " Hz): the time steps must agree within " +
+                         fixed(kTimeStepTolerance * 100.0, 0) +
+                         " % (a gap or jump in the record); if the samples are consecutive and only the time "
+                         "stamps are off, give --rate (the time column is then not read)");
+    s.rate_hz = static_cast<double>(time.size() - 1) / (time.back() - time.front());
   }
   return s;
 }
@@ -160,11 +192,18 @@ nlohmann::json verdict_json(const Verdict& v) {
 }
 
 void run(const AnalyzeCliOptions& o) {
+  if (!(o.snr_db >= kMinFaultSnrDb && o.snr_db <= kMaxFaultSnrDb))
+    throw InputError("--snr-db " + general(o.snr_db, 6) + ": must be from " + general(kMinFaultSnrDb, 3) + " to " +
+                     general(kMaxFaultSnrDb, 3) + " dB (a line that many dB over its noise floor is a fault)");
+  if (!(o.kurtosis_warn == 0.0 || (o.kurtosis_warn >= kMinKurtosisWarn && o.kurtosis_warn <= kMaxKurtosisWarn)))
+    throw InputError("--kurtosis-warn " + general(o.kurtosis_warn, 6) + ": must be 0 (off) or from " +
+                     general(kMinKurtosisWarn, 3) + " (Gaussian noise) to " + general(kMaxKurtosisWarn, 4));
   const BearingModel model = load_model(o.bearing);
   if (o.inner_rpm == 0.0 && o.outer_rpm == 0.0)
     throw InputError("give the ring speeds of the recording (--inner-rpm and/or --outer-rpm): the fault "
                      "frequencies depend on them");
-  const CsvSignal signal = read_csv(o.csv, o.column);
+  // --rate: the samples are consecutive at that rate, whatever a time column says.
+  const CsvSignal signal = read_csv(o.csv, o.column, !(o.rate_hz > 0.0));
   const double rate = o.rate_hz > 0.0 ? o.rate_hz : signal.rate_hz;
   if (!(rate > 0.0))
     throw InputError("--csv '" + o.csv + "' has no time column (a header starting with 'time'): give --rate");
@@ -304,8 +343,8 @@ void register_analyze_command(CLI::App& app) {
       ->check(positive_number());
   add_vector_option(cmd, "--zones", &o->zones, {"AB", "BC", "CD"},
                     "Velocity zone boundaries, mm/s (default ISO 20816-3 group 2, rigid foundation)");
-  add_number_option(cmd, "--snr-db", &o->snr_db, "DB", "Envelope SNR at a fault frequency for a suspected defect");
-  add_number_option(cmd, "--kurtosis-warn", &o->kurtosis_warn, "K", "Kurtosis for a WARN (0: off)");
+  add_number_option(cmd, "--snr-db", &o->snr_db, "DB", "Envelope SNR at a fault frequency for a suspected defect, 0-60 dB");
+  add_number_option(cmd, "--kurtosis-warn", &o->kurtosis_warn, "K", "Kurtosis for a WARN, 3-1000 (0: off)");
   add_json_flag(cmd, &o->json);
   cmd->callback([o] { run(*o); });
 }

@@ -49,6 +49,18 @@ def test_generate_refuses_a_duration_above_a_scenario_files_limit():
         bearing_sim.generate(scenario(duration_s=1e8))
 
 
+def test_generate_on_a_file_that_is_not_yaml_is_a_config_error_naming_it(tmp_path):
+    # Bytes that are no UTF-8 raised UnicodeDecodeError from Python's own open().read().
+    binary = tmp_path / 'binary.yaml'
+    binary.write_bytes(bytes(range(256)) * 8)
+    with pytest.raises(bearing_sim.ConfigError, match=str(binary)):
+        bearing_sim.generate(binary)
+    # Not a regular file (it was read until memory ran out), and no file: named as well.
+    for path in ('/dev/zero', str(tmp_path / 'missing.yaml')):
+        with pytest.raises(bearing_sim.ConfigError, match=path):
+            bearing_sim.generate(path)
+
+
 def test_generate_refuses_a_run_of_hours_without_allow_long_run():
     start = time.monotonic()
     with pytest.raises(bearing_sim.InvalidInputError,

@@ -4,6 +4,8 @@
 // work starts, and prints no result.
 #include <unistd.h>
 
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -97,6 +99,65 @@ TEST_F(ToolInputTest, ACsvWhoseTimeGoesBackwardsIsRefusedNamingTheLine) {
   const std::string path = write("backwards.csv", csv);
   expect_refused("analyze --csv '" + path + "' --bearing '" + kCt + "' --outer-rpm 180",
                  {path, "line 102", "time_s", "does not increase"});
+}
+
+// 20 kHz of a 50 Hz sine with its times written as `decimals` fixed decimals; the samples of
+// [hole_from_s, hole_to_s) left out.
+std::string sine_csv(double seconds, int decimals, double hole_from_s = 0.0, double hole_to_s = 0.0,
+                     double rate_hz = 20000.0) {
+  std::string csv = "time_s,ax_m_s2\n";
+  char row[96];
+  for (long i = 0; i < std::lround(seconds * rate_hz); ++i) {
+    const double t = i / rate_hz;
+    if (t >= hole_from_s && t < hole_to_s) continue;
+    std::snprintf(row, sizeof row, "%.*f,%.6f\n", decimals, t, std::sin(2.0 * 3.141592653589793 * 50.0 * t));
+    csv += row;
+  }
+  return csv;
+}
+
+TEST_F(ToolInputTest, ACsvWithAHoleInItsTimeIsRefusedNamingTheLineAndTheGap) {
+  // 2 s at 20 kHz with 0.5 s missing from t = 1 s: the rate came out as 29999/2 = 14999.5 Hz.
+  const std::string holed = write("hole.csv", sine_csv(2.0, 9, 1.0, 1.5));
+  const std::string analyze = " --bearing '" + kCt + "' --outer-rpm 180";
+  // Line 20002 holds t = 1.5 s (line 1 is the header, line 20001 the sample at 0.99995 s).
+  expect_refused("analyze --csv '" + holed + "'" + analyze,
+                 {holed, "line 20002", "time_s", "0.50005 s after the previous sample (line 20001)",
+                  "median step is 5e-05 s (20000 Hz)", "within 25 %", "--rate"});
+  // --rate: the samples are taken as consecutive at that rate and the time column is not read.
+  RunResult r = run("analyze --csv '" + holed + "'" + analyze + " --rate 20000 --json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "\"sample_rate_hz\": 20000")) << r.out;
+  // Uniform steps pass, also with times printed to a microsecond at 200 kHz (5 us +- 1 us).
+  EXPECT_EQ(run("analyze --csv '" + write("whole.csv", sine_csv(2.0, 9)) + "'" + analyze).exit_code, 0);
+  const RunResult coarse = run("analyze --csv '" + write("coarse.csv", sine_csv(0.1, 6, 0.0, 0.0, 200000.0)) +
+                               "'" + analyze + " --json");
+  EXPECT_EQ(coarse.exit_code, 0) << coarse.err;
+  // One sample missing is a step of twice the others: refused.
+  expect_refused("analyze --csv '" + write("one.csv", sine_csv(0.1, 9, 0.05, 0.05004)) + "'" + analyze,
+                 {"line 1002", "0.0001 s after the previous sample"});
+}
+
+TEST_F(ToolInputTest, ACsvWithAColumnNamedTwiceIsRefusedNamingIt) {
+  std::string csv = "time_s,ax_m_s2,ay_m_s2,ax_m_s2\n";
+  for (int i = 0; i < 1000; ++i) csv += std::to_string(i * 1e-4) + ",1,2," + std::to_string(i % 7) + "\n";
+  const std::string path = write("twice.csv", csv);
+  // The last 'ax_m_s2' silently won; now refused, whichever column is asked for.
+  for (const std::string column : {"ax_m_s2", "ay_m_s2"})
+    expect_refused("analyze --csv '" + path + "' --bearing '" + kCt + "' --outer-rpm 180 --column " + column,
+                   {path, "column 'ax_m_s2' appears twice", "columns 2 and 4"});
+}
+
+TEST_F(ToolInputTest, AnalysisThresholdsOutsideTheirRangesAreRefused) {
+  const std::string csv = write("ok.csv", sine_csv(0.5, 9));
+  const std::string analyze = "analyze --csv '" + csv + "' --bearing '" + kCt + "' --outer-rpm 180";
+  expect_refused(analyze + " --snr-db -1e300", {"--snr-db -1e+300", "from 0 to 60 dB"});
+  expect_refused(analyze + " --snr-db 61", {"--snr-db 61", "from 0 to 60 dB"});
+  expect_refused(analyze + " --kurtosis-warn -5", {"--kurtosis-warn -5", "0 (off) or from 3", "1000"});
+  expect_refused(analyze + " --kurtosis-warn 2", {"--kurtosis-warn 2", "0 (off) or from 3"});
+  // The ends of the ranges and the switch-off are accepted.
+  for (const std::string good : {" --snr-db 0", " --snr-db 60", " --kurtosis-warn 0", " --kurtosis-warn 3"})
+    EXPECT_EQ(run(analyze + good).exit_code, 0) << good;
 }
 
 TEST_F(ToolInputTest, ABearingValueThatStallsTheIntegratorIsRefusedNamingTheKeyAndTheMode) {

@@ -61,6 +61,13 @@ struct DiagnosisThresholds {
   VelocityZone warn_zone = VelocityZone::C;   // velocity zone at or above: WARN
   VelocityZone error_zone = VelocityZone::D;  // ... ERROR
 };
+// The thresholds a user may set (bearing_tool analyze --snr-db / --kurtosis-warn, the node's
+// fault_snr_db). A fault SNR from 0 dB (a line no higher than its noise floor: below, every
+// bin is a fault) to 60 dB (a million times the floor's power, beyond the dynamic range of a
+// recorded envelope spectrum); a kurtosis WARN of 0 (off) or from 3 (Gaussian noise: below,
+// every healthy signal warns) to 1000 (a single impulse in 1000 samples).
+constexpr double kMinFaultSnrDb = 0.0, kMaxFaultSnrDb = 60.0;
+constexpr double kMinKurtosisWarn = 3.0, kMaxKurtosisWarn = 1000.0;
 
 // How the envelope band is chosen when no resonance_hz is given (docs/health.md).
 enum class EnvelopeBand { Kurtogram, Fixed };
