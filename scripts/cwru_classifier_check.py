@@ -3,7 +3,7 @@
 classifier learn from the package's synthetic data what it meets on the real rig? (issue 30,
 item 4)
 
-Runs 0..N-1 of config/campaigns/cwru_rig.yaml are generated into --campaign-dir with
+Runs 0..N-1 of config/campaigns/cwru_rig.yaml (--campaign) are generated into --campaign-dir with
 `bearing_campaign --index-range 0:N` (runs already there are kept) and read back: the last
 --window-s of each run's channel 0 (m/s^2), its class from the manifest's
 label_defects_at_end, its speed from label_mean_ring_speed_rad_s. A scikit-learn random
@@ -45,12 +45,14 @@ import time
 
 import numpy as np
 
+import cwru_indicators
 import cwru_measures
+import cwru_rig_compare
 
 SOURCE = pathlib.Path(__file__).resolve().parents[1]
 CAMPAIGN = SOURCE / 'config' / 'campaigns' / 'cwru_rig.yaml'
-BEARING_FILE = SOURCE / 'config' / 'bearings' / 'cwru_6205_drive_end.yaml'
-RATE_HZ = 12000.0
+BEARING_FILE = cwru_rig_compare.BEARING_FILE
+RATE_HZ = cwru_indicators.OUTPUT_RATE_HZ  # the records' 12 kHz
 CLASSES = ('none', 'inner_race', 'ball', 'outer_race')  # the campaign's label_defects_at_end
 TABLE_CLASS = {'none': 'none', 'inner race': 'inner_race', 'ball': 'ball', 'outer race': 'outer_race'}
 ENVELOPE_BANDS_HZ = ((1000.0, 2000.0), (2000.0, 4000.0), (4000.0, 5800.0))
@@ -114,21 +116,15 @@ def _synthetic_job(job):
 
 
 def _real_job(job):
-    from bearing_sim import cwru_records
-    from scipy.signal import decimate
     path, meta, samples, scale_free = job
-    record = cwru_records.load_record(path, meta)
-    x = record['signal']
-    ratio = int(round(meta['sample_rate_hz'] / RATE_HZ))
-    if ratio > 1:
-        x = decimate(x, ratio, ftype='fir', zero_phase=True)
-    return record['rpm'], [window_features(w, record['rpm'], scale_free) for w in windows(x, samples)]
+    x, rpm = cwru_rig_compare.real_signal(path, meta, RATE_HZ)
+    return rpm, [window_features(w, rpm, scale_free) for w in windows(x, samples)]
 
 
 def generate(args):
     """Runs 0..N-1 of the campaign into --campaign-dir (the finished ones are skipped): wall s."""
     start = time.perf_counter()
-    command = [sys.executable, str(SOURCE / 'scripts' / 'bearing_campaign'), str(CAMPAIGN), '--out',
+    command = [sys.executable, str(SOURCE / 'scripts' / 'bearing_campaign'), str(args.campaign), '--out',
                str(args.campaign_dir), '--index-range', f'0:{args.runs}', '--workers', str(args.workers), '--quiet']
     subprocess.run(command, check=True)
     return time.perf_counter() - start
@@ -204,6 +200,9 @@ def parser():
                    help='N: train on runs 0..N-1 of the campaign (default 3000: 4000 took 12 min of wall time on the '
                         "2-core AMD EPYC beside others' builds (load 5), 0.07 CPU s of simulation per run; the "
                         'features of 3000 runs and the real records 2.5 min)')
+    p.add_argument('--campaign', type=pathlib.Path, default=CAMPAIGN,
+                   help='the campaign file (default config/campaigns/cwru_rig.yaml; a variant must keep its labels, '
+                        'its 12 kHz channel 0 in m/s^2 and at least --window-s per run)')
     p.add_argument('--campaign-dir', type=pathlib.Path, default=pathlib.Path('/tmp/cwru_rig'),
                    help='the campaign output directory: runs missing there are generated (default /tmp/cwru_rig)')
     p.add_argument('--workers', type=int, default=2,
@@ -256,7 +255,7 @@ def main(argv=None):
     times['total'] = time.perf_counter() - times['start']
     lines, met = report(records, windows_right, windows_total)
     importances = sorted(zip(forest.feature_importances_, names), reverse=True)[:8]
-    notes = [f"Trained on {len(train_labels)} runs of {CAMPAIGN.relative_to(SOURCE)} "
+    notes = [f"Trained on {len(train_labels)} runs of {args.campaign} "
              f"({', '.join(f'{c} {train_labels.count(c)}' for c in CLASSES)}), the last {args.window_s:g} s of each; "
              f"{len(names)} features ({args.features}); random forest of {args.trees} trees.",
              f"Tested on {len(records)} real records ({windows_total} windows of {args.window_s:g} s)"
