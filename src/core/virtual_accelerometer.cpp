@@ -44,7 +44,37 @@ Problem config_problem(const AccelerometerConfig& c) {
     return {"anti_alias_cutoff_fraction", "must be in (0, 0.5) (a fraction of the output rate)"};
   if (c.anti_alias_order < 2 || c.anti_alias_order > kMaxAntiAliasOrder || c.anti_alias_order % 2 != 0)
     return {"anti_alias_order", "must be even, from 2 to 16"};
+  if (c.path_modes.size() > static_cast<std::size_t>(kMaxPathModes)) return {"path_modes", "at most 16 modes"};
+  double participation = 0.0;
+  for (std::size_t i = 0; i < c.path_modes.size(); ++i) {
+    const PathMode& m = c.path_modes[i];
+    const std::string key = "path_modes[" + std::to_string(i) + "].";
+    if (!(m.frequency_hz > 0.0) || !std::isfinite(m.frequency_hz)) return {key + "frequency_Hz", "must be > 0"};
+    if (!(m.damping_ratio >= 1e-4 && m.damping_ratio < 1.0)) return {key + "damping_ratio", "must be in [1e-4, 1)"};
+    if (!(m.participation > 0.0 && m.participation <= 1.0)) return {key + "participation", "must be in (0, 1]"};
+    participation += m.participation;
+  }
+  // The listed modes carry at most the whole path; the rest follows the ring rigidly.
+  if (participation > 1.0 + 1e-9) return {"path_modes", "the participations must add up to at most 1"};
+  const InstallationProblem ip = installation_problem(c.installation);
+  if (!ip.key.empty()) return {"installation." + ip.key, ip.what};
   return {};
+}
+
+std::vector<PathMode> parse_path_modes(const detail::Reader& r, const YAML::Node& sensor) {
+  const YAML::Node node = sensor["path_modes"];
+  if (!node.IsSequence() || node.size() == 0)
+    r.fail("path_modes", "expected a list of {frequency_Hz, damping_ratio, participation}");
+  std::vector<PathMode> modes;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string key = "path_modes[" + std::to_string(i) + "]";
+    if (!node[i].IsMap()) r.fail(key, "expected a mapping {frequency_Hz, damping_ratio, participation}");
+    detail::Reader m(node[i], r.source(), "sensor." + key + ".");
+    m.check_keys({"frequency_Hz", "damping_ratio", "participation"});
+    modes.push_back({m.number("frequency_Hz", 0.0, true), m.number("damping_ratio", 0.0, true),
+                     m.number("participation", 0.0, true)});
+  }
+  return modes;
 }
 
 Eigen::Vector3d vector3(const detail::Reader& r, const YAML::Node& map, const std::string& key,
@@ -70,9 +100,9 @@ Eigen::Vector3d vector3(const detail::Reader& r, const YAML::Node& map, const st
 AccelerometerConfig parse_accelerometer_config(const YAML::Node& sensor, const std::string& source) {
   if (!sensor || !sensor.IsMap()) throw ConfigError(source + ": key 'sensor': expected a YAML mapping of sensor keys");
   detail::Reader r(sensor, source, "sensor.");
-  r.check_keys({"name", "mount", "mount_point_mm", "axis", "path_resonance_Hz", "path_damping_ratio",
+  r.check_keys({"name", "mount", "mount_point_mm", "axis", "path_resonance_Hz", "path_damping_ratio", "path_modes",
                 "sensitivity_mV_per_g", "noise_density_ug_per_sqrt_Hz", "range_g", "adc_bits", "output_rate_Hz",
-                "anti_alias_cutoff_fraction", "anti_alias_order", "seed", "output_unit"});
+                "anti_alias_cutoff_fraction", "anti_alias_order", "seed", "output_unit", "installation"});
   AccelerometerConfig c;
   c.name = r.text("name", c.name);
   const std::string mount = r.text("mount", "housing");
@@ -83,6 +113,13 @@ AccelerometerConfig parse_accelerometer_config(const YAML::Node& sensor, const s
   c.axis = vector3(r, sensor, "axis", c.axis);
   c.path_resonance_hz = r.number("path_resonance_Hz", c.path_resonance_hz);
   c.path_damping_ratio = r.number("path_damping_ratio", c.path_damping_ratio);
+  if (r.has("path_modes")) {
+    if (r.has("path_resonance_Hz") || r.has("path_damping_ratio"))
+      r.fail("path_modes", "give either path_modes or path_resonance_Hz / path_damping_ratio (one mode), not both");
+    c.path_modes = parse_path_modes(r, sensor);
+  }
+  if (const YAML::Node installation = r.map("installation"))
+    c.installation = parse_installation_config(installation, source, "sensor.installation.");
   c.sensitivity_V_per_m_s2 =
       r.number("sensitivity_mV_per_g", c.sensitivity_V_per_m_s2 * 1e3 * kStandardGravity_m_s2) * 1e-3 /
       kStandardGravity_m_s2;
@@ -103,6 +140,12 @@ AccelerometerConfig parse_accelerometer_config(const YAML::Node& sensor, const s
   else r.fail("output_unit", "must be m_s2 or V, got '" + unit + "'");
   const Problem p = config_problem(c);
   if (p.any()) r.fail(p.key, p.what);
+  if (!c.path_modes.empty()) {
+    // What reads the path as one resonance (an envelope band) reads its dominant mode.
+    const PathMode& dominant = dominant_mode(c.path_modes);
+    c.path_resonance_hz = dominant.frequency_hz;
+    c.path_damping_ratio = dominant.damping_ratio;
+  }
   return c;
 }
 
@@ -135,19 +178,31 @@ VirtualAccelerometer::VirtualAccelerometer(AccelerometerConfig config, double in
   if (std::abs(ratio - decimation_ratio_) > 1e-9 * ratio)
     throw InvalidInputError(who + "output_rate_Hz " + std::to_string(f_out) + " does not divide the input rate " +
                             std::to_string(input_rate_hz) + " Hz (decimation needs an integer ratio)");
-  if (config_.path_resonance_hz > kMaxPathResonanceFraction * input_rate_hz)
-    throw InvalidInputError(who + "path_resonance_Hz " + std::to_string(config_.path_resonance_hz) +
-                            " must be below 0.45 x the input rate (" + std::to_string(input_rate_hz) +
-                            " Hz): raise the dynamics' sample rate, or 0 for no path");
+  std::vector<PathMode> modes = config_.path_modes;
+  if (modes.empty() && config_.path_resonance_hz > 0.0)
+    modes.push_back({config_.path_resonance_hz, config_.path_damping_ratio, 1.0});
+  for (std::size_t i = 0; i < modes.size(); ++i)
+    if (modes[i].frequency_hz > kMaxPathResonanceFraction * input_rate_hz)
+      throw InvalidInputError(who + (config_.path_modes.empty() ? std::string("path_resonance_Hz ")
+                                                                 : "path_modes[" + std::to_string(i) + "].frequency_Hz ") +
+                              std::to_string(modes[i].frequency_hz) + " must be below 0.45 x the input rate (" +
+                              std::to_string(input_rate_hz) + " Hz): raise the dynamics' sample rate, or 0 for no path");
 
   axis_ = config_.axis.normalized();
   lever_ = config_.mount_point_m.cross(axis_);
-  has_path_ = config_.path_resonance_hz > 0.0;
-  if (has_path_) path_ = design_seismic_path(config_.path_resonance_hz, config_.path_damping_ratio, input_rate_hz);
+  has_path_ = !modes.empty();
+  if (has_path_) path_ = TransmissionPath(modes, input_rate_hz);
   const std::vector<Biquad> aa = design_butterworth_lowpass(
       config_.anti_alias_order, config_.anti_alias_cutoff_fraction * f_out, input_rate_hz);
   anti_alias_sections_ = static_cast<int>(aa.size());
   std::copy(aa.begin(), aa.end(), anti_alias_);
+  const InstallationConfig& installation = config_.installation;
+  has_background_ = installation.has_lines() || installation.shaft_modulation_depth > 0.0;
+  if (has_background_) background_ = MachineBackground(installation, input_rate_hz, config_.seed);
+  has_floor_ = installation.has_floor();
+  if (has_floor_)
+    floor_ = ColouredFloor(installation.floor_frequencies_hz, installation.floor_density_m_s2_per_sqrt_hz, f_out, aa,
+                           input_rate_hz, config_.seed);
   // White noise of one-sided density D over 0..fs/2 has variance D^2 fs/2.
   noise_sigma_m_s2_ = config_.noise_density_m_s2_per_sqrt_hz * std::sqrt(0.5 * input_rate_hz);
   // Two's-complement ADC over +-range: 2^bits codes, -2^(bits-1) .. 2^(bits-1) - 1.
@@ -164,23 +219,13 @@ void VirtualAccelerometer::reset() {
   for (int i = 0; i < anti_alias_sections_; ++i) anti_alias_[i].reset();
   decimation_phase_ = 0;
   clipped_samples_ = 0;
-  rng_.seed(config_.seed);
-  has_spare_normal_ = false;
+  noise_ = SeededGaussian(config_.seed);
+  background_.reset();
+  if (has_floor_) floor_.reset();
 }
 
-double VirtualAccelerometer::gaussian() {
-  // Box-Muller on mt19937_64 (fully specified by the standard, unlike normal_distribution):
-  // the same seed gives the same noise on every platform.
-  if (has_spare_normal_) {
-    has_spare_normal_ = false;
-    return spare_normal_;
-  }
-  const double u1 = (static_cast<double>(rng_() >> 11) + 1.0) * 0x1.0p-53;  // (0, 1]
-  const double u2 = static_cast<double>(rng_() >> 11) * 0x1.0p-53;          // [0, 1)
-  const double radius = std::sqrt(-2.0 * std::log(u1)), angle = 2.0 * kPi * u2;
-  spare_normal_ = radius * std::sin(angle);
-  has_spare_normal_ = true;
-  return radius * std::cos(angle);
+std::complex<double> VirtualAccelerometer::path_response(double f_hz) const {
+  return has_path_ ? path_.response(f_hz) : std::complex<double>(1.0);
 }
 
 double VirtualAccelerometer::ideal_axis_acceleration(const Vector5& a, double ring_angle_rad) const {
@@ -198,7 +243,7 @@ double VirtualAccelerometer::ideal_axis_acceleration(const Vector5& a, double ri
 }
 
 bool VirtualAccelerometer::push(const Vector5& ring_acceleration, double ring_angle_rad, double* output) {
-  return push_axis_acceleration(ideal_axis_acceleration(ring_acceleration, ring_angle_rad), output);
+  return push_axis_acceleration(ideal_axis_acceleration(ring_acceleration, ring_angle_rad), ring_angle_rad, output);
 }
 
 void VirtualAccelerometer::push_block(const std::vector<DynamicSample>& samples, std::vector<double>* output) {
@@ -207,15 +252,29 @@ void VirtualAccelerometer::push_block(const std::vector<DynamicSample>& samples,
     if (push(s.acceleration, s.ring_angle_rad, &y)) output->push_back(y);
 }
 
+bool VirtualAccelerometer::push_axis_acceleration(double a_m_s2, double ring_angle_rad, double* output) {
+  return push_sample(a_m_s2, has_background_ ? background_.step(ring_angle_rad) : MachineBackground::Sample{}, output);
+}
+
 bool VirtualAccelerometer::push_axis_acceleration(double a_m_s2, double* output) {
+  return push_sample(a_m_s2, has_background_ ? background_.step() : MachineBackground::Sample{}, output);
+}
+
+bool VirtualAccelerometer::push_sample(double a_m_s2, const MachineBackground::Sample& background, double* output) {
   // A NaN would stay in the filter states for good: refuse it.
   if (!std::isfinite(a_m_s2)) throw InvalidInputError("VirtualAccelerometer: non-finite input acceleration");
+  // The shaft-rate load variation modulates the bearing's own vibration at its source.
+  if (has_background_) a_m_s2 *= background.bearing_gain;
   double y = has_path_ ? path_.process(a_m_s2) : a_m_s2;
+  // The machine's lines reach the sensor by their own paths: given as measured there.
+  if (has_background_) y += background.lines_m_s2;
   // Sensor noise after the path: it is electronic, not shaped by the mechanics.
-  if (noise_sigma_m_s2_ > 0.0) y += noise_sigma_m_s2_ * gaussian();
+  if (noise_sigma_m_s2_ > 0.0) y += noise_sigma_m_s2_ * noise_();
   for (int i = 0; i < anti_alias_sections_; ++i) y = anti_alias_[i].process(y);
   if (++decimation_phase_ < decimation_ratio_) return false;
   decimation_phase_ = 0;
+  // The broadband floor as it leaves the anti-alias filter (coloured_floor.hpp).
+  if (has_floor_) y += floor_.next();
   // ADC: round to the nearest code (mid-tread), saturate at the ends of the range.
   double code = std::floor(y / quantization_step_m_s2_ + 0.5);
   if (code > code_max_ || code < code_min_) {

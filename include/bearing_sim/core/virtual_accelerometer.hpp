@@ -1,12 +1,13 @@
 #pragma once
 // Virtual accelerometer (docs/sensor.md): what a real sensor and its data acquisition
 // record from the ideal ring acceleration of BearingDynamics. Per input sample:
-//   projection onto the sensing axis at the mounting point -> transmission-path
-//   resonance -> sensor noise -> anti-alias low-pass -> decimation -> clipping to the
-//   range -> ADC quantization -> sensitivity (optional volts).
+//   projection onto the sensing axis at the mounting point -> shaft-rate modulation ->
+//   transmission path (one or several modes) -> + the machine's lines -> sensor noise ->
+//   anti-alias low-pass -> decimation -> + the machine's broadband floor -> clipping to
+//   the range -> ADC quantization -> sensitivity (optional volts).
 // Cheap and allocation-free per sample, deterministic for a seed.
+#include <complex>
 #include <cstdint>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,10 @@
 
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/biquad.hpp"
+#include "bearing_sim/core/coloured_floor.hpp"
+#include "bearing_sim/core/machine_background.hpp"
+#include "bearing_sim/core/seeded_gaussian.hpp"
+#include "bearing_sim/core/transmission_path.hpp"
 
 namespace bearing_sim {
 
@@ -38,8 +43,13 @@ struct AccelerometerConfig {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitX();          // sensing direction (normalized on use)
   // Transmission path between the ring and the sensor's seismic element (seismic
   // transmissibility, biquad.hpp). 0 Hz: no path (rigid, stud-mounted on the ring).
+  // With path_modes, these are its dominant mode's (an envelope band's centre).
   double path_resonance_hz = 3000.0;
   double path_damping_ratio = 0.05;
+  // Several modes (transmission_path.hpp); when not empty, they are the path.
+  std::vector<PathMode> path_modes;
+  // The machine around the bearing (machine_background.hpp); empty: none.
+  InstallationConfig installation;
   double sensitivity_V_per_m_s2 = 0.100 / kStandardGravity_m_s2;               // 100 mV/g
   double noise_density_m_s2_per_sqrt_hz = 1.5e-6 * kStandardGravity_m_s2;      // 1.5 ug/sqrt(Hz)
   double range_m_s2 = 50.0 * kStandardGravity_m_s2;                            // +-50 g full scale
@@ -51,9 +61,9 @@ struct AccelerometerConfig {
   SensorOutputUnit output_unit = SensorOutputUnit::Acceleration_m_s2;
 };
 
-// Reads the `sensor:` mapping (the node given is the mapping itself). Keys carry their units
-// (docs/sensor.md); an unknown key, a wrong type or a value out of range is a ConfigError
-// naming `source` and the key.
+// Reads the `sensor:` mapping (the node given is the mapping itself), with its `path_modes`
+// and `installation:`. Keys carry their units (docs/sensor.md); an unknown key, a wrong type
+// or a value out of range is a ConfigError naming `source` and the key.
 AccelerometerConfig parse_accelerometer_config(const YAML::Node& sensor, const std::string& source);
 // A sensor file whose only top-level key is `sensor:`.
 AccelerometerConfig load_accelerometer_config(const std::string& path);
@@ -75,7 +85,10 @@ class VirtualAccelerometer {
   }
   // Appends the outputs of a block; no allocation when *output has the capacity.
   void push_block(const std::vector<DynamicSample>& samples, std::vector<double>* output);
-  // The chain after the projection: one sample of the ideal acceleration on the sensing axis.
+  // The chain after the projection: one sample of the ideal acceleration on the sensing axis,
+  // the turning ring at ring_angle_rad (for the installation's speed-locked lines).
+  bool push_axis_acceleration(double axis_acceleration_m_s2, double ring_angle_rad, double* output);
+  // The same with the ring standing still at its last angle.
   bool push_axis_acceleration(double axis_acceleration_m_s2, double* output);
 
   // The ideal (noise-free, unfiltered) acceleration at the mounting point along the axis,
@@ -94,9 +107,13 @@ class VirtualAccelerometer {
   double quantization_step_m_s2() const { return quantization_step_m_s2_; }
   double noise_sigma_m_s2() const { return noise_sigma_m_s2_; }  // per input sample
   std::uint64_t clipped_sample_count() const { return clipped_samples_; }
+  // The path as digitised, at f_hz (the analog form: modal_transmissibility).
+  std::complex<double> path_response(double f_hz) const;
+  // The broadband floor's density as realised, at f_hz (0 without a floor).
+  double floor_density(double f_hz) const { return has_floor_ ? floor_.realised_density(f_hz) : 0.0; }
 
  private:
-  double gaussian();
+  bool push_sample(double axis_acceleration_m_s2, const MachineBackground::Sample& background, double* output);
 
   AccelerometerConfig config_;
   double input_rate_hz_ = 0.0;
@@ -105,7 +122,10 @@ class VirtualAccelerometer {
   Eigen::Vector3d axis_ = Eigen::Vector3d::UnitX();
   Eigen::Vector3d lever_ = Eigen::Vector3d::Zero();  // r x n: the tilt pick-up
   bool has_path_ = false;
-  Biquad path_;
+  TransmissionPath path_;
+  bool has_background_ = false, has_floor_ = false;
+  MachineBackground background_;
+  ColouredFloor floor_;
   Biquad anti_alias_[8];
   int anti_alias_sections_ = 0;
   double noise_sigma_m_s2_ = 0.0;
@@ -113,9 +133,7 @@ class VirtualAccelerometer {
   double code_min_ = 0.0, code_max_ = 0.0;
   double output_scale_ = 1.0;  // 1 or the sensitivity
   std::uint64_t clipped_samples_ = 0;
-  std::mt19937_64 rng_;
-  bool has_spare_normal_ = false;
-  double spare_normal_ = 0.0;
+  SeededGaussian noise_;
 };
 
 }  // namespace bearing_sim

@@ -1,0 +1,242 @@
+#!/usr/bin/python3
+"""Measures the CWRU drive-end rig's installation (docs/sensor.md, "The CWRU drive-end
+installation") from the real records, so that the numbers of
+config/sensors/cwru_drive_end_accelerometer.yaml can be re-derived. A development script:
+it reads the CWRU Bearing Data Center's .mat files from a directory given on the command
+line (their licence does not allow copying them into this repository) and prints the
+derived numbers only.
+
+    python3 scripts/cwru_installation.py /work/cwru                    # the installation, as YAML
+    python3 scripts/cwru_installation.py /work/cwru --compare sim.csv  # real vs simulated table
+
+Not executable and not installed: a development script (like cwru_indicators.py, it works on
+the source tree).
+
+--compare takes a --sensor-csv of `bearing_tool simulate` (time, x, y, z; x is used) at
+12 kHz, in m/s^2 or in g (--compare-unit).
+
+Source: CWRU Bearing Data Center, Case Western Reserve University,
+https://engineering.case.edu/bearingdatacenter (records named below).
+"""
+import argparse
+import pathlib
+import sys
+
+import numpy as np
+import scipy.io
+import scipy.ndimage
+import scipy.signal
+
+G = 9.80665
+FS = 12000.0
+NORMAL = 'normal_0_97.mat'           # 48 kHz, 0 hp, drive-end channel
+# The largest seeded faults, inner and outer race, all loads: impacts that ring the path's modes.
+MODE_RECORDS = ('IR014', 'IR021', 'OR014@6', 'OR021@6', 'OR021@3', 'OR021@12')
+# Where the fault records' spectra show the path's modes (the search windows, Hz).
+MODE_WINDOWS = ((950, 1150), (1300, 1500), (2500, 3000), (3200, 3700), (4000, 4400), (5000, 5400))
+SHAFT_HARMONICS = 48                 # 1..48 x f_r: the integer orders standing out of the floor
+HALF_ORDERS = (0.5, 1.5, 2.5)
+LINE_HARMONICS = 6                   # 1..6 x the line frequency
+MIN_OTHER_ORDER_MG = 2.0             # other speed-locked orders reported above this
+MAX_OTHER_ORDERS = 16
+FLOOR_POINTS_HZ = (30, 60, 100, 150, 200, 300, 400, 500, 700, 1000, 1300, 1600, 2000, 2500, 3000,
+                   3500, 4000, 4500, 5000, 5500)
+
+
+def drive_end(path):
+    data = scipy.io.loadmat(str(path))
+    key = next(k for k in data if k.endswith('_DE_time'))
+    rpm = [v for k, v in data.items() if k.endswith('RPM')]
+    return data[key].ravel().astype(float), (float(np.ravel(rpm[0])[0]) if rpm else None)
+
+
+def normal_record(directory):
+    x48, rpm = drive_end(directory / NORMAL)
+    # 48 kHz -> 12 kHz with a long Kaiser FIR (scipy's polyphase default), as the 12 kHz records.
+    return scipy.signal.resample_poly(x48, 1, 4), rpm
+
+
+def amplitude(x, f_hz, fs=FS):
+    """Peak amplitude of the line at f_hz: the Hann-windowed DTFT at that exact frequency
+    (no scalloping loss), in the unit of x."""
+    n = len(x)
+    w = np.hanning(n)
+    t = np.arange(n) / fs
+    return 2.0 * abs(np.sum((x - x.mean()) * w * np.exp(-2j * np.pi * f_hz * t))) / w.sum()
+
+
+def best_frequency(x, guess_hz, multipliers, span_hz, steps=201):
+    """The base frequency f within guess +- span that maximises the summed power of its
+    lines k f, k in multipliers."""
+    candidates = np.linspace(guess_hz - span_hz, guess_hz + span_hz, steps)
+    power = [sum(amplitude(x, f * k) ** 2 for k in multipliers) for f in candidates]
+    return candidates[int(np.argmax(power))]
+
+
+def shaft_and_line(x, rpm):
+    """The shaft rate from its 9th-24th harmonics (the strong integer orders; the file's rpm
+    is rounded) and the line frequency from its 2nd, 4th and 6th harmonics."""
+    return (best_frequency(x, rpm / 60.0, range(9, 25), 0.02),
+            best_frequency(x, 60.0, (2, 4, 6), 0.05))
+
+
+def welch(x, nperseg):
+    return scipy.signal.welch(x, FS, nperseg=nperseg)
+
+
+def floor_density(x, points_hz):
+    """The broadband floor at each point: the median of a Welch PSD (1.5 Hz bins) within
+    +-1/6 octave (a third octave) of the point. The median ignores the discrete lines."""
+    f, p = welch(x, 8192)
+    out = []
+    for fc in points_hz:
+        band = (f >= fc * 2 ** (-1 / 6)) & (f <= min(fc * 2 ** (1 / 6), 0.5 * FS))
+        out.append(float(np.sqrt(np.median(p[band]))))
+    return out
+
+
+def record_statistics(x, f_r, line_hz):
+    """RMS, share of the power in discrete lines, main line levels, floor (all in g)."""
+    f, p = welch(x, 16384)                   # 0.73 Hz bins: the lines stand clear
+    # Floor: a running median over 75 Hz; the share in lines is what stands above it.
+    floor = scipy.ndimage.median_filter(p, size=103, mode='nearest')
+    share = 1.0 - np.sum(np.minimum(p, floor)) / np.sum(p)
+    levels = {
+        '1 x f_r': amplitude(x, f_r), '2 x f_r': amplitude(x, 2 * f_r),
+        '2 x line': amplitude(x, 2 * line_hz), '6 x line': amplitude(x, 6 * line_hz),
+        '5.402 x f_r': amplitude(x, 5.402 * f_r), '138.491 x f_r': amplitude(x, 138.491 * f_r),
+    }
+    dens = floor_density(x, (500.0, 3000.0))
+    return {'rms': float(np.std(x)), 'line_share': float(share), 'levels': levels, 'floor': dens}
+
+
+def measure_normal(directory):
+    x, rpm = normal_record(directory)
+    f_r, line = shaft_and_line(x, rpm)
+    shaft = [amplitude(x, k * f_r) for k in range(1, SHAFT_HARMONICS + 1)]
+    half = [amplitude(x, q * f_r) for q in HALF_ORDERS]
+    lines = [amplitude(x, h * line) for h in range(1, LINE_HARMONICS + 1)]
+    # Other speed-locked orders: the strongest peaks that are neither k/2 x f_r nor k x line.
+    n = len(x)
+    spectrum = 2.0 * np.abs(np.fft.rfft((x - x.mean()) * np.hanning(n))) / np.hanning(n).sum()
+    freqs = np.fft.rfftfreq(n, 1 / FS)
+    peaks, _ = scipy.signal.find_peaks(spectrum, distance=int(2.0 / (FS / n)))
+    others = []
+    for i in peaks[np.argsort(spectrum[peaks])[::-1]]:
+        if spectrum[i] < MIN_OTHER_ORDER_MG * 1e-3 or freqs[i] < 0.4 * f_r:
+            continue
+        order = freqs[i] / f_r
+        # Within 0.25 Hz (1.2 bins) of a half order or of a line harmonic: those series.
+        if (abs(order - round(2 * order) / 2) * f_r < 0.25 and round(2 * order) <= 2 * SHAFT_HARMONICS) or \
+                abs(freqs[i] / line - round(freqs[i] / line)) * line < 0.25:
+            continue
+        # Refine the frequency on the exact DTFT (+-one bin).
+        fine = np.linspace(freqs[i] - FS / n, freqs[i] + FS / n, 41)
+        a = [amplitude(x, v) for v in fine]
+        j = int(np.argmax(a))
+        others.append((round(fine[j] / f_r, 3), a[j]))
+        if len(others) == MAX_OTHER_ORDERS:
+            break
+    others.sort()
+    return x, f_r, line, shaft, half, lines, others, floor_density(x, FLOOR_POINTS_HZ)
+
+
+def measure_modes(directory, normal_x):
+    """The path's modes from the fault records: the geometric mean over records of the
+    fault-record PSD (lines removed) less the normal record's, normalised per record (impacts excite the path
+    with a nearly flat spectrum: what the path's |H|^2 shapes). In each window: the peak's
+    frequency, its half-power width (damping ratio zeta = width / (2 f)) and its height."""
+    f, p0 = welch(normal_x, 2048)
+    logs, names = [], []
+    for path in sorted(directory.glob('12k_Drive_End_*.mat')):
+        if not any(f'_{tag}_' in path.name for tag in MODE_RECORDS):
+            continue
+        x, _ = drive_end(path)
+        _, p = welch(x, 2048)
+        # A running median over 7 bins (41 Hz) removes the lines (3 bins wide), not the modes.
+        p = scipy.ndimage.median_filter(p, size=7, mode='nearest')
+        logs.append(np.log(np.maximum(p - p0, 1e-16) / np.sum(p)))
+        names.append(path.stem.rsplit('_', 1)[1])
+    shape = np.exp(np.mean(logs, axis=0))
+    modes = []
+    for lo, hi in MODE_WINDOWS:
+        inside = np.flatnonzero((f >= lo) & (f <= hi))
+        i = inside[np.argmax(shape[inside])]
+        half = shape[i] / 2.0
+        a, b = i, i
+        while a > 0 and shape[a] > half:
+            a -= 1
+        while b < len(shape) - 1 and shape[b] > half:
+            b += 1
+        # Linear interpolation of the half-power crossings.
+        f_lo = f[a] + (half - shape[a]) / (shape[a + 1] - shape[a]) * (f[a + 1] - f[a])
+        f_hi = f[b - 1] + (half - shape[b - 1]) / (shape[b] - shape[b - 1]) * (f[b] - f[b - 1])
+        # A width beyond 5 % is the comb or two modes merged: held at 5 %.
+        zeta = float(np.clip((f_hi - f_lo) / (2.0 * f[i]), 0.01, 0.05))
+        modes.append({'f': float(f[i]), 'zeta': zeta, 'height': float(shape[i])})
+    # Peak transmissibility p / (2 zeta) proportional to sqrt(height); sum of p = 1 (the
+    # listed modes carry the whole path: a magnetic base, nothing rigid above them).
+    weights = [m['zeta'] * np.sqrt(m['height']) for m in modes]
+    for m, w in zip(modes, weights):
+        m['p'] = float(w / sum(weights))
+    return modes, names
+
+
+def print_installation(directory):
+    x, f_r, line, shaft, half, lines, others, floor = measure_normal(directory)
+    modes, names = measure_modes(directory, x)
+    mg = lambda v: f'{v / 1e-3:.3g}'
+    print(f'# From {NORMAL} (record 97, 0 hp): f_r {f_r:.3f} Hz (file: 1796 rpm), line {line:.3f} Hz')
+    print(f'# Path modes from records {", ".join(names)}')
+    print('  path_modes:')
+    for m in modes:
+        print(f"    - {{frequency_Hz: {m['f']:.0f}, damping_ratio: {m['zeta']:.3f}, participation: {m['p']:.3f}}}")
+    print('  installation:')
+    print(f'    shaft_harmonics_mg: [{", ".join(mg(v) for v in shaft)}]')
+    print(f'    half_orders_mg: [{", ".join(mg(v) for v in half)}]')
+    print('    speed_locked_orders:')
+    for order, a in others:
+        print(f'      - {{order: {order}, amplitude_mg: {mg(a)}}}')
+    print(f'    line_frequency_Hz: {line:.2f}')
+    print(f'    line_harmonics_mg: [{", ".join(mg(v) for v in lines)}]')
+    print('    floor:')
+    print(f'      frequencies_Hz: [{", ".join(str(v) for v in FLOOR_POINTS_HZ)}]')
+    print(f'      density_ug_per_sqrt_Hz: [{", ".join(f"{v * 1e6:.0f}" for v in floor)}]')
+    return x, f_r, line
+
+
+def print_comparison(directory, csv_path, unit):
+    real, rpm = normal_record(directory)
+    sim = np.loadtxt(csv_path, delimiter=',', skiprows=1)[:, 1]
+    sim = sim / G if unit == 'm_s2' else sim
+    sim = sim[len(sim) // 2:]  # after the start-up transient
+    rows = []
+    for name, x in (('real, record 97', real), (f'simulated, {pathlib.Path(csv_path).name}', sim)):
+        f_r, line = shaft_and_line(x, rpm)  # each record's own speed and line frequency
+        rows.append((name, record_statistics(x, f_r, line)))
+    keys = list(rows[0][1]['levels'])
+    print('| record | RMS, g | power in lines | ' + ' | '.join(f'{k}, mg' for k in keys) +
+          ' | floor at 500 Hz / 3 kHz, ug/sqrt(Hz) |')
+    print('|---' * (4 + len(keys)) + '|')
+    for name, s in rows:
+        levels = ' | '.join(f"{s['levels'][k] * 1e3:.2f}" for k in keys)
+        print(f"| {name} | {s['rms']:.4f} | {100 * s['line_share']:.0f} % | {levels} | "
+              f"{s['floor'][0] * 1e6:.0f} / {s['floor'][1] * 1e6:.0f} |")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument('cwru_dir', type=pathlib.Path, help='directory of the CWRU .mat files')
+    parser.add_argument('--compare', metavar='CSV', help='a simulated --sensor-csv to compare with record 97')
+    parser.add_argument('--compare-unit', choices=('m_s2', 'g'), default='m_s2')
+    args = parser.parse_args()
+    if not (args.cwru_dir / NORMAL).is_file():
+        sys.exit(f'{args.cwru_dir}: no {NORMAL} (the CWRU normal baseline, record 97)')
+    if args.compare:
+        print_comparison(args.cwru_dir, args.compare, args.compare_unit)
+    else:
+        print_installation(args.cwru_dir)
+
+
+if __name__ == '__main__':
+    main()
