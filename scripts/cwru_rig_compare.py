@@ -76,6 +76,9 @@ def parser():
                    help='motor loads, comma-separated (default 0,1,2,3; the normal record is at 0 hp only)')
     p.add_argument('--positions', type=comma_list(str), default=['@6'],
                    help=f"outer-race fault positions, comma-separated, of {', '.join(POSITION_DEG)} (default @6)")
+    p.add_argument('--bearing', type=pathlib.Path, default=BEARING_FILE,
+                   help='bearing file of the simulation and the analysis (default '
+                        'config/bearings/cwru_6205_drive_end.yaml; a variant may set imperfections)')
     p.add_argument('--sensor', type=pathlib.Path,
                    help=f'sensor file of the simulation; it must sample at 12 kHz (default: {CWRU_SENSOR_FILE.name} '
                         'if present, else ct_gantry_housing_accelerometer.yaml adapted as scripts/cwru_indicators.py '
@@ -93,13 +96,19 @@ def parser():
     return p
 
 
+def shown(path):
+    """A path as the notes give it: relative to the source tree when inside it."""
+    path = pathlib.Path(path).resolve()
+    return str(path.relative_to(SOURCE)) if SOURCE in path.parents else str(path)
+
+
 def sensor_file(args, work):
     """The sensor file to simulate with, and a note saying which it is."""
     import bearing_sim
     if args.sensor:
-        return args.sensor, f'{args.sensor}'
+        return args.sensor, shown(args.sensor)
     if CWRU_SENSOR_FILE.is_file():
-        return CWRU_SENSOR_FILE, f'{CWRU_SENSOR_FILE.relative_to(SOURCE)}'
+        return CWRU_SENSOR_FILE, shown(CWRU_SENSOR_FILE)
     path = pathlib.Path(work) / 'sensor.yaml'
     path.write_text(bearing_sim.yaml_text({'sensor': cwru_indicators.housing_sensor(args.noise_ug)}), encoding='utf-8')
     return path, (f'config/sensors/ct_gantry_housing_accelerometer.yaml adapted as scripts/cwru_indicators.py does, '
@@ -142,7 +151,7 @@ def simulated_signal(meta, rpm, sensor, args):
         surface = meta['fault'].replace(' ', '_')  # the table's 'inner race' is the scenario's inner_race
         defects.append(cwru_indicators.spall(surface, meta['size_in'], POSITION_DEG.get(meta['position'], 0.0)))
     scenario = {'name': f"cwru_rig_compare_{meta['record']}", 'duration_s': args.settle_s + args.window_s,
-                'seed': args.seed, 'sample_rate_hz': args.dynamics_rate_hz, 'bearing_file': str(BEARING_FILE),
+                'seed': args.seed, 'sample_rate_hz': args.dynamics_rate_hz, 'bearing_file': str(args.bearing.resolve()),
                 'sensor_file': str(sensor), 'speed': {'initial_speed_rpm': rpm},
                 'load': {'initial': {'force_N': [cwru_indicators.RADIAL_LOAD_N, 0.0, 0.0]}}, 'defects': defects}
     result = bearing_sim.generate(scenario)
@@ -293,7 +302,7 @@ def main(argv=None):
         print(f'cwru_rig_compare: {args.cwru_dir}: none of the records {sorted(m["record"] for m in wanted)}',
               file=sys.stderr)
         return 2
-    bearing = bearing_sim.load_bearing(BEARING_FILE)
+    bearing = bearing_sim.load_bearing(args.bearing)
     rate = cwru_indicators.OUTPUT_RATE_HZ
     window = int(round(args.window_s * rate))
     rows, signals = [], {}
@@ -317,7 +326,7 @@ def main(argv=None):
                   f"{row['real_verdict']} / {row['sim_verdict']}", file=sys.stderr)
     wall_s = time.perf_counter() - start
     target_lines, passed = targets(rows)
-    notes = [f'Simulation: {BEARING_FILE.relative_to(SOURCE)}, {cwru_indicators.RADIAL_LOAD_N:g} N radial, the real '
+    notes = [f'Simulation: {shown(args.bearing)}, {cwru_indicators.RADIAL_LOAD_N:g} N radial, the real '
              f"file's speed, dynamics at {args.dynamics_rate_hz / 1000:g} kHz, sensor {sensor_note}; seed {args.seed}.",
              f'Window: the last {args.window_s:g} s of each record (the real ones hold ~10 s); record 97 (48 kHz) '
              f'decimated to 12 kHz. {len(rows)} conditions, {wall_s:.0f} s of wall time on '
