@@ -197,9 +197,9 @@ def parser():
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument('cwru_dir', type=pathlib.Path, help='directory of the CWRU .mat files (searched recursively)')
     p.add_argument('--runs', type=int, default=2000,
-                   help='N: train on runs 0..N-1 of the campaign (default 2000: 3000 took 14.8 min of wall time on '
-                        "the 2-core AMD EPYC beside others' builds, 12.4 of them generating the runs at 0.07 CPU s "
-                        'of simulation each; a sensor with an installation costs ~2.5x that)')
+                   help='N: train on runs 0..N-1 of the campaign (default 2000: ~9.6 min of wall time on the '
+                        "2-core AMD EPYC beside others' builds (load 8): 8.6 generating the runs, 0.14 CPU s of "
+                        'simulation each, 1 min of features)')
     p.add_argument('--campaign', type=pathlib.Path, default=CAMPAIGN,
                    help='the campaign file (default config/campaigns/cwru_rig.yaml; a variant must keep its labels, '
                         'its 12 kHz channel 0 in m/s^2 and at least --window-s per run)')
