@@ -9,6 +9,7 @@
 
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "small_products.hpp"
 
@@ -300,6 +301,7 @@ void BearingDynamics::change_load(const LoadLine& line) {
 
 void BearingDynamics::set_ring_speed(double ring_speed_rad_s) {
   if (!std::isfinite(ring_speed_rad_s)) throw InvalidInputError("ring speed is not finite");
+  check_ring_speed(ring_speed_rad_s, model_.config().pitch_diameter_m, "ring speed");
   // Only the phases of the next samples change: acceleration and ball split stay.
   ring_speed_ = ring_speed_rad_s;
   update_cage_speed();

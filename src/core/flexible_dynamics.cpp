@@ -4,6 +4,7 @@
 #include <string>
 
 #include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/frequencies.hpp"
 
 namespace bearing_sim {
 
@@ -13,6 +14,7 @@ FlexibleDynamics::FlexibleDynamics(FlexibleBearing bearing, const Vector5& load,
   if (!(sample_rate_hz > 0.0) || !std::isfinite(sample_rate_hz))
     throw InvalidInputError("flexible ring dynamics: the sample rate must be > 0");
   if (!std::isfinite(ring_speed_rad_s)) throw InvalidInputError("flexible ring dynamics: non-finite ring speed");
+  check_ring_speed(ring_speed_rad_s, bearing_.model().config().pitch_diameter_m, "flexible ring dynamics: ring speed");
   if (substeps < 0 || substeps > 100000) throw InvalidInputError("flexible ring dynamics: substeps out of range");
   const BearingModel& model = bearing_.model();
   const Eigen::MatrixXd mass = bearing_.mass_matrix();  // throws without rotating_mass_kg

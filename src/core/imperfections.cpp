@@ -5,6 +5,7 @@
 #include <cmath>
 #include <complex>
 #include <random>
+#include <sstream>
 
 #include <unsupported/Eigen/FFT>
 
@@ -272,8 +273,23 @@ SpallLimit spall_limit(Surface surface, double ball_diameter_m, double outer_rac
 
 void Imperfections::validate(const Spall& s) const {
   const auto& g = geometry_;
+  const auto number = [](double v) {
+    std::ostringstream text;
+    text << v;
+    return text.str();
+  };
+  if (spalls_.size() >= static_cast<std::size_t>(kMaxSpalls))
+    throw InvalidInputError("defect: " + std::to_string(spalls_.size()) + " spalls are present, at most " +
+                            std::to_string(kMaxSpalls) + " may be at once (clear them first)");
   if (!std::isfinite(s.position_rad) || !std::isfinite(s.width_m) || !std::isfinite(s.depth_m))
     throw InvalidInputError("defect: position, width and depth must be finite");
+  if (std::abs(s.position_rad) > kMaxAngleRad)
+    throw InvalidInputError("defect: position " + number(s.position_rad) + " rad is beyond +-" +
+                            number(kMaxAngleRad) + " rad (give it within a turn)");
+  if (s.width_m < kMinSpallSizeM || s.depth_m < kMinSpallSizeM)
+    throw InvalidInputError("defect: " + number(s.width_m * 1e6) + " um wide and " + number(s.depth_m * 1e6) +
+                            " um deep: a spall is at least " + number(kMinSpallSizeM * 1e6) +
+                            " um wide and deep (smaller is roughness)");
   const SpallLimit limit = spall_limit(s.surface, g.ball_diameter_m, g.outer_race_radius_m, g.inner_race_radius_m);
   if (!(s.depth_m > 0.0) || s.depth_m > limit.max_depth_m)
     throw InvalidInputError("defect: depth must be > 0 and at most a quarter of the ball diameter (" +

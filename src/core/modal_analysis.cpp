@@ -13,10 +13,11 @@
 namespace bearing_sim {
 namespace {
 
-void require_positive(double v, const char* what) {
-  if (!std::isfinite(v) || v <= 0.0) {
+void require_within(double v, double min, double max, const std::string& what, const char* unit) {
+  if (!(v >= min && v <= max)) {  // NaN fails too
     std::ostringstream os;
-    os << "modal analysis: " << what << " must be a positive finite number (got " << v << ")";
+    os << "modal analysis: " << what << " " << v << " " << unit << " is outside [" << min << ", " << max << "] "
+       << unit;
     throw InvalidInputError(os.str());
   }
 }
@@ -39,11 +40,16 @@ Matrix6 transform_bushing(const Matrix6& bushing, const Eigen::Vector3d& r) {
 
 ModalResult solve_modes(const RigidBody& body, const std::vector<BushingSupport>& supports,
                         const ModalOptions& options) {
-  require_positive(body.mass_kg, "mass");
-  require_positive(body.inertia_kg_m2.x(), "inertia Ixx");
-  require_positive(body.inertia_kg_m2.y(), "inertia Iyy");
-  require_positive(body.inertia_kg_m2.z(), "inertia Izz");
+  require_within(body.mass_kg, kMinBodyMassKg, kMaxBodyMassKg, "mass", "kg");
+  const char* const axes[3] = {"Ixx", "Iyy", "Izz"};
+  for (int a = 0; a < 3; ++a)
+    require_within(body.inertia_kg_m2[a], kMinBodyInertiaKgM2, kMaxBodyInertiaKgM2, std::string("inertia ") + axes[a],
+                   "kg*m^2");
   if (supports.empty()) throw InvalidInputError("modal analysis: no bearing (Bushing) supports given");
+  for (std::size_t i = 0; i < supports.size(); ++i)
+    for (int a = 0; a < 3; ++a)
+      require_within(supports[i].position_m[a], -kMaxSupportDistanceM, kMaxSupportDistanceM,
+                     "support " + std::to_string(i + 1) + " position " + "xyz"[a], "m");
 
   ModalResult result;
   result.mass.diagonal() << body.mass_kg, body.mass_kg, body.mass_kg, body.inertia_kg_m2.x(),
@@ -66,9 +72,8 @@ ModalResult solve_modes(const RigidBody& body, const std::vector<BushingSupport>
 
   Eigen::GeneralizedSelfAdjointEigenSolver<Matrix6> solver(result.stiffness, result.mass);
   if (solver.info() != Eigen::Success || !solver.eigenvalues().allFinite())
-    throw InvalidInputError(
-        "modal analysis: the eigenvalues K/m are not a finite number: the mass and inertia must be "
-        "positive and large enough for the stiffness (a mass of 5e-324 kg overflows every K/m)");
+    throw InvalidInputError("modal analysis: the eigenvalues K/M are not finite numbers (a stiffness overflows "
+                            "against the mass and inertia given)");
   const Vector6 lambda = solver.eigenvalues();
   const double lambda_max = std::max(lambda.cwiseAbs().maxCoeff(), 1e-300);
   for (int i = 0; i < 6; ++i) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 
 namespace bearing_sim {
@@ -30,6 +31,12 @@ StaticSolution solve_static(const BearingModel& model, const Vector5& load, cons
                             const StaticSolverOptions& options, const Vector5* initial_guess) {
   if (!load.allFinite()) throw InvalidInputError("static load is not finite: " + describe(load));
   if (!std::isfinite(phase.cage)) throw InvalidInputError("cage angle is not finite");
+  if (std::abs(phase.cage) > kMaxAngleRad) {
+    std::ostringstream why;
+    why << "cage angle " << phase.cage << " rad is beyond +-" << kMaxAngleRad
+        << " rad (the balls' places are lost in its rounding; give it within a turn)";
+    throw InvalidInputError(why.str());
+  }
 
   const Vector5 s = scales(model);
   const double d = model.config().ball_diameter_m;

@@ -11,6 +11,7 @@
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/thermal_clearance.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
 #include "yaml_reader.hpp"
@@ -27,12 +28,15 @@ std::string format_number(double v) {
   return s.str();
 }
 
-// A speed given either in rpm or in rad/s under `<stem>_rpm` / `<stem>_rad_s`.
-bool read_speed(const detail::Reader& r, const std::string& stem, double* speed_rad_s) {
+// A speed given either in rpm or in rad/s under `<stem>_rpm` / `<stem>_rad_s`, within the
+// bearing's physical limit (max_ring_speed_rad_s of its pitch diameter).
+bool read_speed(const detail::Reader& r, const std::string& stem, double pitch_diameter_m, double* speed_rad_s) {
   const bool rpm = r.has(stem + "_rpm"), rad = r.has(stem + "_rad_s");
   if (rpm && rad) r.fail(stem + "_rpm", "give either " + stem + "_rpm or " + stem + "_rad_s, not both");
   if (rpm) *speed_rad_s = r.number(stem + "_rpm", 0.0) * kRpmToRadS;
   if (rad) *speed_rad_s = r.number(stem + "_rad_s", 0.0);
+  const std::string why = ring_speed_refusal(*speed_rad_s, pitch_diameter_m);
+  if (!why.empty()) r.fail(stem + (rpm ? "_rpm" : "_rad_s"), why);
   return rpm || rad;
 }
 
@@ -188,7 +192,7 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
   if (const YAML::Node node = r.map("speed")) {
     detail::Reader s(node, source, "speed.");
     s.check_keys({"initial_speed_rpm", "initial_speed_rad_s", "segments"});
-    read_speed(s, "initial_speed", &speed);
+    read_speed(s, "initial_speed", bearing_config.pitch_diameter_m, &speed);
     if (const YAML::Node segments = node["segments"]) {
       if (!segments.IsSequence()) s.fail("segments", "expected a list of {type, start_s, end_s, ...}");
       for (std::size_t i = 0; i < segments.size(); ++i) {
@@ -212,8 +216,8 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
         read_interval(g, true, sc.duration_s_, cursor, &p.start_s, &p.end_s);
         if (p.start_s > cursor) push(SpeedPiece{SpeedPiece::Kind::Hold, cursor, p.start_s, speed});
         p.start_speed = speed;
-        if (p.kind == SpeedPiece::Kind::Hold) read_speed(g, "speed", &p.start_speed);  // a step, if given
-        if (p.kind == SpeedPiece::Kind::Ramp && !read_speed(g, "to_speed", &p.end_speed))
+        if (p.kind == SpeedPiece::Kind::Hold) read_speed(g, "speed", bearing_config.pitch_diameter_m, &p.start_speed);  // a step, if given
+        if (p.kind == SpeedPiece::Kind::Ramp && !read_speed(g, "to_speed", bearing_config.pitch_diameter_m, &p.end_speed))
           g.fail("to_speed_rpm", "a ramp needs its target, to_speed_rpm or to_speed_rad_s");
         if (p.kind == SpeedPiece::Kind::Coast) {
           p.time_constant_s = g.number("time_constant_s", 0.0, true);
@@ -365,10 +369,15 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
       }
       sc.defect_events_.push_back(event);
     }
+    // The spalls present as the run goes: the bearing file's, then the scenario's until a clear
+    // (which clears all), so that at most kMaxSpalls are counted at once, as the run adds them.
     BearingModel model(bearing_config);
     for (std::size_t i = 0; i < sc.defect_events_.size(); ++i) {
       const ScenarioDefectEvent& event = sc.defect_events_[i];
-      if (event.kind != ScenarioDefectEvent::Kind::Spall) continue;
+      if (event.kind != ScenarioDefectEvent::Kind::Spall) {
+        model.clear_spalls();
+        continue;
+      }
       double end = sc.duration_s_;
       for (std::size_t j = i + 1; j < sc.defect_events_.size(); ++j)
         if (sc.defect_events_[j].kind == ScenarioDefectEvent::Kind::Clear) {
@@ -379,13 +388,14 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
       largest.width_m = spall_width_at(event.spall, end);
       largest.depth_m = spall_depth_at(event.spall, end);
       const std::string key = "defects[" + std::to_string(i) + "]";
+      BearingModel grown = model;  // the largest is checked among the same spalls, not as one more
       try {
         model.add_spall(event.spall);
       } catch (const InvalidInputError& e) {
         r.fail(key, std::string("does not fit the bearing: ") + e.what());
       }
       try {
-        model.add_spall(largest);
+        grown.add_spall(largest);
       } catch (const InvalidInputError& e) {
         r.fail(key, "grows too large for the bearing by t = " + format_number(end) + " s (" +
                         format_number(largest.width_m * 1e3) + " mm wide, " + format_number(largest.depth_m * 1e6) +

@@ -15,6 +15,7 @@
 
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/frequencies.hpp"
 #include "yaml_reader.hpp"
 
 namespace bearing_sim {
@@ -420,6 +421,11 @@ std::vector<SweepCase> sweep_cases(const SweepDefinition& d) {
         } catch (const InvalidInputError& e) {
           throw InvalidInputError(where + ": the varied bearing is invalid: " + e.what());
         }
+        // Every case's speed within the bearing's physical limit, before any case runs.
+        const std::string too_fast =
+            ring_speed_refusal(c.operating_point.speed_rpm * 2.0 * kPi / 60.0, c.config.pitch_diameter_m);
+        if (!too_fast.empty())
+          throw InvalidInputError(where + ": speed_rpm " + format_value(c.operating_point.speed_rpm) + ": " + too_fast);
         if (d.dynamic && !c.config.has_dynamics())
           throw InvalidInputError(where + ": a dynamic sweep needs rotating_mass_kg in the bearing file");
         cases.push_back(std::move(c));

@@ -41,11 +41,18 @@ std::string fmt(double v, int decimals) {
   return buf;
 }
 
+// Three significant digits: a spall is 1 um to some cm wide (kMinSpallSizeM up).
+std::string significant(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
 std::string describe(const Spall& s) {
   std::string what = std::string(surface_name(s.surface)) + " spall";
   if (s.surface == Surface::Ball) what += " on ball " + std::to_string(s.ball);
-  return what + " at " + fmt(s.position_rad, 3) + " rad, " + fmt(s.width_m * 1e3, 2) + " mm wide, " +
-         fmt(s.depth_m * 1e6, 1) + " um deep";
+  return what + " at " + fmt(s.position_rad, 3) + " rad, " + significant(s.width_m * 1e3) + " mm wide, " +
+         significant(s.depth_m * 1e6) + " um deep";
 }
 
 // Every thread of this process (ROS I/O, spinner, timers, the health worker started
@@ -104,7 +111,7 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
   // The initial inputs obey the same rules as the topics, but a bad one stops the node.
   const InputCheck load_check = check_load(load, limits_, &model);
   if (!load_check.accepted) throw std::runtime_error("initial load: " + load_check.reason);
-  const InputCheck speed_check = check_speed(speed, limits_);
+  const InputCheck speed_check = check_speed(speed, limits_, &model);
   if (!speed_check.accepted) throw std::runtime_error("initial speed: " + speed_check.reason);
   // A bearing value that makes a mode no bearing has would stall the automatic step.
   if (substeps == 0) {
@@ -276,7 +283,7 @@ void BearingSimRos::on_load(const geometry_msgs::WrenchStamped::ConstPtr& msg) {
 }
 
 void BearingSimRos::on_speed(const std_msgs::Float64::ConstPtr& msg) {
-  const InputCheck check = check_speed(msg->data, limits_);
+  const InputCheck check = check_speed(msg->data, limits_, validation_model_.get());
   if (!check.accepted) return reject_input(check.reason);
   accepted_speed_rad_s_ = msg->data;
   {

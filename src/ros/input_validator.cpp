@@ -10,6 +10,7 @@
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 
 namespace bearing_sim {
@@ -40,11 +41,13 @@ InputCheck check_load(const Vector5& load, const InputLimits& limits, const Bear
   return c;
 }
 
-InputCheck check_speed(double ring_speed_rad_s, const InputLimits& limits) {
+InputCheck check_speed(double ring_speed_rad_s, const InputLimits& limits, const BearingModel* model) {
   InputCheck c;
   std::ostringstream why;
   if (!std::isfinite(ring_speed_rad_s))
     why << "speed is not finite";
+  else if (model && !ring_speed_refusal(ring_speed_rad_s, model->config().pitch_diameter_m).empty())
+    why << "speed " << ring_speed_refusal(ring_speed_rad_s, model->config().pitch_diameter_m);
   else if (std::abs(ring_speed_rad_s) > limits.max_speed_rad_s)
     why << "speed " << ring_speed_rad_s << " rad/s exceeds max_speed_rad_s = " << limits.max_speed_rad_s;
   c.reason = why.str();

@@ -27,9 +27,18 @@ struct ModesOptions {
 };
 
 void run(const ModesOptions& o) {
-  if (!(o.mass_kg > 0.0)) throw InputError("--mass-kg must be > 0");
+  // The core's limits (solve_modes refuses the same), named here as the user gave them.
+  if (!(o.mass_kg >= kMinBodyMassKg && o.mass_kg <= kMaxBodyMassKg))
+    throw InputError("--mass-kg " + general(o.mass_kg, 6) + ": must be from " + general(kMinBodyMassKg, 3) + " to " +
+                     general(kMaxBodyMassKg, 3) + " kg");
   for (double i : o.inertia)
-    if (!(i > 0.0)) throw InputError("--inertia-kg-m2: every component must be > 0");
+    if (!(i >= kMinBodyInertiaKgM2 && i <= kMaxBodyInertiaKgM2))
+      throw InputError("--inertia-kg-m2 " + general(i, 6) + ": every component must be from " +
+                       general(kMinBodyInertiaKgM2, 3) + " to " + general(kMaxBodyInertiaKgM2, 3) + " kg*m^2");
+  for (double z_mm : o.positions_mm)
+    if (!(std::abs(z_mm) * 1e-3 <= kMaxSupportDistanceM))
+      throw InputError("--bearing-positions-mm " + general(z_mm, 6) + ": a bearing must be within +-" +
+                       general(kMaxSupportDistanceM * 1e3, 6) + " mm of the centre of mass");
   const BearingModel model = load_model(o.bearing);
   const Vector5 load = make_load(o.force, o.moment);
   // A flexible ring's bushing: its stiffness with the ring's modes statically condensed out.

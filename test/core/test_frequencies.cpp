@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 #include "test_support.hpp"
@@ -72,4 +73,27 @@ TEST(Frequencies, NonFiniteSpeedIsRefused) {
   } catch (const InvalidInputError& e) {
     EXPECT_NE(std::string(e.what()).find("finite"), std::string::npos) << e.what();
   }
+}
+
+// One physical speed limit for every front: the pitch circle at kMaxPitchLineSpeedMPerS.
+// 1e300 rpm and sweeps over 1e12 rpm ran and printed a number.
+TEST(Frequencies, ASpeedBeyondThePitchLineLimitIsRefusedNamingItAndTheLimit) {
+  const BearingModel model(ct_bearing());
+  const double dm = model.config().pitch_diameter_m, limit = max_ring_speed_rad_s(dm);
+  EXPECT_DOUBLE_EQ(limit * 0.5 * dm, kMaxPitchLineSpeedMPerS);
+  EXPECT_NEAR(max_ring_speed_rad_s(0.03904), 25615.0, 1.0);  // the 6205: 244,600 rpm
+  std::string why;
+  try {
+    bearing_frequencies(model, 0.0, 1e300 * 2.0 * kPi / 60.0);
+  } catch (const InvalidInputError& e) {
+    why = e.what();
+  }
+  EXPECT_NE(why.find("outer ring speed: 1.047e+299 rad/s (1e+300 rpm) is beyond +-"), std::string::npos) << why;
+  EXPECT_NE(why.find("500 m/s"), std::string::npos) << why;
+  // The limit itself is a speed; just beyond it is not, in either direction and in the dynamics.
+  EXPECT_NO_THROW(bearing_frequencies(model, -limit, limit));
+  EXPECT_THROW(bearing_frequencies(model, -1.001 * limit, 0.0), InvalidInputError);
+  EXPECT_THROW(BearingDynamics(model, Vector5::Zero(), 1e12 * 2.0 * kPi / 60.0), InvalidInputError);
+  EXPECT_TRUE(ring_speed_refusal(limit, dm).empty());
+  EXPECT_FALSE(ring_speed_refusal(std::nan(""), dm).empty());
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bearing_sim/core/bearing_dynamics.hpp"
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
@@ -158,6 +159,73 @@ TEST(Spall, DefectsThatDoNotFitTheBearingAreRejected) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("waviness[0].surface"), std::string::npos) << e.what();
   }
+}
+
+// The message of the InvalidInputError `f` throws ("" when none).
+template <class F>
+std::string refusal(F f) {
+  try {
+    f();
+  } catch (const InvalidInputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Spall, AbsurdPlacesAndSizesBelowASpallAreRefusedNamingTheLimit) {
+  BearingModel model(deep_groove(""));
+  // 1e300 rad was accepted (and echoed with 63 digits); the limit is kMaxAngleRad.
+  std::string why = refusal([&] { model.add_spall(Spall{Surface::OuterRace, 1e300, 0, 1e-3, 10e-6}); });
+  EXPECT_NE(why.find("position 1e+300 rad is beyond +-1e+06 rad"), std::string::npos) << why;
+  why = refusal([&] { model.add_spall(Spall{Surface::InnerRace, -1.5e6, 0, 1e-3, 10e-6}); });
+  EXPECT_NE(why.find("position -1.5e+06 rad"), std::string::npos) << why;
+  // 1e-300 m wide (reported as "0.00 mm wide" and counted as present), or as shallow.
+  why = refusal([&] { model.add_spall(Spall{Surface::OuterRace, 0.0, 0, 1e-300, 10e-6}); });
+  EXPECT_NE(why.find("at least 1 um wide and deep"), std::string::npos) << why;
+  why = refusal([&] { model.add_spall(Spall{Surface::Ball, 0.0, 2, 0.5e-3, 0.9e-6}); });
+  EXPECT_NE(why.find("0.9 um deep"), std::string::npos) << why;
+  EXPECT_TRUE(model.imperfections().spalls().empty());
+  // The limits themselves are spalls.
+  model.add_spall(Spall{Surface::OuterRace, kMaxAngleRad, 0, kMinSpallSizeM, kMinSpallSizeM});
+  model.add_spall(Spall{Surface::Ball, -kMaxAngleRad, 2, kMinSpallSizeM, kMinSpallSizeM});
+  EXPECT_EQ(model.imperfections().spalls().size(), 2u);
+}
+
+TEST(Spall, AtMostTheCapOfSpallsArePresentAtOnce) {
+  BearingModel model(deep_groove(""));
+  for (int i = 0; i < kMaxSpalls; ++i)
+    model.add_spall(Spall{i % 2 ? Surface::InnerRace : Surface::OuterRace, 0.1 * i, 0, 0.5e-3, 10e-6});
+  const std::string why = refusal([&] { model.add_spall(Spall{Surface::OuterRace, 0.0, 0, 0.5e-3, 10e-6}); });
+  EXPECT_NE(why.find("64 spalls are present, at most 64 may be at once"), std::string::npos) << why;
+  EXPECT_EQ(model.imperfections().spalls().size(), static_cast<std::size_t>(kMaxSpalls));
+  // Cleared, there is room again.
+  model.clear_spalls();
+  model.add_spall(Spall{Surface::OuterRace, 0.0, 0, 0.5e-3, 10e-6});
+  EXPECT_EQ(model.imperfections().spalls().size(), 1u);
+  // A bearing file with one spall too many is refused naming the bearing.
+  std::string defects = "defects:\n";
+  for (int i = 0; i <= kMaxSpalls; ++i) defects += "  - {surface: outer_race, position_deg: " + std::to_string(i) +
+                                                   ", width_mm: 0.5, depth_um: 10}\n";
+  try {
+    BearingModel too_many(deep_groove(defects));
+    FAIL() << "65 spalls in a bearing file must be refused";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("at most 64"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Spall, AStaticCageAngleBeyondTheLimitIsRefusedAndOneWithinIsExact) {
+  const BearingModel model(deep_groove(""));
+  const Vector5 load = test::load5(1000.0, 0, 0, 0, 0);
+  // 1e300 rad put all balls at one azimuth (a maximum ball load of 0).
+  const std::string why = refusal([&] { solve_static(model, load, 1e300); });
+  EXPECT_NE(why.find("cage angle 1e+300 rad is beyond +-1e+06 rad"), std::string::npos) << why;
+  EXPECT_FALSE(refusal([&] { solve_static(model, load, -1e7); }).empty());
+  // Within the limit the balls keep their places: 1000 cage turns on is the same solution
+  // (the rounding of 2000 pi + 0.1 is ~1e-12 rad).
+  const StaticSolution near = solve_static(model, load, 0.1), far = solve_static(model, load, 2000.0 * kPi + 0.1);
+  EXPECT_GT(near.max_ball_load_N, 100.0);
+  EXPECT_NEAR(far.max_ball_load_N, near.max_ball_load_N, 1e-6 * near.max_ball_load_N);
 }
 
 TEST(Spall, RuntimeGrowthStopsAtTheLargestSpallTheBearingHolds) {

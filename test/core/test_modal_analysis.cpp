@@ -107,5 +107,31 @@ TEST(ModalAnalysis, BadInputIsAClearError) {
   EXPECT_THROW(solve_modes(ok, {{asym, Eigen::Vector3d::Zero()}}), InvalidInputError);
 }
 
+// The message of solve_modes' InvalidInputError ("" when none).
+std::string refusal(const RigidBody& body, const Eigen::Vector3d& position) {
+  try {
+    solve_modes(body, {{bushing(1e8, 1e8, 1e4), position}});
+  } catch (const InvalidInputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ModalAnalysis, ABodyOrPlaceBeyondTheLimitsIsRefusedNamingTheValueGiven) {
+  const Eigen::Vector3d centre = Eigen::Vector3d::Zero(), inertia(1, 1, 1);
+  // 1e-300 kg was refused naming "a mass of 5e-324 kg".
+  std::string why = refusal(RigidBody{1e-300, inertia}, centre);
+  EXPECT_NE(why.find("mass 1e-300 kg is outside [0.001, 1e+07] kg"), std::string::npos) << why;
+  why = refusal(RigidBody{1.0, Eigen::Vector3d(1, 2e9, 1)}, centre);
+  EXPECT_NE(why.find("inertia Iyy 2e+09 kg*m^2 is outside [1e-09, 1e+09]"), std::string::npos) << why;
+  why = refusal(RigidBody{1.0, inertia}, Eigen::Vector3d(0, 0, 1e297));
+  EXPECT_NE(why.find("support 1 position z 1e+297 m is outside [-100, 100] m"), std::string::npos) << why;
+  EXPECT_EQ(why.find("5e-324"), std::string::npos) << why;
+  // The limits are bodies and places.
+  EXPECT_EQ(refusal(RigidBody{kMinBodyMassKg, Eigen::Vector3d::Constant(kMaxBodyInertiaKgM2)},
+                    Eigen::Vector3d(0, 0, -kMaxSupportDistanceM)),
+            "");
+}
+
 }  // namespace
 }  // namespace bearing_sim

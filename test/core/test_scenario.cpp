@@ -205,6 +205,40 @@ TEST(Scenario, PhasesAndDefectEvents) {
   EXPECT_EQ(sc.spalls_at(25.0)[0].surface, Surface::InnerRace);
 }
 
+// `count` outer race spalls at `at_s`, 0.5 mm x 10 um unless given.
+std::string spall_events(int count, double at_s, const std::string& size = "width_mm: 0.5, depth_um: 10") {
+  std::string events;
+  for (int i = 0; i < count; ++i)
+    events += "  - {type: spall, at_s: " + std::to_string(at_s) + ", surface: outer_race, position_deg: " +
+              std::to_string(i) + ", " + size + "}\n";
+  return events;
+}
+
+TEST(Scenario, SpallsAreCountedAsTheRunHoldsThemAndRefusedBelowASpall) {
+  // 64 at once, cleared, 64 more: the run never holds more than the cap.
+  const Scenario sc = Scenario::from_string(header() + "defects:\n" + spall_events(kMaxSpalls, 1.0) +
+                                                "  - {type: clear, at_s: 2}\n" + spall_events(kMaxSpalls, 3.0),
+                                            kSource);
+  EXPECT_EQ(sc.defect_events().size(), 2u * kMaxSpalls + 1u);
+  // One more before the clear: refused naming the event and the cap.
+  expect_config_error(header() + "defects:\n" + spall_events(kMaxSpalls + 1, 1.0), "defects[64]",
+                      "at most 64 may be at once");
+  // A 1e-300 m spall (or a position of 1e300 degrees): refused as the service refuses it.
+  expect_config_error(header() + "defects:\n" + spall_events(1, 1.0, "width_mm: 1e-297, depth_um: 10"),
+                      "defects[0]", "at least 1 um wide and deep");
+  expect_config_error(header() + "defects:\n" +
+                          "  - {type: spall, at_s: 1, position_deg: 1e300, width_mm: 0.5, depth_um: 10}\n",
+                      "defects[0]", "beyond +-1e+06 rad");
+}
+
+TEST(Scenario, ASpeedBeyondTheBearingsLimitIsRefusedNamingTheKey) {
+  expect_config_error(header() + "speed: {initial_speed_rpm: 1e300}\n", "speed.initial_speed_rpm",
+                      "is beyond +-900.1 rad/s");
+  expect_config_error(header() + "speed:\n  segments:\n    - {type: ramp, start_s: 1, end_s: 2, to_speed_rad_s: -1e4}\n",
+                      "speed.segments[0].to_speed_rad_s", "-1e+04 rad/s");
+  EXPECT_NO_THROW(Scenario::from_string(header() + "speed: {initial_speed_rpm: 8500}\n", kSource));
+}
+
 TEST(Scenario, BadInputNamesFileAndKey) {
   const std::string h = header();
   expect_config_error(h + "speeed: {}\n", "speeed", "unknown key");

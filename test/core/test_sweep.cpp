@@ -130,6 +130,23 @@ TEST(Sweep, BadDefinitionsAreClearErrors) {
   EXPECT_THROW(load_sweep_definition("/nonexistent/sweep.yaml"), InvalidInputError);
 }
 
+TEST(Sweep, ASpeedBeyondTheBearingsLimitIsRefusedBeforeAnyCaseRuns) {
+  // 1e12 rpm ran and gave a number; the CT bearing's limit is ~8,600 rpm (500 m/s at dm 1111 mm).
+  std::string why;
+  try {
+    sweep_cases(parse("bearing: ct_gantry_lyc.yaml\noperating_point: {force_N: [6800, 0, 0], duration_s: 0.01}\n"
+                      "parameter: speed_rpm\nvalues: [180, 1e12]\n"));
+  } catch (const InvalidInputError& e) {
+    why = e.what();
+  }
+  EXPECT_NE(why.find("speed_rpm 1e+12"), std::string::npos) << why;
+  EXPECT_NE(why.find("is beyond +-900.1 rad/s (8595 rpm)"), std::string::npos) << why;
+  EXPECT_EQ(sweep_cases(parse("bearing: ct_gantry_lyc.yaml\noperating_point: {force_N: [6800, 0, 0]}\n"
+                              "parameter: speed_rpm\nvalues: [180, 8500]\n"))
+                .size(),
+            2u);
+}
+
 TEST(Sweep, ALoadTheBearingCannotCarryIsReportedPerCase) {
   const auto def = parse(R"(
 bearing: ins_618_22_db.yaml

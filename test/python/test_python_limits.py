@@ -99,3 +99,34 @@ def test_ctrl_c_stops_a_long_run(call):
     assert 'finished' not in out
     assert child.returncode != 0
     assert 'KeyboardInterrupt' in err, err
+
+
+def test_static_equilibrium_refuses_a_cage_angle_whose_rounding_loses_the_balls():
+    # 1e300 rad put every ball at one azimuth and gave a maximum ball load of 0.
+    with pytest.raises(bearing_sim.InvalidInputError, match=r'cage angle 1e\+300 rad is beyond \+-1e\+06 rad'):
+        bearing_sim.static_equilibrium(B6205, [1000.0, 0.0, 0.0], cage_angle_rad=1e300)
+    # Within the limit the solution is the one a turn-reduced angle gives.
+    near = bearing_sim.static_equilibrium(B6205, [1000.0, 0.0, 0.0], cage_angle_rad=0.1)
+    far = bearing_sim.static_equilibrium(B6205, [1000.0, 0.0, 0.0], cage_angle_rad=0.1 + 2000.0 * 3.141592653589793)
+    assert near['max_ball_load_N'] > 100.0
+    assert far['max_ball_load_N'] == pytest.approx(near['max_ball_load_N'], rel=1e-6)
+
+
+def test_modes_refuse_a_body_beyond_any_machine_naming_the_value_given():
+    k = bearing_sim.static_equilibrium(B6205, [1000.0, 0.0, 0.0])['stiffness']
+    with pytest.raises(bearing_sim.InvalidInputError, match=r'mass 1e-300 kg is outside \[0\.001, 1e\+07\] kg'):
+        bearing_sim.modes(1e-300, [1.0, 1.0, 1.0], [(k, [0.0, 0.0, 0.0])])
+    with pytest.raises(bearing_sim.InvalidInputError, match=r'support 2 position z -1e\+300 m is outside \[-100, 100\]'):
+        bearing_sim.modes(1.0, [1.0, 1.0, 1.0], [(k, [0.0, 0.0, 1.0]), (k, [0.0, 0.0, -1e300])])
+
+
+def test_a_speed_no_bearing_reaches_is_refused_by_every_call():
+    # The 6205's pitch circle (39 mm) at 500 m/s: 25,600 rad/s; 1e300 rad/s gave numbers.
+    b = bearing_sim.load_bearing(B6205)
+    with pytest.raises(bearing_sim.InvalidInputError, match=r'1e\+300 rad/s .* is beyond \+-2\.56\de\+04 rad/s'):
+        bearing_sim.frequencies(b, 1e300)
+    with pytest.raises(bearing_sim.InvalidInputError, match=r'ring speed: 3e\+04 rad/s'):
+        bearing_sim.simulate(b, [1000.0, 0.0, 0.0], ring_speed_rad_s=3e4, duration_s=0.01)
+    with pytest.raises(bearing_sim.ConfigError, match=r'speed\.initial_speed_rpm.*beyond'):
+        bearing_sim.generate(dict(scenario(), speed={'initial_speed_rpm': 1e12}))
+    assert bearing_sim.frequencies(b, 2.5e4)['cage_hz'] > 0.0

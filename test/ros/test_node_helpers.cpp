@@ -223,6 +223,26 @@ TEST(InputValidator, RejectsNonFiniteAndOutOfLimitInputs) {
   EXPECT_FALSE(check_speed(std::numeric_limits<double>::quiet_NaN(), limits).accepted);
 }
 
+TEST(InputValidator, ASpeedBeyondTheBearingsPhysicalLimitIsRefusedWhateverMaxSpeed) {
+  // dm 40 mm: 500 m/s on the pitch circle is 25,000 rad/s; max_speed_rad_s allows 1e4 at most,
+  // so a node with a small bearing is held by max_speed_rad_s, a large one by its own limit.
+  const BearingModel small(bearing_config_from_string(
+      "balls_per_row: 12\nball_diameter_mm: 8\npitch_diameter_mm: 40\ncontact_angle_deg: 0\n"
+      "inner_groove_curvature: 0.52\nouter_groove_curvature: 0.52\nrotating_mass_kg: 0.2\n"));
+  const BearingModel large(bearing_config_from_string(
+      "balls_per_row: 100\nball_diameter_mm: 20\npitch_diameter_mm: 1000\ncontact_angle_deg: 0\n"
+      "inner_groove_curvature: 0.52\nouter_groove_curvature: 0.52\nrotating_mass_kg: 50\n"));
+  InputLimits limits;
+  limits.max_speed_rad_s = 1e4;
+  EXPECT_TRUE(check_speed(9000.0, limits, &small).accepted);
+  const InputCheck fast = check_speed(9000.0, limits, &large);  // limit 1000 rad/s
+  EXPECT_FALSE(fast.accepted);
+  EXPECT_NE(fast.reason.find("speed 9000 rad/s (8.594e+04 rpm) is beyond +-1000 rad/s"), std::string::npos)
+      << fast.reason;
+  EXPECT_TRUE(check_speed(-1000.0, limits, &large).accepted);
+  EXPECT_FALSE(check_speed(1e300, limits, &small).accepted);
+}
+
 TEST(InputValidator, RejectsALoadTheBearingCannotCarry) {
   // Single-row angular contact bearing: its contacts push the moving (outer) ring towards
   // +z (c_r sin a0 > 0), so only an external axial force towards -z can be balanced.

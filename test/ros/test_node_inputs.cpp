@@ -4,6 +4,7 @@
 #include <limits>
 
 #include <dynamic_reconfigure/Reconfigure.h>
+#include <std_srvs/Trigger.h>
 
 #include "bearing_sim/InjectDefect.h"
 #include "bearing_sim/core/frequencies.hpp"
@@ -304,6 +305,46 @@ TEST_F(NodeInputs, RingTemperatureDifferenceReachesTheModelAndBadValuesAreRefuse
   const std::uint64_t back = recorder().next_index();
   settle(back, 1.0);
   expect_mean_at_static(ct_load(), back + 5000, back + 10000, "equal ring temperatures again", model);
+}
+
+// inject_defect refuses, naming the limit, a place no double holds (1e300 rad), a spall below
+// a micrometre (1e-300 m was accepted as "0.00 mm wide" and counted), and the spall after the
+// 64 a bearing may hold at once (10,000 calls put the node 15 s behind real time).
+TEST_F(NodeInputs, InjectDefectRefusesAbsurdSpallsAndOneBeyondTheCap) {
+  const auto inject = [](double position_rad, double width_m, double depth_m) {
+    bearing_sim::InjectDefect srv;
+    srv.request.surface = "outer_race";
+    srv.request.position_rad = position_rad;
+    srv.request.width_m = width_m;
+    srv.request.depth_m = depth_m;
+    EXPECT_TRUE(ros::service::call("inject_defect", srv));
+    return srv.response;
+  };
+  auto r = inject(1e300, 1e-3, 10e-6);
+  EXPECT_FALSE(r.success);
+  EXPECT_NE(r.message.find("position 1e+300 rad is beyond +-1e+06 rad"), std::string::npos) << r.message;
+  r = inject(0.0, 1e-300, 10e-6);
+  EXPECT_FALSE(r.success);
+  EXPECT_NE(r.message.find("at least 1 um wide and deep"), std::string::npos) << r.message;
+  EXPECT_EQ(r.defects_present, 0u);
+  // 64 small spalls (0.1 mm x 1 um: barely felt by the CT bearing's balls), then one more.
+  for (unsigned i = 1; i <= static_cast<unsigned>(bearing_sim::kMaxSpalls); ++i) {
+    r = inject(0.09 * i, 0.1e-3, 1e-6);
+    ASSERT_TRUE(r.success) << i << ": " << r.message;
+    EXPECT_EQ(r.defects_present, i);
+  }
+  EXPECT_NE(r.message.find("0.1 mm wide, 1 um deep"), std::string::npos) << r.message;
+  r = inject(0.0, 1e-3, 10e-6);
+  EXPECT_FALSE(r.success);
+  EXPECT_NE(r.message.find("64 spalls are present, at most 64"), std::string::npos) << r.message;
+  EXPECT_EQ(r.defects_present, 64u);
+  std_srvs::Trigger clear;
+  ASSERT_TRUE(ros::service::call("clear_defects", clear));
+  EXPECT_NE(clear.response.message.find("cleared 64 defect(s)"), std::string::npos) << clear.response.message;
+  // The node ran on: a healthy bearing at the static equilibrium again.
+  const std::uint64_t after = recorder().next_index();
+  settle(after, 1.0);
+  expect_mean_at_static(ct_load(), after + 5000, after + 10000, "after 64 spalls cleared", ct_model());
 }
 
 // DivergenceIsReportedAsErrorAndResetNeverNaN: test_node_divergence.cpp (a light ring with a

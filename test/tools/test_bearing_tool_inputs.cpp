@@ -214,10 +214,36 @@ TEST_F(ToolInputTest, ARateSampleCountOrStepCountBeyondAnyRunIsRefusedNamingTheO
   expect_refused(sim + " --duration 0.01 --substeps 1000000000", {"--substeps", "1000"});
 }
 
-TEST_F(ToolInputTest, AResultThatIsNotFiniteIsNeverPrinted) {
-  // A body of 5e-324 kg: every K/m overflows. Refused (exit 2) instead of a table of NaN.
-  expect_refused("modes --bearing '" + kCt + "' --force 6800,0,0 --mass-kg 5e-324 --inertia-kg-m2 1,1,1",
-                 {"modal analysis", "not a finite number"});
+TEST_F(ToolInputTest, ASpeedNoBearingReachesIsRefusedNamingItAndTheLimit) {
+  // 1e300 rpm and a sweep to 1e12 rpm ran and printed numbers; the CT bearing's pitch circle
+  // (1111 mm) at 500 m/s is 900 rad/s, 8595 rpm.
+  const std::string b = " --bearing '" + kCt + "'";
+  expect_refused("simulate" + b + " --force 6800,0,0 --outer-rpm 1e300 --duration 0.01",
+                 {"ring speed", "(1e+300 rpm) is beyond +-900.1 rad/s (8595 rpm)", "500 m/s"});
+  expect_refused("frequencies" + b + " --outer-rpm -1e12", {"outer ring speed", "(-1e+12 rpm)"});
+  const std::string sweep = write("fast_sweep.yaml", "name: fast\nbearing: " + kCt +
+                                                         "\noperating_point: {force_N: [6800, 0, 0], duration_s: 0.01}"
+                                                         "\nparameter: speed_rpm\nvalues: [180, 1e12]\n");
+  expect_refused("sweep --definition '" + sweep + "' --csv '" + dir_ + "/fast.csv' --quiet",
+                 {"speed_rpm 1e+12", "8595 rpm"});
+  EXPECT_EQ(run("frequencies" + b + " --outer-rpm 8500").exit_code, 0);
+}
+
+TEST_F(ToolInputTest, ABodyOrBearingPlaceBeyondAnyMachineIsRefusedNamingWhatWasGiven) {
+  // A body of 5e-324 kg made every K/m overflow; 1e-300 kg was refused naming a mass of
+  // 5e-324 kg never given, and so were bearings 1e300 mm from the centre of mass.
+  const std::string modes = "modes --bearing '" + kCt + "' --force 6800,0,0";
+  expect_refused(modes + " --mass-kg 1e-300 --inertia-kg-m2 1,1,1", {"--mass-kg 1e-300", "from 0.001 to 1e+07 kg"});
+  expect_refused(modes + " --mass-kg 5e-324 --inertia-kg-m2 1,1,1", {"--mass-kg 4.94066e-324", "0.001"});
+  expect_refused(modes + " --mass-kg 1e9 --inertia-kg-m2 1,1,1", {"--mass-kg 1e+09", "1e+07 kg"});
+  expect_refused(modes + " --mass-kg 100 --inertia-kg-m2 1,1e-300,1", {"--inertia-kg-m2 1e-300", "1e-09"});
+  expect_refused(modes + " --mass-kg 100 --inertia-kg-m2 1,1,1 --bearing-positions-mm 1e300,-1e300",
+                 {"--bearing-positions-mm 1e+300", "+-100000 mm"});
+  EXPECT_FALSE(contains(run(modes + " --mass-kg 100 --inertia-kg-m2 1,1,1 --bearing-positions-mm 1e300").err, "kg"));
+  // The limits themselves are machines.
+  EXPECT_EQ(run(modes + " --mass-kg 0.001 --inertia-kg-m2 1e-9,1e-9,1e-9 --bearing-positions-mm -100000,100000")
+                .exit_code,
+            0);
 }
 
 }  // namespace

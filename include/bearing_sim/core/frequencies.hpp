@@ -1,8 +1,25 @@
 #pragma once
 // Cage, ball-pass and ball-spin frequencies (docs/model.md section 8).
+#include <string>
+
 #include "bearing_sim/core/bearing_model.hpp"
 
 namespace bearing_sim {
+
+// The fastest either ring may turn, as the speed of its pitch circle (diameter dm): every
+// front refuses a faster one (bearing_tool, Python, sweeps, scenarios, the node). The fastest
+// real ball bearings (aero-engine main shafts, spindles with ceramic balls) reach dm n ~3.5e6
+// mm*rpm, a pitch-line speed of ~180 m/s; 500 m/s (dm n ~9.5e6 mm*rpm) is well above any
+// bearing's limiting speed, so a faster run describes no bearing (the 6205: 25,600 rad/s,
+// 245,000 rpm; the CT bearing: 900 rad/s, 8,600 rpm).
+constexpr double kMaxPitchLineSpeedMPerS = 500.0;
+// kMaxPitchLineSpeedMPerS / (dm / 2), rad/s.
+double max_ring_speed_rad_s(double pitch_diameter_m);
+// Why a ring speed is refused ("" when it is not): not finite, or beyond max_ring_speed_rad_s;
+// names the speed and the limit in rad/s and rpm.
+std::string ring_speed_refusal(double speed_rad_s, double pitch_diameter_m);
+// Throws InvalidInputError "<what>: <ring_speed_refusal>" for a refused speed.
+void check_ring_speed(double speed_rad_s, double pitch_diameter_m, const std::string& what);
 
 struct BearingFrequencies {
   double cage_hz = 0.0;                    // f_c, in the bearing frame

@@ -15,6 +15,15 @@ namespace bearing_sim {
 
 using Vector6 = Eigen::Matrix<double, 6, 1>;
 
+// The rigid bodies and bearing places a modal analysis accepts (bearing_tool modes, Python
+// modes): from a gram to ten thousand tonnes (a bearing's own ring weighs more than the one,
+// a ship's shaft line less than the other), inertias from a gram at 1 mm (1e-9 kg*m^2) to
+// 1e9 kg*m^2, bearings within 100 m of the centre of mass. Beyond, K/m overflows or no
+// machine is meant (a mass of 1e-300 kg gave "not finite" naming a mass never given).
+constexpr double kMinBodyMassKg = 1e-3, kMaxBodyMassKg = 1e7;
+constexpr double kMinBodyInertiaKgM2 = 1e-9, kMaxBodyInertiaKgM2 = 1e9;
+constexpr double kMaxSupportDistanceM = 100.0;
+
 struct RigidBody {
   double mass_kg = 0.0;
   Eigen::Vector3d inertia_kg_m2 = Eigen::Vector3d::Zero();  // principal, about the centre of mass: Ixx, Iyy, Izz
@@ -52,8 +61,8 @@ struct ModalResult {
 // centre-of-mass coordinates: T^T K T with the rigid-body map T = [I, -[r]x; 0, I].
 Matrix6 transform_bushing(const Matrix6& bushing, const Eigen::Vector3d& position_m);
 
-// Throws InvalidInputError for a non-positive or non-finite mass or inertia, a
-// non-symmetric or non-finite bushing, or no supports.
+// Throws InvalidInputError for a mass, inertia or support position outside the limits
+// above (naming the value and the limit), a non-symmetric or non-finite bushing, or no supports.
 ModalResult solve_modes(const RigidBody& body, const std::vector<BushingSupport>& supports,
                         const ModalOptions& options = {});
 

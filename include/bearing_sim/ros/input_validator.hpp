@@ -22,7 +22,8 @@ struct InputCheck {
 // Rejects non-finite values and magnitudes beyond the limits; if `model` is given, also a
 // load that the bearing cannot carry (no static equilibrium).
 InputCheck check_load(const Vector5& load, const InputLimits& limits, const BearingModel* model);
-InputCheck check_speed(double ring_speed_rad_s, const InputLimits& limits);
+// The speed also within the bearing's physical limit (max_ring_speed_rad_s) when `model` is given.
+InputCheck check_speed(double ring_speed_rad_s, const InputLimits& limits, const BearingModel* model = nullptr);
 
 // Fastest rate of the linearized ring dynamics (a mode's angular frequency, or the decay rate
 // c/m of overdamped contacts) that the automatic integration step may follow: 1e7 rad/s
