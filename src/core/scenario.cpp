@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "bearing_sim/core/bearing_config.hpp"
@@ -12,6 +13,7 @@
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/frequencies.hpp"
+#include "bearing_sim/core/quasi_static.hpp"
 #include "bearing_sim/core/thermal_clearance.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
 #include "yaml_reader.hpp"
@@ -239,6 +241,21 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
       read_vector(initial, i, "force_N", 3, sc.initial_load_.data());
       read_vector(initial, i, "moment_Nm", 2, sc.initial_load_.data() + 3);
     }
+    // Every load the time line holds (the initial one, each step's and ramp's target) must be
+    // carried by the bearing: the node refuses a load it cannot carry and runs on at the last
+    // good one, so the labels (scenario_state) would say a load the data never had.
+    std::optional<BearingModel> carrier;
+    const auto require_carried = [&](const detail::Reader& at, const std::string& key, const Vector5& load) {
+      if (!carrier) carrier.emplace(bearing_config);
+      try {
+        solve_static(*carrier, load);
+      } catch (const std::exception& e) {  // LoadNotCarriedError, InvalidInputError
+        std::ostringstream what;
+        what << "the bearing cannot carry the load (" << load.transpose() << "): " << e.what();
+        at.fail(key, what.str());
+      }
+    };
+    if (l.has("initial")) require_carried(l, "initial", sc.initial_load_);
     Vector5 current = sc.initial_load_;
     double previous_end = 0.0;
     if (const YAML::Node segments = node["segments"]) {
@@ -261,6 +278,7 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
         const bool force = read_vector(segments[k], g, "force_N", 3, p.to.data());
         const bool moment = read_vector(segments[k], g, "moment_Nm", 2, p.to.data() + 3);
         g.require(force || moment, "force_N", "a load segment needs force_N and/or moment_Nm");
+        require_carried(g, force ? "force_N" : "moment_Nm", p.to);
         current = p.to;
         previous_end = p.end_s;
         sc.load_.push_back(p);

@@ -239,6 +239,19 @@ TEST(Scenario, ASpeedBeyondTheBearingsLimitIsRefusedNamingTheKey) {
   EXPECT_NO_THROW(Scenario::from_string(header() + "speed: {initial_speed_rpm: 8500}\n", kSource));
 }
 
+// The node refuses a load its bearing cannot carry and runs on at the last good one, while
+// scenario_state (the labels) said the refused load: such a scenario is refused when read.
+TEST(Scenario, ALoadTheBearingCannotCarryIsRefusedNamingTheSegment) {
+  expect_config_error(header() + "load:\n  initial: {force_N: [6800, 0, 0]}\n  segments:\n"
+                                 "    - {type: step, start_s: 5, force_N: [6800, 0, 0]}\n"
+                                 "    - {type: step, start_s: 10, force_N: [1e9, 0, 0]}\n",
+                      "load.segments[1].force_N", "the bearing cannot carry the load (1e+09");
+  expect_config_error(header() + "load:\n  initial: {force_N: [0, 0, 1e12]}\n", "load.initial",
+                      "cannot carry");
+  EXPECT_NO_THROW(Scenario::from_string(
+      header() + "load:\n  segments:\n    - {type: ramp, start_s: 1, end_s: 2, force_N: [20000, 0, 0]}\n", kSource));
+}
+
 TEST(Scenario, BadInputNamesFileAndKey) {
   const std::string h = header();
   expect_config_error(h + "speeed: {}\n", "speeed", "unknown key");

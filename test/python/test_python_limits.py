@@ -130,3 +130,11 @@ def test_a_speed_no_bearing_reaches_is_refused_by_every_call():
     with pytest.raises(bearing_sim.ConfigError, match=r'speed\.initial_speed_rpm.*beyond'):
         bearing_sim.generate(dict(scenario(), speed={'initial_speed_rpm': 1e12}))
     assert bearing_sim.frequencies(b, 2.5e4)['cage_hz'] > 0.0
+
+
+def test_generate_refuses_a_scenario_whose_load_the_bearing_cannot_carry():
+    # The node ran on at the last good load while the labels said 1e9 N: refused when read.
+    steps = {'initial': {'force_N': [1000.0, 0.0, 0.0]},
+             'segments': [{'type': 'step', 'start_s': 0.5, 'force_N': [1e9, 0.0, 0.0]}]}
+    with pytest.raises(bearing_sim.ConfigError, match=r"load\.segments\[0\]\.force_N.*cannot carry the load \(1e\+09"):
+        bearing_sim.generate(dict(scenario(), load=steps))
