@@ -120,6 +120,9 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
   r.require(d_mm > 0.0, "ball_diameter_mm", "must be > 0");
   const double dm_mm = r.number("pitch_diameter_mm", 0.0, true);
   r.require(dm_mm > d_mm, "pitch_diameter_mm", "must be larger than ball_diameter_mm");
+  r.require(dm_mm <= kMaxPitchDiameterM * 1e3, "pitch_diameter_mm",
+            "must be at most " + std::to_string(static_cast<int>(kMaxPitchDiameterM * 1e3)) +
+                " mm (the largest slewing bearings are about 10 m)");
   r.require(c.balls_per_row * d_mm < kPi * dm_mm, "balls_per_row",
             "the balls do not fit on the pitch circle (Z d >= pi dm)");
   c.ball_diameter_m = d_mm * 1e-3;

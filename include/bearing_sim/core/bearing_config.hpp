@@ -10,6 +10,11 @@
 
 namespace bearing_sim {
 
+// The largest pitch circle a bearing file may give: twice the largest slewing bearings
+// (about 10 m); beyond it a size is a typing error, and the speed limit on the pitch line
+// (frequencies.hpp) would leave the ring no speed at all.
+inline constexpr double kMaxPitchDiameterM = 20.0;
+
 enum class Arrangement { BackToBack, FaceToFace };
 enum class RotatingRing { Outer, Inner };
 
