@@ -71,27 +71,6 @@ std::vector<double> run(const AccelerometerConfig& config, double f_r, double se
 // Peak amplitude of the line at f (a whole number of periods in the record: no leakage).
 double line(const std::vector<double>& x, double fs, double f) { return test::dft_amplitude(x, fs, f); }
 
-// One-sided Welch PSD (Hann, 50 % overlap); bin k at k fs / n.
-std::vector<double> welch_psd(const std::vector<double>& x, double fs, int n) {
-  std::vector<double> window(n), psd(n / 2 + 1, 0.0);
-  double window_power = 0.0;
-  for (int i = 0; i < n; ++i) {
-    window[i] = 0.5 - 0.5 * std::cos(2.0 * kPi * i / n);
-    window_power += window[i] * window[i];
-  }
-  Eigen::FFT<double> fft;
-  std::vector<double> segment(n);
-  std::vector<std::complex<double>> spectrum;
-  int segments = 0;
-  for (std::size_t start = 0; start + n <= x.size(); start += n / 2, ++segments) {
-    for (int i = 0; i < n; ++i) segment[i] = x[start + i] * window[i];
-    fft.fwd(spectrum, segment);
-    for (int k = 0; k <= n / 2; ++k) psd[k] += std::norm(spectrum[k]);
-  }
-  for (int k = 0; k <= n / 2; ++k) psd[k] *= (k == 0 || k == n / 2 ? 1.0 : 2.0) / (fs * window_power * segments);
-  return psd;
-}
-
 // --- speed-locked and time-locked lines ----------------------------------------------------
 
 TEST(MachineBackground, ShaftLinesFollowTheRingAtTheirAmplitude) {
@@ -233,7 +212,7 @@ TEST(MachineBackground, FloorDensityFollowsItsPoints) {
   const double fs = c.output_rate_hz, fc = 0.46 * fs;
   const std::vector<double> out = run(c, 0.0, 40.0, 0.0);
   const int n = 2048;
-  const std::vector<double> psd = welch_psd(out, fs, n);
+  const std::vector<double> psd = test::welch_psd(out, fs, n);
   for (const auto& band : {std::pair<double, double>{300.0, 500.0}, {2000.0, 3000.0}, {5000.0, 5400.0}}) {
     double measured = 0.0, expected = 0.0;
     int bins = 0;

@@ -3,8 +3,11 @@
 #include <stdexcept>
 
 #include <cmath>
+#include <complex>
 #include <fstream>
 #include <sstream>
+
+#include <unsupported/Eigen/FFT>
 
 #include "bearing_6205_yaml.hpp"
 
@@ -74,6 +77,26 @@ double dft_amplitude(const std::vector<double>& x, double sample_rate_hz, double
   }
   const double re = s1 - s2 * std::cos(w), im = s2 * std::sin(w);
   return 2.0 * std::hypot(re, im) / static_cast<double>(x.size());
+}
+
+std::vector<double> welch_psd(const std::vector<double>& x, double fs, int n) {
+  std::vector<double> window(n), psd(n / 2 + 1, 0.0);
+  double window_power = 0.0;
+  for (int i = 0; i < n; ++i) {
+    window[i] = 0.5 - 0.5 * std::cos(2.0 * kPi * i / n);
+    window_power += window[i] * window[i];
+  }
+  Eigen::FFT<double> fft;
+  std::vector<double> segment(n);
+  std::vector<std::complex<double>> spectrum;
+  int segments = 0;
+  for (std::size_t start = 0; start + n <= x.size(); start += n / 2, ++segments) {
+    for (int i = 0; i < n; ++i) segment[i] = x[start + i] * window[i];
+    fft.fwd(spectrum, segment);
+    for (int k = 0; k <= n / 2; ++k) psd[k] += std::norm(spectrum[k]);
+  }
+  for (int k = 0; k <= n / 2; ++k) psd[k] *= (k == 0 || k == n / 2 ? 1.0 : 2.0) / (fs * window_power * segments);
+  return psd;
 }
 
 double spectral_peak_hz(const std::vector<double>& x, double sample_rate_hz, double f_min_hz, double f_max_hz,

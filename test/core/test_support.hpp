@@ -37,6 +37,9 @@ BearingConfig single_row(int balls, double d_mm, double dm_mm, double contact_an
 // Amplitude spectrum |X(f)| of x (mean removed) at frequency f, by a direct DFT sum.
 double dft_amplitude(const std::vector<double>& x, double sample_rate_hz, double f_hz);
 
+// One-sided Welch PSD (Hann, 50 % overlap, segments of n samples); bin k at k fs / n.
+std::vector<double> welch_psd(const std::vector<double>& x, double sample_rate_hz, int n);
+
 // Frequency of the largest |X(f)| on a grid from f_min to f_max (DC excluded by f_min > 0).
 double spectral_peak_hz(const std::vector<double>& x, double sample_rate_hz, double f_min_hz, double f_max_hz,
                         double step_hz);

@@ -36,27 +36,6 @@ double butterworth_gain(int n, double fc, double fs, double f) {
   return 1.0 / std::sqrt(1.0 + std::pow(r, 2 * n));
 }
 
-// One-sided Welch PSD (Hann, 50 % overlap); bin k at k fs / n.
-std::vector<double> welch_psd(const std::vector<double>& x, double fs, int n) {
-  std::vector<double> window(n), psd(n / 2 + 1, 0.0);
-  double window_power = 0.0;
-  for (int i = 0; i < n; ++i) {
-    window[i] = 0.5 - 0.5 * std::cos(2.0 * kPi * i / n);
-    window_power += window[i] * window[i];
-  }
-  Eigen::FFT<double> fft;
-  std::vector<double> segment(n);
-  std::vector<std::complex<double>> spectrum;
-  int segments = 0;
-  for (std::size_t start = 0; start + n <= x.size(); start += n / 2, ++segments) {
-    for (int i = 0; i < n; ++i) segment[i] = x[start + i] * window[i];
-    fft.fwd(spectrum, segment);
-    for (int k = 0; k <= n / 2; ++k) psd[k] += std::norm(spectrum[k]);
-  }
-  for (int k = 0; k <= n / 2; ++k) psd[k] *= (k == 0 || k == n / 2 ? 1.0 : 2.0) / (fs * window_power * segments);
-  return psd;
-}
-
 double band_mean(const std::vector<double>& psd, double fs, int n, double f_lo, double f_hi) {
   double sum = 0.0;
   int count = 0;
@@ -152,7 +131,7 @@ TEST(VirtualAccelerometer, ResonanceIsThePeakOfTheWhiteNoiseSpectrum) {
   VirtualAccelerometer sensor(config, fs);
   const std::vector<double> out = run_axis(sensor, white(1.0, 400000, 7));
   const int n = 4096;
-  const std::vector<double> psd = welch_psd(out, fs, n);
+  const std::vector<double> psd = test::welch_psd(out, fs, n);
   // Peak of the PSD smoothed over 9 bins (22 Hz, against the 300 Hz wide resonance).
   double best = 0.0, f_peak = 0.0;
   for (int k = 4; k + 4 < static_cast<int>(psd.size()); ++k) {
@@ -191,7 +170,7 @@ TEST(VirtualAccelerometer, NoiseFloorDensityAndRms) {
   const std::vector<double> out = run_axis(sensor, std::vector<double>(400000, 0.0));
   ASSERT_EQ(out.size(), 200000u);
   const int n = 2048;
-  const std::vector<double> psd = welch_psd(out, fs_out, n);
+  const std::vector<double> psd = test::welch_psd(out, fs_out, n);
   const double measured_density = std::sqrt(band_mean(psd, fs_out, n, 200.0, 3000.0));
   EXPECT_NEAR(measured_density / density, 1.0, 0.05) << measured_density;
   // Variance = D^2 times the noise bandwidth of the filter, B = integral over 0..fs_in/2 of |H|^2.
