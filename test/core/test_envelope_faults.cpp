@@ -107,7 +107,7 @@ TEST(Envelope, HealthyBearingShowsNoFaultLine) {
   EXPECT_EQ(c.diagnosis.reason.find("suspected"), std::string::npos) << c.diagnosis.reason;
 }
 
-// The CWRU rig's 6205 file, lightly damped (contact damping 30 N s/m instead of 400), healthy
+// The CWRU rig's 6205 file, lightly damped (contact damping 30 N s/m instead of 3700), healthy
 // and noise-free: 500 N radial, inner ring 1797 rpm, 10 kHz, 3 s. Each ball entering the load
 // zone gives a burst (the Hertz force rises as t^1.5 from zero), periodic at BPFO and
 // reaching the Nyquist frequency, 60-70 dB below the vibration: a noise-free record shows an
@@ -117,7 +117,7 @@ TEST(Envelope, HealthyBearingShowsNoFaultLine) {
 // that floor it names the outer race.
 TEST(Envelope, LightlyDampedNoiseFreeHealthyBearingIsNotAnOuterRaceDefect) {
   std::string yaml = test::read_text(test::bearing_file("cwru_6205_drive_end.yaml"));
-  const std::string damping = "contact_damping_Ns_per_m: 400.0";
+  const std::string damping = "contact_damping_Ns_per_m: 3700.0";
   ASSERT_NE(yaml.find(damping), std::string::npos);
   yaml.replace(yaml.find(damping), damping.size(), "contact_damping_Ns_per_m: 30.0");
   const BearingModel model(bearing_config_from_string(yaml, "lightly damped 6205"));

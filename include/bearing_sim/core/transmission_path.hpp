@@ -6,7 +6,9 @@
 //        = (1 - sum_r p_r) + sum_r p_r H_r(s),
 // H_r the seismic transmissibility of mode r (biquad.hpp) and p_r its participation at the
 // sensor (mode shape there x participation factor). The modes listed carry sum p_r of the
-// path; the rest, 1 - sum p_r, stands for modes above the band, which follow the ring.
+// path; the rest, 1 - sum p_r, stands for modes above the band (which follow the ring when it
+// is positive; negative when the list carries more than the whole path at the sensor, the
+// modes above it having shapes of the other sign there).
 // One mode with p = 1 is the single seismic resonance, sample for sample.
 #include <complex>
 #include <vector>
@@ -22,6 +24,9 @@ struct PathMode {
 };
 
 constexpr int kMaxPathModes = 16;
+// Largest participation of one mode, and of all listed modes together (a guard against typing
+// errors; docs/sensor.md, "Several modes").
+constexpr double kMaxPathParticipation = 10.0;
 
 // The analog H(s) above at f_hz (the closed form the digital path approximates).
 std::complex<double> modal_transmissibility(const std::vector<PathMode>& modes, double f_hz);
