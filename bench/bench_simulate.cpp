@@ -10,6 +10,7 @@
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/constants.hpp"
+#include "bearing_sim/core/flexible_dynamics.hpp"
 #include "bearing_sim/core/simd_info.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
 #include "bearing_sim/ros/triaxial_sensor.hpp"
@@ -49,6 +50,21 @@ Vector5 ct_load() {
 
 void BM_SimulateCtGantry(benchmark::State& state, IntegrationMethod method) {
   simulate(state, bearing("ct_gantry_lyc.yaml"), ct_load(), 180.0 * bearing_sim::kTwoPi / 60.0, method);
+}
+
+// The CT bearing with its rotor and its outer ring flexible (ct_gantry_flexible.yaml: 10 ring
+// modes, 25 coordinates), same load and speed: FlexibleDynamics' automatic step.
+void BM_SimulateCtGantryFlexible(benchmark::State& state, IntegrationMethod method) {
+  const bearing_sim::BearingModel model(bearing("ct_gantry_flexible.yaml"));
+  bearing_sim::FlexibleDynamics dynamics(bearing_sim::FlexibleBearing(model), ct_load(),
+                                         180.0 * bearing_sim::kTwoPi / 60.0, 10000.0, 0, method);
+  constexpr int kSamplesPerIteration = 1000;  // 0.1 s simulated
+  for (auto _ : state) {
+    for (int i = 0; i < kSamplesPerIteration; ++i) benchmark::DoNotOptimize(dynamics.step());
+  }
+  state.counters["realtime_factor"] =
+      benchmark::Counter(state.iterations() * kSamplesPerIteration / 10000.0, benchmark::Counter::kIsRate);
+  state.counters["substeps"] = dynamics.substeps();
 }
 
 // The CT bearing with waviness on both races and the balls, and a 2 mm x 20 um spall on
@@ -148,6 +164,12 @@ BENCHMARK_CAPTURE(BM_SimulateDeepGroove6205WithSpall, adams_pec, IntegrationMeth
     ->Unit(benchmark::kMillisecond)
     ->MinTime(1.0);
 BENCHMARK_CAPTURE(BM_SimulateCtGantry, rk4, IntegrationMethod::Rk4)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK_CAPTURE(BM_SimulateCtGantryFlexible, adams_pec, IntegrationMethod::ExponentialAdamsPec)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
+BENCHMARK_CAPTURE(BM_SimulateCtGantryFlexible, rk4, IntegrationMethod::Rk4)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
 BENCHMARK_CAPTURE(BM_SimulateCtGantryWithDefects, rk4, IntegrationMethod::Rk4)
     ->Unit(benchmark::kMillisecond)
     ->MinTime(2.0);

@@ -8,6 +8,7 @@
 
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
+#include "flexible_kernel.hpp"
 
 namespace bearing_sim {
 
@@ -15,7 +16,11 @@ FlexibleBearing::FlexibleBearing(BearingModel model) : model_(std::move(model)) 
   const FlexibleRingSpec& spec = model_.config().flexible_ring;
   if (!spec.present) throw InvalidInputError(model_.config().name + ": the bearing file has no flexible_ring block");
   modes_ = ring_modes(spec);
-  for (const RingMode& m : modes_) max_order_ = std::max(max_order_, m.order);
+  for (const RingMode& m : modes_) {
+    max_order_ = std::max(max_order_, m.order);
+    mode_orders_.push_back(m.order);
+    mode_radial_.push_back(m.direction == RingModeDirection::Radial ? 1 : 0);
+  }
   groove_radius_ = model_.groove_centre_radius_m();
   cos_a0_ = std::cos(model_.config().contact_angle_rad);
 }
@@ -198,6 +203,45 @@ Eigen::VectorXd FlexibleBearing::contact_force_and_stiffness(const Eigen::Vector
   Eigen::VectorXd f;
   if (stiffness) contact_loop<false, true>(x, nullptr, phase, &f, stiffness, nullptr);
   else contact_loop<false, false>(x, nullptr, phase, &f, nullptr, nullptr);
+  return f;
+}
+
+Eigen::VectorXd FlexibleBearing::contact_force_load_frame(const Eigen::VectorXd& z, const Eigen::VectorXd& rates,
+                                                          const RollingPhase& phase, bool simd) const {
+  const int n = size();
+  if (z.size() != n || rates.size() != n)
+    throw InvalidInputError("flexible bearing: expected " + std::to_string(n) + " coordinates");
+  const BallArrays& balls = model_.balls();
+  thread_local std::vector<double> offsets;
+  offsets = balls.deflection_offset;
+  model_.imperfections().add_offsets(phase, offsets.data());
+  detail::FlexibleKernelInput in{};
+  in.cos_cage = std::cos(phase.cage);
+  in.sin_cage = std::sin(phase.cage);
+  in.groove_centre_radius = groove_radius_;
+  in.cos_a0 = cos_a0_;
+  in.groove_centre_distance = model_.groove_centre_distance_m();
+  in.clearance = model_.clearance_m();
+  in.sign = model_.moving_sign();
+  in.stiffness = model_.contact_stiffness();
+  in.damping = model_.config().contact_damping_Ns_per_m;
+  in.q = z.data();
+  in.q_dot = rates.data();
+  in.modes = static_cast<int>(modes_.size());
+  in.max_order = max_order_;
+  in.order = mode_orders_.data();
+  in.radial = mode_radial_.data();
+  in.mode_position = z.data() + 5;
+  in.mode_rate = rates.data() + 5;
+  in.cos_base = balls.cos_base.data();
+  in.sin_base = balls.sin_base.data();
+  in.groove_centre_z = balls.groove_centre_z.data();
+  in.normal_z = balls.normal_z.data();
+  in.offset = offsets.data();
+  in.n = static_cast<int>(balls.size());
+  Eigen::VectorXd f(n);
+  if (simd) detail::flexible_contact_simd(in, f.data());
+  else detail::flexible_contact_scalar(in, f.data());
   return f;
 }
 

@@ -9,8 +9,11 @@
 namespace bearing_sim {
 
 FlexibleDynamics::FlexibleDynamics(FlexibleBearing bearing, const Vector5& load, double ring_speed_rad_s,
-                                   double sample_rate_hz, int substeps)
-    : bearing_(std::move(bearing)), load_(load), sample_rate_hz_(sample_rate_hz) {
+                                   double sample_rate_hz, int substeps, IntegrationMethod method)
+    : bearing_(std::move(bearing)), load_(load), sample_rate_hz_(sample_rate_hz), method_(method) {
+  if (method != IntegrationMethod::Rk4 && method != IntegrationMethod::ExponentialAdamsPec)
+    throw InvalidInputError(std::string("flexible ring dynamics: integrator ") + integration_method_name(method) +
+                            " is not available for a flexible ring (adams_pec or rk4)");
   if (!(sample_rate_hz > 0.0) || !std::isfinite(sample_rate_hz))
     throw InvalidInputError("flexible ring dynamics: the sample rate must be > 0");
   if (!std::isfinite(ring_speed_rad_s)) throw InvalidInputError("flexible ring dynamics: non-finite ring speed");
@@ -30,9 +33,11 @@ FlexibleDynamics::FlexibleDynamics(FlexibleBearing bearing, const Vector5& load,
 
   equilibrium_ = solve_flexible_static(bearing_, load, RollingPhase{});
   highest_frequency_rad_s_ = flexible_natural_frequencies_rad_s(bearing_, equilibrium_).maxCoeff();
+  const bool adams = method == IntegrationMethod::ExponentialAdamsPec;
   substeps_ = substeps > 0 ? substeps
-                           : std::max(1, static_cast<int>(std::ceil(highest_frequency_rad_s_ /
-                                                                     (kStepTimesOmegaMax * sample_rate_hz))));
+              : adams    ? kAdamsStepsPerSample
+                         : std::max(1, static_cast<int>(std::ceil(highest_frequency_rad_s_ /
+                                                                  (kStepTimesOmegaMax * sample_rate_hz))));
   current_.coordinates = equilibrium_.coordinates;
   // The static shape is fixed to the load, so the turning ring runs through it: in the ring's
   // own frame each mode's (cos, sin) pair turns at n Omega, (a, b)' = n Omega (b, -a). Starting
@@ -46,6 +51,79 @@ FlexibleDynamics::FlexibleDynamics(FlexibleBearing bearing, const Vector5& load,
     current_.velocities[6 + 2 * i] = -turn * current_.coordinates[5 + 2 * i];
   }
   current_.accelerations = acceleration(current_.coordinates, current_.velocities, current_.phase);
+  if (adams) {
+    // In the load's frame the static shape stands still: start from it at rest (at t = 0 the
+    // frames coincide). Difference steps for the linear part: 1 nm, 1 nm over the pitch
+    // radius for the tilts; 1 um/s.
+    const int n = bearing_.size();
+    const double rp = model.pitch_radius_m();
+    Eigen::VectorXd z_step = Eigen::VectorXd::Constant(n, 1e-9), v_step = Eigen::VectorXd::Constant(n, 1e-6);
+    z_step.segment<2>(3) /= rp;
+    v_step.segment<2>(3) /= rp;
+    adams_.emplace([this](const Eigen::VectorXd& z, const Eigen::VectorXd& zd,
+                          double t) { return load_frame_acceleration(z, zd, t); },
+                   equilibrium_.coordinates, z_step, v_step, equilibrium_.coordinates, Eigen::VectorXd::Zero(n),
+                   internal_step_s(), 0.0);
+  }
+}
+
+double FlexibleDynamics::ring_rate_rad_s() const {
+  return bearing_.model().config().rotating_ring == RotatingRing::Outer ? outer_speed_ : inner_speed_;
+}
+
+void FlexibleDynamics::to_ring_frame(const Eigen::VectorXd& z, const Eigen::VectorXd& z_dot,
+                                     const Eigen::VectorXd* z_ddot, double t, Eigen::VectorXd* x,
+                                     Eigen::VectorXd* x_dot, Eigen::VectorXd* x_ddot) const {
+  *x = z;
+  *x_dot = z_dot;
+  if (z_ddot) *x_ddot = *z_ddot;
+  const double psi = bearing_.ring_angle_rad(advanced(RollingPhase{}, t)), rate = ring_rate_rad_s();
+  const auto& modes = bearing_.modes();
+  for (std::size_t i = 0; i < modes.size(); ++i) {
+    const int j = 5 + 2 * static_cast<int>(i);
+    const double c = std::cos(modes[i].order * psi), s = std::sin(modes[i].order * psi);
+    const double w = modes[i].order * rate;
+    const double b0 = z[j], b1 = z[j + 1];
+    // a = R^T b; a' = R^T (b' - w J b); a'' = R^T (b'' - 2 w J b' - w^2 b), J = [0 -1; 1 0].
+    (*x)[j] = c * b0 + s * b1;
+    (*x)[j + 1] = -s * b0 + c * b1;
+    const double r0 = z_dot[j] + w * b1, r1 = z_dot[j + 1] - w * b0;
+    (*x_dot)[j] = c * r0 + s * r1;
+    (*x_dot)[j + 1] = -s * r0 + c * r1;
+    if (z_ddot) {
+      const double q0 = (*z_ddot)[j] + 2.0 * w * z_dot[j + 1] - w * w * b0;
+      const double q1 = (*z_ddot)[j + 1] - 2.0 * w * z_dot[j] - w * w * b1;
+      (*x_ddot)[j] = c * q0 + s * q1;
+      (*x_ddot)[j + 1] = -s * q0 + c * q1;
+    }
+  }
+}
+
+Eigen::VectorXd FlexibleDynamics::load_frame_acceleration(const Eigen::VectorXd& z, const Eigen::VectorXd& z_dot,
+                                                          double t) const {
+  // Each pair's rate as the ring's material sees it, R a' = b' - w J b (w = n Omega); the
+  // ring's own stiffness and damping act on b and on that rate (both isotropic per pair).
+  const double rate = ring_rate_rad_s();
+  const auto& modes = bearing_.modes();
+  thread_local Eigen::VectorXd material_rate;
+  material_rate = z_dot;
+  for (std::size_t i = 0; i < modes.size(); ++i) {
+    const int j = 5 + 2 * static_cast<int>(i);
+    const double w = modes[i].order * rate;
+    material_rate[j] += w * z[j + 1];
+    material_rate[j + 1] -= w * z[j];
+  }
+  const RollingPhase phase = advanced(RollingPhase{}, t);
+  Eigen::VectorXd a = mass_.solve(external_ + bearing_.contact_force_load_frame(z, material_rate, phase) -
+                                  k_ring_.cwiseProduct(z) - c_ring_.cwiseProduct(material_rate));
+  // b'' = R a'' + 2 w J b' + w^2 b.
+  for (std::size_t i = 0; i < modes.size(); ++i) {
+    const int j = 5 + 2 * static_cast<int>(i);
+    const double w = modes[i].order * rate;
+    a[j] += -2.0 * w * z_dot[j + 1] + w * w * z[j];
+    a[j + 1] += 2.0 * w * z_dot[j] + w * w * z[j + 1];
+  }
+  return a;
 }
 
 RollingPhase FlexibleDynamics::advanced(const RollingPhase& p, double dt) const {
@@ -61,6 +139,30 @@ Eigen::VectorXd FlexibleDynamics::acceleration(const Eigen::VectorXd& x, const E
 }
 
 const FlexibleSample& FlexibleDynamics::step() {
+  if (adams_) step_adams();
+  else step_rk4();
+  return current_;
+}
+
+void FlexibleDynamics::step_adams() {
+  const FlexibleAdams::Acceleration accel = [this](const Eigen::VectorXd& z, const Eigen::VectorXd& zd, double t) {
+    return load_frame_acceleration(z, zd, t);
+  };
+  for (int s = 0; s < substeps_; ++s) adams_->step(accel);
+  if (!adams_->position().allFinite() || !adams_->velocity().allFinite())
+    throw DivergenceError(bearing_.model().config().name + ": the flexible ring's state is not finite at t = " +
+                          std::to_string(adams_->time_s()) + " s");
+  ++sample_index_;
+  const double t = static_cast<double>(sample_index_) / sample_rate_hz_;
+  RollingPhase phase = advanced(RollingPhase{}, adams_->time_s());
+  phase.time_s = t;
+  current_.time_s = t;
+  current_.phase = phase;
+  to_ring_frame(adams_->position(), adams_->velocity(), &adams_->acceleration(), adams_->time_s(),
+                &current_.coordinates, &current_.velocities, &current_.accelerations);
+}
+
+void FlexibleDynamics::step_rk4() {
   const double h = internal_step_s();
   Eigen::VectorXd x = current_.coordinates, v = current_.velocities, a = current_.accelerations;
   RollingPhase phase = current_.phase;
@@ -88,7 +190,6 @@ const FlexibleSample& FlexibleDynamics::step() {
   current_.coordinates = x;
   current_.velocities = v;
   current_.accelerations = a;
-  return current_;
 }
 
 }  // namespace bearing_sim

@@ -109,11 +109,11 @@ void run(const SimulateOptions& o) {
   request.substeps = o.substeps;
   request.method = *integration_method_from_name(o.integrator);  // CLI11 checked the name
   if (model.config().flexible_ring.present) {
-    // The offline flexible-ring model: its own RK4 and report (docs/model.md section 18).
+    // The flexible-ring model: its own integrators and report (docs/model.md section 18).
     if (!o.sensor.empty() || !o.sensor_csv.empty())
       throw InputError("--sensor: not available with a flexible ring (key 'flexible_ring' of " + o.bearing + ")");
-    if (o.integrator != integration_method_name(kDefaultIntegrationMethod) && o.integrator != "rk4")
-      throw InputError("--integrator " + o.integrator + ": a flexible ring is integrated by rk4 only");
+    if (request.method != IntegrationMethod::ExponentialAdamsPec && request.method != IntegrationMethod::Rk4)
+      throw InputError("--integrator " + o.integrator + ": a flexible ring is integrated by adams_pec or rk4");
     FlexibleSimulationRequest r;
     r.bearing_path = o.bearing;
     r.load = load;
@@ -122,6 +122,7 @@ void run(const SimulateOptions& o) {
     r.duration_s = o.duration_s;
     r.rate_hz = o.rate_hz;
     r.substeps = o.substeps;
+    r.method = request.method;
     r.csv = o.csv;
     r.json = o.json;
     r.allow_long_run = o.allow_long_run;

@@ -78,10 +78,9 @@ void print_flexible_ring_static(const nlohmann::json& ring) {
 }
 
 void run_flexible_simulation(const BearingModel& model, const FlexibleSimulationRequest& r) {
-  FlexibleDynamics dynamics(FlexibleBearing(model), r.load, r.ring_speed_rad_s, r.rate_hz, r.substeps);
+  FlexibleDynamics dynamics(FlexibleBearing(model), r.load, r.ring_speed_rad_s, r.rate_hz, r.substeps, r.method);
   const long samples = std::lround(r.duration_s * r.rate_hz);
-  // The flexible ring has no fast path (the CT bearing runs at about a sixth of real time):
-  // its cost from a probe on a copy, before anything is written, as the rigid ring's.
+  // Its cost from a probe on a copy, before anything is written, as the rigid ring's.
   if (samples > 1000) {
     FlexibleDynamics probe = dynamics;
     const double per_sample = measure_seconds_per_step([&probe] { probe.step(); });
@@ -142,7 +141,7 @@ void run_flexible_simulation(const BearingModel& model, const FlexibleSimulation
                                  {"duration_s", r.duration_s},
                                  {"rate_hz", r.rate_hz},
                                  {"samples", samples},
-                                 {"integrator", "rk4"},
+                                 {"integrator", integration_method_name(r.method)},
                                  {"substeps", dynamics.substeps()},
                                  {"internal_step_s", dynamics.internal_step_s()},
                                  {"window", "second half of the run, mean removed"},
@@ -159,10 +158,11 @@ void run_flexible_simulation(const BearingModel& model, const FlexibleSimulation
   }
   std::ostream& out = std::cout;
   out << "Bearing: " << model.config().name << " (" << r.bearing_path << "), flexible " << rotating_ring_name(model)
-      << " ring at " << general(r.ring_speed_rpm, 6) << " rpm (offline RK4 model, docs/model.md section 18)\n\n";
+      << " ring at " << general(r.ring_speed_rpm, 6) << " rpm (docs/model.md section 18)\n\n";
   KeyValueList info;
   info.add("samples", std::to_string(samples) + " at " + general(r.rate_hz, 6) + " Hz");
-  info.add("integration", std::to_string(dynamics.substeps()) + " rk4 steps per sample, step " +
+  info.add("integration", std::to_string(dynamics.substeps()) + " " + integration_method_name(r.method) +
+                              " steps per sample, step " +
                               general(dynamics.internal_step_s() * 1e6, 4) + " us");
   info.add("a_rms x, y, z (rigid-body coordinates)", scientific(ax, 4) + ", " + scientific(ay, 4) + ", " +
                                                       scientific(az, 4) + " m/s^2");

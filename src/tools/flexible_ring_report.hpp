@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/flexible_bearing.hpp"
 
 namespace bearing_sim::tool {
@@ -23,7 +24,8 @@ struct FlexibleSimulationRequest {
   double ring_speed_rpm = 0.0;
   double duration_s = 1.0;
   double rate_hz = 10000.0;
-  int substeps = 0;  // 0: from the highest natural frequency
+  int substeps = 0;  // 0: automatic (FlexibleDynamics)
+  IntegrationMethod method = IntegrationMethod::ExponentialAdamsPec;
   std::string csv;   // empty: none
   bool json = false;
   bool allow_long_run = false;  // start a run estimated over an hour (--allow-long-run)

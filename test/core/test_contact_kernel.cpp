@@ -20,34 +20,11 @@
 #include "../../src/core/small_products.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "bearing_sim/core/simd_info.hpp"
+#include "simd_targets.hpp"
 #include "test_support.hpp"
 
 namespace bearing_sim {
 namespace {
-
-// Runs body() once per compiled Highway target the CPU supports, with the dispatcher
-// forced to that target; prints which targets were tested and which skipped.
-template <typename Body>
-void for_each_target(const Body& body) {
-  hwy::SetSupportedTargetsForTest(0);
-  const std::int64_t supported = hwy::SupportedTargets();
-  int tested = 0;
-  for (const std::int64_t target : detail::contact_kernel_compiled_targets()) {
-    if ((target & supported) == 0) {
-      std::cout << "[ SKIPPED  ] SIMD target " << hwy::TargetName(target) << ": this CPU cannot run it\n";
-      continue;
-    }
-    hwy::SetSupportedTargetsForTest(target);
-    const std::string name = detail::contact_kernel_target_name();
-    std::cout << "[ TARGET   ] " << name << "\n";
-    EXPECT_EQ(name, hwy::TargetName(target));
-    SCOPED_TRACE("SIMD target " + name);
-    body();
-    ++tested;
-  }
-  hwy::SetSupportedTargetsForTest(0);
-  EXPECT_GT(tested, 0);
-}
 
 void expect_kernels_agree(const BearingModel& model, const Vector5& load) {
   const Vector5 q0 = solve_static(model, load).displacement;
@@ -72,14 +49,14 @@ void expect_kernels_agree(const BearingModel& model, const Vector5& load) {
 
 TEST(ContactKernel, SimdAndScalarLoopsAgreeForTheCtBearing) {
   const BearingModel model(test::ct_bearing());
-  for_each_target([&] { expect_kernels_agree(model, test::ct_load()); });
+  test::for_each_simd_target([&] { expect_kernels_agree(model, test::ct_load()); });
 }
 
 TEST(ContactKernel, SimdAndScalarLoopsAgreeForAPreloadedInnerRingBearing) {
   BearingConfig c = test::single_row(13, 9.0, 46.0, 25.0, 0.52, 0.53, -3.0,
                                      "rotating_ring: inner\nrotating_mass_kg: 1\ndamping: {contact_damping_Ns_per_m: 300}\n");
   const BearingModel model(c);
-  for_each_target([&] { expect_kernels_agree(model, test::load5(800.0, -300.0, 1500.0, 5.0, -3.0)); });
+  test::for_each_simd_target([&] { expect_kernels_agree(model, test::load5(800.0, -300.0, 1500.0, 5.0, -3.0)); });
 }
 
 // Random ball sets straight into the kernel (balls of two rows mixed), with the edge cases
@@ -92,7 +69,7 @@ TEST(ContactKernel, SimdAndScalarKernelsAgreeOnRandomBallsWithEdgeCases) {
   const double kn = 1.1e10, cn = 400.0;  // N/m^1.5, N s/m
   const double A = 3.2e-4, g0 = 1e-5, rho = 0.05, a0 = 0.3;
   int pulled_negative = 0;
-  for_each_target([&] {
+  test::for_each_simd_target([&] {
     for (int n : {1, 3, 7, 8, 207}) {
       for (int trial = 0; trial < 50; ++trial) {
         std::vector<double> cb(n), sb(n), gz(n), nz(n), off(n);
@@ -203,7 +180,7 @@ void expect_windows_match_dips(const BearingModel& model, const Vector5& load, d
 }
 
 TEST(ContactKernel, RaceSpallWindowsGiveTheOffsetsDips) {
-  for_each_target([&] {
+  test::for_each_simd_target([&] {
     for (const Surface surface : {Surface::OuterRace, Surface::InnerRace}) {
       BearingModel model = test::bearing_6205();
       // Centred on ball 0's azimuth at cage angle 0 in the race's frame (the inner ring at 0.37 rad).
@@ -255,7 +232,7 @@ TEST(ContactKernel, StandingSpallWindowsFollowTheSpalls) {
 TEST(ContactKernel, HarmonicSumsAgreeWithTheScalarLoop) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for_each_target([&] {
+  test::for_each_simd_target([&] {
     for (int harmonics : {1, 4, 9})
       for (int n : {1, 3, 7, 9, 207, 317}) {
         std::vector<double> c(2 * harmonics), terms(2 * static_cast<std::size_t>(harmonics) * n), base(n);
@@ -294,7 +271,7 @@ TEST(ContactKernel, HarmonicSumsAgreeWithTheScalarLoop) {
 TEST(ContactKernel, HarmonicCoefficientsAgreeWithStdCosAndSin) {
   std::mt19937_64 rng(12);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for_each_target([&] {
+  test::for_each_simd_target([&] {
     for (int harmonics : {1, 3, 4, 5, 9, 17}) {
       std::vector<double> amplitude(harmonics), angle(harmonics), c(2 * harmonics);
       for (int h = 0; h < harmonics; ++h) {
@@ -329,7 +306,7 @@ void expect_products_agree() {
 
 TEST(ContactKernel, SmallProductsAgreeWithEigen) {
   std::srand(3);  // Eigen's Random()
-  for_each_target([&] {
+  test::for_each_simd_target([&] {
     for (int trial = 0; trial < 20; ++trial) {
       expect_products_agree<15, 30>();
       expect_products_agree<10, 5>();

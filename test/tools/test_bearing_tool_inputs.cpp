@@ -193,8 +193,8 @@ TEST_F(ToolInputTest, RunsOfYearsNeedTheConfirmationFlagAndNothingStarts) {
   expect_refused("generate '" + kScan + "' --out '" + out + "' --duration-s 1e7 --quiet",
                  {"generate", "--allow-long-run"});
   EXPECT_FALSE(std::filesystem::exists(out)) << "nothing may be written for a refused run";
-  // The flexible ring (about a sixth of real time here): 1e9 samples, days here and still
-  // hours on a machine a hundred times faster; its probe runs on a copy before the CSV opens.
+  // The flexible ring: 1e9 samples, hours even at 30 x real time; its probe runs on a copy
+  // before the CSV opens.
   const std::string flexible = kConfig + "/bearings/ct_gantry_flexible.yaml";
   const std::string csv = dir_ + "/flexible.csv";
   expect_refused("simulate --bearing '" + flexible + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180" +

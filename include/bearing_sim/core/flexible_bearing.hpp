@@ -35,6 +35,11 @@ class FlexibleBearing {
   // Without damping, and the stiffness -dF/dx (analytic) if asked for.
   Eigen::VectorXd contact_force_and_stiffness(const Eigen::VectorXd& x, const RollingPhase& phase,
                                               Eigen::MatrixXd* stiffness) const;
+  // The same with the modal pairs in the load's frame, b = R(n psi) a (docs/model.md 18.4):
+  // the shapes taken at the balls' azimuths. rates: q' and each pair's rate as the ring's
+  // material sees it, R a' = b' - n Omega J b. simd: the Highway kernel, else the scalar loop.
+  Eigen::VectorXd contact_force_load_frame(const Eigen::VectorXd& z, const Eigen::VectorXd& rates,
+                                           const RollingPhase& phase, bool simd = true) const;
   std::vector<BallState> ball_states(const Eigen::VectorXd& x, const RollingPhase& phase) const;
 
   // Displacement of the ring's centre line at angle theta of the ring's own (material) frame:
@@ -53,6 +58,7 @@ class FlexibleBearing {
                     Eigen::VectorXd* force, Eigen::MatrixXd* stiffness, std::vector<BallState>* states) const;
   BearingModel model_;
   std::vector<RingMode> modes_;
+  std::vector<int> mode_orders_, mode_radial_;  // for the load-frame kernel
   int max_order_ = 0;
   double groove_radius_ = 0.0, cos_a0_ = 1.0;
 };

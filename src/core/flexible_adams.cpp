@@ -1,0 +1,124 @@
+#include "bearing_sim/core/flexible_adams.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "bearing_sim/core/errors.hpp"
+
+namespace bearing_sim {
+
+namespace {
+
+// Weights of the remainders f_0 (newest), f_-1, ... from those of the backward differences
+// nabla^j f_0 = sum_i (-1)^i C(j, i) f_i, j < order: side by side, [W0 W1 W2 W3].
+Eigen::MatrixXd remainder_weights(const std::array<Eigen::MatrixXd, 4>& of_differences, int order) {
+  static constexpr int kBinomial[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
+  const Eigen::Index rows = of_differences[0].rows(), cols = of_differences[0].cols();
+  Eigen::MatrixXd w = Eigen::MatrixXd::Zero(rows, 4 * cols);
+  for (int i = 0; i < 4; ++i)
+    for (int j = i; j < order; ++j)
+      w.middleCols(i * cols, cols) += ((i % 2) ? -1.0 : 1.0) * kBinomial[j][i] * of_differences[j];
+  return w;
+}
+
+}  // namespace
+
+FlexibleAdams::FlexibleAdams(const Acceleration& accel, const Eigen::VectorXd& z_lin, const Eigen::VectorXd& z_scale,
+                             const Eigen::VectorXd& v_scale, const Eigen::VectorXd& z0, const Eigen::VectorXd& v0,
+                             double step_s, double t0)
+    : n_(static_cast<int>(z_lin.size())), h_(step_s), t0_(t0), t_(t0), z_lin_(z_lin), z_(z0), v_(v0) {
+  if (!(step_s > 0.0) || !std::isfinite(step_s)) throw InvalidInputError("flexible ring dynamics: bad step");
+  const int n = n_;
+  // The linear part: the Jacobian of the acceleration at the equilibrium at rest, by central
+  // differences (the remainder takes whatever it misses, so it need only be close).
+  lin_.resize(n, 2 * n);
+  const Eigen::VectorXd rest = Eigen::VectorXd::Zero(n);
+  for (int j = 0; j < 2 * n; ++j) {
+    Eigen::VectorXd zp = z_lin, zm = z_lin, vp = rest, vm = rest;
+    const double d = j < n ? z_scale[j] : v_scale[j - n];
+    if (j < n) {
+      zp[j] += d;
+      zm[j] -= d;
+    } else {
+      vp[j - n] += d;
+      vm[j - n] -= d;
+    }
+    lin_.col(j) = (accel(zp, vp, t0) - accel(zm, vm, t0)) / (2.0 * d);
+  }
+  // L = [0 I; lin]; e^{hL} and phi_1..4(hL) from the exponential of the block matrix
+  // [hL I 0 0 0; 0 0 I 0 0; ...; 0] (its first block row), on the balanced D L D^-1 with
+  // D = diag(w I, I), w^2 = |d z''/d z| (SI units put 1e8 next to 1: see BearingDynamics).
+  const double w = std::max(1.0, std::sqrt(lin_.leftCols(n).lpNorm<Eigen::Infinity>()));
+  const int m = 2 * n;
+  Eigen::MatrixXd balanced = Eigen::MatrixXd::Zero(m, m);
+  balanced.topRightCorner(n, n) = w * Eigen::MatrixXd::Identity(n, n);
+  balanced.bottomLeftCorner(n, n) = lin_.leftCols(n) / w;
+  balanced.bottomRightCorner(n, n) = lin_.rightCols(n);
+  highest_rate_ = Eigen::EigenSolver<Eigen::MatrixXd>(balanced, false).eigenvalues().cwiseAbs().maxCoeff();
+  Eigen::MatrixXd big = Eigen::MatrixXd::Zero(5 * m, 5 * m);
+  big.topLeftCorner(m, m) = h_ * balanced;
+  for (int k = 0; k < 4; ++k) big.block(m * k, m * (k + 1), m, m).setIdentity();
+  const Eigen::MatrixXd e = big.exp();
+  Eigen::VectorXd d(m);
+  d << Eigen::VectorXd::Constant(n, w), Eigen::VectorXd::Ones(n);
+  const auto unbalance = [&](const Eigen::MatrixXd& f) -> Eigen::MatrixXd {
+    return d.cwiseInverse().asDiagonal() * f * d.asDiagonal();
+  };
+  exp_ = unbalance(e.topLeftCorner(m, m));
+  std::array<Eigen::MatrixXd, 5> phi;  // phi_1..phi_4 (index 1..4), right half (the remainder's), times h
+  for (int k = 1; k <= 4; ++k) phi[k] = h_ * unbalance(e.block(0, m * k, m, m)).rightCols(n);
+  // ETD-AB (polynomial through the step's start and the steps before): phi1, phi2,
+  // phi3 + phi2/2, phi4 + phi3 + phi2/3 on nabla^0..3; ETD-AM (through the step's end and
+  // the steps before): phi1, phi2 - phi1, phi3 - phi2/2, phi4 - phi2/6.
+  const std::array<Eigen::MatrixXd, 4> ab = {phi[1], phi[2], phi[3] + 0.5 * phi[2], phi[4] + phi[3] + phi[2] / 3.0};
+  const std::array<Eigen::MatrixXd, 4> am = {phi[1], phi[2] - phi[1], phi[3] - 0.5 * phi[2], phi[4] - phi[2] / 6.0};
+  for (int order = 1; order <= 4; ++order) {
+    predictor_[order - 1] = remainder_weights(ab, order);
+    corrector_[order - 1] = remainder_weights(am, order);
+  }
+  remainders_ = Eigen::VectorXd::Zero(5 * n);
+  remainders_.segment(n, n) = remainder(accel, z_, v_, t_, &a_);
+  known_ = 1;
+  y_.resize(2 * n);
+  free_.resize(2 * n);
+  yp_.resize(2 * n);
+  yc_.resize(2 * n);
+}
+
+Eigen::VectorXd FlexibleAdams::remainder(const Acceleration& accel, const Eigen::VectorXd& z, const Eigen::VectorXd& v,
+                                         double t, Eigen::VectorXd* a) const {
+  *a = accel(z, v, t);
+  return *a - lin_.leftCols(n_) * (z - z_lin_) - lin_.rightCols(n_) * v;
+}
+
+void FlexibleAdams::step(const Acceleration& accel) {
+  const int n = n_;
+  y_.head(n) = z_ - z_lin_;
+  y_.tail(n) = v_;
+  free_.noalias() = exp_ * y_;
+  // Predict from the step's start and the remainders before it.
+  const int p = std::min(known_, 4);
+  yp_ = free_;
+  yp_.noalias() += predictor_[p - 1] * remainders_.tail(4 * n);
+  const double t_end = t0_ + static_cast<double>(steps_ + 1) * h_;  // not summed: no drift
+  remainders_.head(n) = remainder(accel, z_lin_ + yp_.head(n), yp_.tail(n), t_end, &a_end_);
+  // Correct with the predicted end's remainder (PEC: not evaluated again).
+  const int c = std::min(known_ + 1, 4);
+  yc_ = free_;
+  yc_.noalias() += corrector_[c - 1] * remainders_.head(4 * n);
+  // The predicted end's remainder is the newest now.
+  std::copy_backward(remainders_.data(), remainders_.data() + 4 * n, remainders_.data() + 5 * n);
+  known_ = std::min(known_ + 1, 4);
+  z_ = z_lin_ + yc_.head(n);
+  v_ = yc_.tail(n);
+  // The end's acceleration: the predicted end's moved by the linear part.
+  a_ = a_end_;
+  a_.noalias() += lin_ * (yc_ - yp_);
+  t_ = t_end;
+  ++steps_;
+}
+
+}  // namespace bearing_sim

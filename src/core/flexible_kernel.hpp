@@ -1,0 +1,36 @@
+#pragma once
+// The per-ball contact loop of the flexible ring in the load's frame (internal to the core;
+// docs/model.md 18.4): the generalized contact force on (q, b), with the ring's modal pairs b
+// taken at the balls' own azimuths. One Google Highway kernel for every SIMD target, picked at
+// run time, and the scalar loop it is tested against (as contact_kernel.hpp).
+#include <vector>
+
+namespace bearing_sim::detail {
+
+struct FlexibleKernelInput {
+  double cos_cage, sin_cage;
+  double groove_centre_radius, cos_a0, groove_centre_distance;
+  double clearance, sign, stiffness, damping;
+  const double* q;      // rigid coordinates (5)
+  const double* q_dot;  // and their rates
+  // Per ring mode: its order, 1 if radial (0: axial), its (cos, sin) pair in the load's frame
+  // and the pair's rate as a material point of the ring sees it (b' - n Omega J b).
+  int modes, max_order;
+  const int* order;
+  const int* radial;
+  const double* mode_position;  // 2 per mode
+  const double* mode_rate;      // 2 per mode
+  // Per ball, as BallArrays; offset: deflection offsets with the imperfections at this phase.
+  const double* cos_base;
+  const double* sin_base;
+  const double* groove_centre_z;
+  const double* normal_z;
+  const double* offset;
+  int n;
+};
+
+// force: 5 + 2 modes generalized forces (forces, moments, modal), overwritten.
+void flexible_contact_scalar(const FlexibleKernelInput& in, double* force);
+void flexible_contact_simd(const FlexibleKernelInput& in, double* force);
+
+}  // namespace bearing_sim::detail
