@@ -31,15 +31,17 @@ std::string format_number(double v) {
 }
 
 // A speed given either in rpm or in rad/s under `<stem>_rpm` / `<stem>_rad_s`, within the
-// bearing's physical limit (max_ring_speed_rad_s of its pitch diameter).
-bool read_speed(const detail::Reader& r, const std::string& stem, double pitch_diameter_m, double* speed_rad_s) {
+// bearing's physical limit (max_ring_speed_rad_s of its pitch diameter). Returns the key
+// given (without the reader's prefix), "" if neither.
+std::string read_speed(const detail::Reader& r, const std::string& stem, double pitch_diameter_m,
+                       double* speed_rad_s) {
   const bool rpm = r.has(stem + "_rpm"), rad = r.has(stem + "_rad_s");
   if (rpm && rad) r.fail(stem + "_rpm", "give either " + stem + "_rpm or " + stem + "_rad_s, not both");
   if (rpm) *speed_rad_s = r.number(stem + "_rpm", 0.0) * kRpmToRadS;
   if (rad) *speed_rad_s = r.number(stem + "_rad_s", 0.0);
   const std::string why = ring_speed_refusal(*speed_rad_s, pitch_diameter_m);
   if (!why.empty()) r.fail(stem + (rpm ? "_rpm" : "_rad_s"), why);
-  return rpm || rad;
+  return rpm ? stem + "_rpm" : rad ? stem + "_rad_s" : "";
 }
 
 // A growth rate given per hour (as in the bearing file) or per second (compressed time).
@@ -182,6 +184,16 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
 
   // Speed: pieces from t = 0 to infinity, holds filling the gaps between segments.
   double speed = 0.0, angle = 0.0, cursor = 0.0;
+  std::string speed_key;  // the key that set `speed` ("" while it is the default 0)
+  auto hold = [&](double start_s, double end_s) {
+    SpeedPiece p;
+    p.kind = SpeedPiece::Kind::Hold;
+    p.start_s = start_s;
+    p.end_s = end_s;
+    p.start_speed = speed;
+    p.start_key = p.end_key = speed_key;
+    return p;
+  };
   auto push = [&](SpeedPiece p) {
     p.start_angle = angle;
     if (std::isfinite(p.end_s)) {
@@ -194,7 +206,8 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
   if (const YAML::Node node = r.map("speed")) {
     detail::Reader s(node, source, "speed.");
     s.check_keys({"initial_speed_rpm", "initial_speed_rad_s", "segments"});
-    read_speed(s, "initial_speed", bearing_config.pitch_diameter_m, &speed);
+    const std::string given = read_speed(s, "initial_speed", bearing_config.pitch_diameter_m, &speed);
+    if (!given.empty()) speed_key = "speed." + given;
     if (const YAML::Node segments = node["segments"]) {
       if (!segments.IsSequence()) s.fail("segments", "expected a list of {type, start_s, end_s, ...}");
       for (std::size_t i = 0; i < segments.size(); ++i) {
@@ -216,20 +229,29 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
           g.fail("type", "must be hold, ramp or coast, got '" + type + "'");
         }
         read_interval(g, true, sc.duration_s_, cursor, &p.start_s, &p.end_s);
-        if (p.start_s > cursor) push(SpeedPiece{SpeedPiece::Kind::Hold, cursor, p.start_s, speed});
+        if (p.start_s > cursor) push(hold(cursor, p.start_s));
         p.start_speed = speed;
-        if (p.kind == SpeedPiece::Kind::Hold) read_speed(g, "speed", bearing_config.pitch_diameter_m, &p.start_speed);  // a step, if given
-        if (p.kind == SpeedPiece::Kind::Ramp && !read_speed(g, "to_speed", bearing_config.pitch_diameter_m, &p.end_speed))
-          g.fail("to_speed_rpm", "a ramp needs its target, to_speed_rpm or to_speed_rad_s");
+        p.start_key = p.end_key = speed_key;
+        if (p.kind == SpeedPiece::Kind::Hold) {  // a step, if given
+          const std::string given = read_speed(g, "speed", bearing_config.pitch_diameter_m, &p.start_speed);
+          if (!given.empty()) p.start_key = p.end_key = key + "." + given;
+        }
+        if (p.kind == SpeedPiece::Kind::Ramp) {
+          const std::string given = read_speed(g, "to_speed", bearing_config.pitch_diameter_m, &p.end_speed);
+          if (given.empty()) g.fail("to_speed_rpm", "a ramp needs its target, to_speed_rpm or to_speed_rad_s");
+          p.end_key = key + "." + given;
+        }
         if (p.kind == SpeedPiece::Kind::Coast) {
           p.time_constant_s = g.number("time_constant_s", 0.0, true);
           g.require(p.time_constant_s > 0.0, "time_constant_s", "must be > 0");
         }
         push(p);
+        // The speed from here on: a hold's or a ramp's target; a coast's is the speed it decays from.
+        speed_key = p.end_key;
       }
     }
   }
-  push(SpeedPiece{SpeedPiece::Kind::Hold, cursor, kInfinity, speed});
+  push(hold(cursor, kInfinity));
 
   // Load.
   if (const YAML::Node node = r.map("load")) {
@@ -257,6 +279,7 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
     };
     if (l.has("initial")) require_carried(l, "initial", sc.initial_load_);
     Vector5 current = sc.initial_load_;
+    std::string force_key = "load.initial.force_N", moment_key = "load.initial.moment_Nm";
     double previous_end = 0.0;
     if (const YAML::Node segments = node["segments"]) {
       if (!segments.IsSequence()) l.fail("segments", "expected a list of {type, start_s, ...}");
@@ -279,6 +302,12 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
         const bool moment = read_vector(segments[k], g, "moment_Nm", 2, p.to.data() + 3);
         g.require(force || moment, "force_N", "a load segment needs force_N and/or moment_Nm");
         require_carried(g, force ? "force_N" : "moment_Nm", p.to);
+        p.from_force_key = force_key;
+        p.from_moment_key = moment_key;
+        if (force) force_key = key + ".force_N";
+        if (moment) moment_key = key + ".moment_Nm";
+        p.to_force_key = force_key;
+        p.to_moment_key = moment_key;
         current = p.to;
         previous_end = p.end_s;
         sc.load_.push_back(p);
@@ -475,6 +504,55 @@ const Scenario::SpeedPiece& Scenario::speed_piece(double t) const {
 }
 
 double Scenario::ring_speed_at(double t) const { return piece_speed(speed_piece(t), t); }
+
+std::vector<Scenario::InputExtreme> Scenario::input_extremes() const {
+  std::vector<double> times{0.0, duration_s_};
+  for (const LoadPiece& p : load_) times.insert(times.end(), {p.start_s, p.end_s});
+  for (const SpeedPiece& p : speed_) times.insert(times.end(), {p.start_s, p.end_s});
+  times.erase(std::remove_if(times.begin(), times.end(), [&](double t) { return !(t >= 0.0 && t <= duration_s_); }),
+              times.end());
+  std::sort(times.begin(), times.end());
+  times.erase(std::unique(times.begin(), times.end()), times.end());
+  const double me = unbalance_.mass_kg * unbalance_.radius_m;
+  std::vector<InputExtreme> out;
+  // The inputs at `t` from the pieces that hold at `probe` (t itself, or the middle of the
+  // stretch t ends or starts: its one-sided value).
+  const auto add = [&](double t, double probe) {
+    InputExtreme e;
+    e.time_s = t;
+    Vector5 load = initial_load_;
+    e.force_key = "load.initial.force_N";
+    e.moment_key = "load.initial.moment_Nm";
+    const auto it = std::upper_bound(load_.begin(), load_.end(), probe,
+                                     [](double time, const LoadPiece& p) { return time < p.start_s; });
+    if (it != load_.begin()) {
+      const LoadPiece& p = *std::prev(it);
+      const bool at_start = t <= p.start_s && p.end_s > p.start_s;  // a ramp's start: the load it starts from
+      if (t >= p.end_s) load = p.to;
+      else if (at_start) load = p.from;
+      else load = p.from + (p.to - p.from) * ((t - p.start_s) / (p.end_s - p.start_s));
+      e.force_key = at_start ? p.from_force_key : p.to_force_key;
+      e.moment_key = at_start ? p.from_moment_key : p.to_moment_key;
+    }
+    const SpeedPiece& s = speed_piece(probe);
+    const double w = piece_speed(s, t), alpha = piece_acceleration(s, t);
+    e.speed_signed_rad_s = w;
+    e.speed_rad_s = std::abs(w);
+    e.speed_key = (s.kind == SpeedPiece::Kind::Ramp && t > s.start_s) ? s.end_key : s.start_key;
+    e.unbalance_N = me * std::sqrt(w * w * w * w + alpha * alpha);
+    e.force_N = std::hypot(std::hypot(load[0], load[1]) + e.unbalance_N, load[2]);
+    e.load_force_N = load.head<3>().norm();
+    e.moment_Nm = std::hypot(load[3], load[4]);
+    out.push_back(e);
+  };
+  for (std::size_t i = 0; i + 1 < times.size(); ++i) {
+    const double middle = 0.5 * (times[i] + times[i + 1]);
+    add(times[i], middle);
+    add(times[i + 1], middle);
+  }
+  add(times.back(), times.back());
+  return out;
+}
 double Scenario::ring_angle_at(double t) const { return piece_angle(speed_piece(t), t); }
 
 // --- load ----------------------------------------------------------------------------

@@ -48,11 +48,16 @@ int main(int argc, char** argv) {
     ROS_FATAL("scenario_player: %s", e.what());
     return 1;
   }
-  if (!player->wait_for_node()) return ros::ok() ? 1 : 0;
+  if (!player->wait_for_node()) {
+    if (!ros::ok()) return 0;
+    ros::WallDuration(0.5).sleep();  // let the reason reach /rosout
+    return 1;
+  }
   player->start();
   ros::CallbackQueue* queue = ros::getGlobalCallbackQueue();
-  while (ros::ok() && !player->finished()) queue->callAvailable(ros::WallDuration(0.01));
-  // Let the last messages (final inputs and labels) leave before the connections close.
-  if (player->finished()) ros::WallDuration(0.5).sleep();
-  return 0;
+  while (ros::ok() && !player->finished() && !player->failed()) queue->callAvailable(ros::WallDuration(0.01));
+  // Let the last messages (final inputs and labels, or the reason of a stop) leave before the
+  // connections close.
+  if (player->finished() || player->failed()) ros::WallDuration(0.5).sleep();
+  return player->failed() ? 1 : 0;
 }

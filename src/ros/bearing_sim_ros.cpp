@@ -18,6 +18,7 @@
 
 #include "bearing_sim/BallLoads.h"
 #include "bearing_sim/BearingHealth.h"
+#include "bearing_sim/InputRejection.h"
 #include "bearing_sim/VibrationChunk.h"
 #include "bearing_sim/VibrationLevel.h"
 #include "bearing_sim/core/bearing_config.hpp"
@@ -152,6 +153,8 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
   level_pub_ = nh_.advertise<VibrationLevel>("vibration_level", 100 * depth);
   ball_loads_pub_ = nh_.advertise<BallLoads>("ball_loads", 300 * depth);
   if (publish_clock_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 100);
+  // Before the reconfigure server and the input subscribers, whose callbacks may refuse.
+  rejected_pub_ = nh_.advertise<InputRejection>("rejected_inputs", 100);
 
   diagnostics_ = std::make_unique<NodeDiagnostics>(nh_, pnh_, "bearing_sim: " + model.config().name, diag);
 
@@ -260,15 +263,22 @@ void BearingSimRos::stop() {
 // ---------------------------------------------------------------------------------------
 // ROS callbacks (spinner thread)
 
-void BearingSimRos::reject_input(const std::string& reason) {
+void BearingSimRos::reject_input(const std::string& input, const std::string& reason, const ros::Time& input_stamp) {
   ROS_WARN_THROTTLE(1.0, "bearing_sim_node: input rejected, keeping the last good inputs: %s", reason.c_str());
   diagnostics_->record_rejected_input(reason);
+  // Whoever sent it learns that the simulation does not have it (the scenario player stops).
+  InputRejection m;
+  m.header.stamp = ros::Time::now();
+  m.input = input;
+  m.reason = reason;
+  m.input_stamp = input_stamp;
+  rejected_pub_.publish(m);
 }
 
 void BearingSimRos::on_load(const geometry_msgs::WrenchStamped::ConstPtr& msg) {
   const Vector5 load = load_from_wrench(msg->wrench);
   const InputCheck check = check_load(load, limits_, validation_model_.get());
-  if (!check.accepted) return reject_input(check.reason);
+  if (!check.accepted) return reject_input("load", check.reason, msg->header.stamp);
   if (check.max_contact_pressure_Pa > kPermissibleContactPressurePa)
     ROS_WARN_THROTTLE(5.0, "bearing_sim_node: static contact pressure %.0f MPa exceeds the ISO 76 limit of 4200 MPa",
                       check.max_contact_pressure_Pa * 1e-6);
@@ -284,7 +294,7 @@ void BearingSimRos::on_load(const geometry_msgs::WrenchStamped::ConstPtr& msg) {
 
 void BearingSimRos::on_speed(const std_msgs::Float64::ConstPtr& msg) {
   const InputCheck check = check_speed(msg->data, limits_, validation_model_.get());
-  if (!check.accepted) return reject_input(check.reason);
+  if (!check.accepted) return reject_input("speed", check.reason);
   accepted_speed_rad_s_ = msg->data;
   {
     std::lock_guard<PriorityInheritanceMutex> lock(pending_mutex_);
@@ -346,7 +356,7 @@ void BearingSimRos::on_reconfigure(BearingSimConfig& config, std::uint32_t /*lev
   // Every value checked here (the server's clamp lets NaN through) so that the sim thread never
   // sees a bad one; a refused value reverts to the last good one, which the server publishes back.
   const auto refuse = [this](const InputCheck& c) {
-    if (!c.accepted) reject_input(c.reason);
+    if (!c.accepted) reject_input("dynamic_reconfigure", c.reason);
     return !c.accepted;
   };
   if (refuse(check_setting(config.clearance_um, kClearanceUm))) config.clearance_um = old.clearance_m * 1e6;
@@ -366,7 +376,7 @@ void BearingSimRos::on_reconfigure(BearingSimConfig& config, std::uint32_t /*lev
     BearingConfig changed = old;
     changed.clearance_m = clearance_m;
     changed.contact_damping_Ns_per_m = config.contact_damping_Ns_per_m;
-    new_model = validated_model(changed, "clearance " + std::to_string(config.clearance_um) +
+    new_model = validated_model(changed, "dynamic_reconfigure", "clearance " + std::to_string(config.clearance_um) +
                                              " um, contact damping " +
                                              std::to_string(config.contact_damping_Ns_per_m) + " N*s/m");
     if (!new_model) {
@@ -390,7 +400,8 @@ void BearingSimRos::on_reconfigure(BearingSimConfig& config, std::uint32_t /*lev
   publish_model_state();
 }
 
-std::optional<BearingModel> BearingSimRos::validated_model(const BearingConfig& changed, const std::string& what) {
+std::optional<BearingModel> BearingSimRos::validated_model(const BearingConfig& changed, const std::string& input,
+                                                          const std::string& what) {
   try {
     BearingModel model(changed);  // throws for a clearance the ring temperatures take out of range
     model.set_deflection_offsets(validation_model_->deflection_offsets());
@@ -403,13 +414,13 @@ std::optional<BearingModel> BearingSimRos::validated_model(const BearingConfig& 
       if (!work.accepted) check = work;
     }
     if (!check.accepted) {
-      reject_input(what + ": " + check.reason);
+      reject_input(input, what + ": " + check.reason);
       return std::nullopt;
     }
     accepted_max_pressure_Pa_ = check.max_contact_pressure_Pa;
     return model;
   } catch (const std::exception& e) {  // a model the core refuses: no exception leaves the callback
-    reject_input(what + " refused: " + e.what());
+    reject_input(input, what + " refused: " + e.what());
     return std::nullopt;
   }
 }
@@ -417,12 +428,12 @@ std::optional<BearingModel> BearingSimRos::validated_model(const BearingConfig& 
 void BearingSimRos::on_ring_temperature(const std_msgs::Float64::ConstPtr& msg) {
   const double dT = msg->data;
   const std::string what = "ring_temperature_difference_K " + std::to_string(dT);
-  if (!std::isfinite(dT)) return reject_input(what + " refused: not a finite number");
+  if (!std::isfinite(dT)) return reject_input("ring_temperature_difference_K", what + " refused: not a finite number");
   const BearingConfig& old = validation_model_->config();
   if (dT == old.ring_temperature_difference_K) return;
   BearingConfig changed = old;
   changed.ring_temperature_difference_K = dT;
-  std::optional<BearingModel> model = validated_model(changed, what);
+  std::optional<BearingModel> model = validated_model(changed, "ring_temperature_difference_K", what);
   if (!model) return;
   *validation_model_ = *model;
   {

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
 
 #include <geometry_msgs/WrenchStamped.h>
+#include <ros/callback_queue.h>
 #include <std_msgs/Float64.h>
 #include <std_srvs/Trigger.h>
 
@@ -75,6 +77,7 @@ ScenarioPlayer::ScenarioPlayer(ros::NodeHandle nh, ros::NodeHandle pnh)
   if (scenario_.has_ring_temperature_difference())
     ring_temperature_pub_ = nh_.advertise<std_msgs::Float64>("ring_temperature_difference_K", 10, true);
   state_pub_ = nh_.advertise<ScenarioState>("scenario_state", 100);
+  rejected_sub_ = nh_.subscribe("rejected_inputs", 100, &ScenarioPlayer::on_rejected, this);
   ROS_INFO("scenario_player: '%s' (%s), %.1f s, %zu defect event(s), bearing '%s'%s", scenario_.name().c_str(),
            scenario_file_.c_str(), scenario_.duration_s(), scenario_.defect_events().size(), bearing_name_.c_str(),
            settings_.loop ? ", looping" : "");
@@ -107,6 +110,20 @@ bool ScenarioPlayer::wait_for_node() {
   if (nh_.getParam(node_name_ + "/bearing_file", node_bearing) && !same_file(node_bearing, scenario_.bearing_file()))
     ROS_WARN("scenario_player: %s simulates %s, the scenario is written for %s", node.c_str(), node_bearing.c_str(),
              scenario_.bearing_file().c_str());
+  // The node's input limits, parameters it has read by now (unset: the defaults it uses too). An
+  // input beyond them the node would refuse and run on at its last good one, while
+  // scenario_state said the scenario's: refuse the scenario before its first sample instead.
+  InputLimits limits;
+  nh_.getParam(node_name_ + "/max_force_N", limits.max_force_N);
+  nh_.getParam(node_name_ + "/max_moment_Nm", limits.max_moment_Nm);
+  nh_.getParam(node_name_ + "/max_speed_rad_s", limits.max_speed_rad_s);
+  const std::string refusal = scenario_limit_refusal(scenario_, limits);
+  if (!refusal.empty()) {
+    ROS_FATAL("scenario_player: scenario %s refused: %s (parameters of %s): the node would refuse that input and run "
+              "on at its last good one while scenario_state said the scenario's; the scenario does not start",
+              scenario_file_.c_str(), refusal.c_str(), node.c_str());
+    return false;
+  }
   // The scenario runs on the node's clock: with the node as fast as possible that is its
   // /clock, which this process only follows with use_sim_time.
   bool node_real_time = true;
@@ -129,15 +146,20 @@ bool ScenarioPlayer::wait_for_node() {
   };
   while (ros::ok()) {
     const bool speed = connected(speed_pub_, "speed"), load = connected(load_pub_, "load");
+    // The node's refusals reach the player from the first input on.
+    const bool refusals = rejected_sub_.getNumPublishers() > 0;
     const std::uint32_t listeners = state_pub_.getNumSubscribers();
     const bool labels = listeners >= static_cast<std::uint32_t>(wait_for_subscribers_);
-    if (speed && load && labels) return true;
+    if (speed && load && refusals && labels) return true;
     if (remaining() <= 0.0) {
       // Name what is missing: the node's inputs, or the listeners of the labels.
       std::string missing;
       if (!speed || !load)
         missing = node + " is not connected to " + (speed ? "" : nh_.resolveName("speed")) +
                   (!speed && !load ? " and " : "") + (load ? "" : nh_.resolveName("load"));
+      if (!refusals)
+        missing += (missing.empty() ? "" : "; ") + std::string("this player is not connected to ") +
+                   nh_.resolveName("rejected_inputs") + " (published by " + node + ")";
       if (!labels)
         missing += (missing.empty() ? "" : "; ") + state_topic + " has " + std::to_string(listeners) + " of the " +
                    std::to_string(wait_for_subscribers_) +
@@ -153,6 +175,9 @@ bool ScenarioPlayer::wait_for_node() {
 }
 
 void ScenarioPlayer::start() {
+  // Refusals of inputs sent before the scenario (by others) are not the scenario's: handled
+  // (ignored: no time line yet) before it starts.
+  ros::getGlobalCallbackQueue()->callAvailable();
   timeline_ = std::make_unique<ScenarioTimeline>(scenario_, settings_);
   start_ = ros::Time::now();
   ROS_INFO("scenario_player: '%s' starts at %.3f s on the node's clock (%s)", scenario_.name().c_str(),
@@ -174,8 +199,34 @@ void ScenarioPlayer::start() {
 }
 
 void ScenarioPlayer::tick(const ros::Time& now) {
-  if (!timeline_ || timeline_->finished()) return;
-  for (const TimelineCommand& c : timeline_->advance((now - start_).toSec())) execute(c);
+  if (!timeline_ || timeline_->finished() || failed_) return;
+  for (const TimelineCommand& c : timeline_->advance((now - start_).toSec())) {
+    execute(c);
+    if (failed_) return;  // nothing after a refusal: no label claiming what the node refused
+  }
+}
+
+void ScenarioPlayer::stop(const std::string& reason) {
+  if (failed_) return;
+  failed_ = true;
+  timer_.stop();
+  clock_sub_.shutdown();
+  ROS_FATAL("scenario_player: '%s' stopped: %s", scenario_.name().c_str(), reason.c_str());
+}
+
+void ScenarioPlayer::on_rejected(const InputRejection::ConstPtr& m) {
+  if (!timeline_ || failed_) return;  // before the scenario: not one of its inputs
+  // The inputs the scenario drives; a refused dynamic_reconfigure setting changes nothing it labels.
+  if (m->input != "load" && m->input != "speed" && m->input != "ring_temperature_difference_K") return;
+  std::string when;
+  if (!m->input_stamp.isZero()) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, " (sent for t = %.3f s)", (m->input_stamp - start_).toSec());
+    when = buf;
+  }
+  stop("the node refused its " + m->input + when + ": " + m->reason + ". The node runs on at its last good " +
+       m->input + " while the labels on " + state_pub_.getTopic() +
+       " would say the scenario's; the labels published since that input was sent do not hold");
 }
 
 ros::Time ScenarioPlayer::stamp_of(const TimelineCommand& c) const {
@@ -240,11 +291,15 @@ void ScenarioPlayer::inject(const TimelineCommand& c) {
   srv.request.width_growth_m_per_s = s.width_growth_m_per_s;
   srv.request.depth_growth_m_per_s = s.depth_growth_m_per_s;
   if (!inject_client_.isValid()) inject_client_ = nh_.serviceClient<InjectDefect>("inject_defect", true);
+  char when[96];
+  std::snprintf(when, sizeof when, "t = %.3f s (event at %.3f s)", c.scenario_time_s, c.event.time_s);
+  // The labels from now on would list the spall: the scenario stops unless the node has it.
   if (!inject_client_.call(srv))
-    ROS_ERROR("scenario_player: t = %.3f s: inject_defect failed (node gone?)", c.scenario_time_s);
+    stop(std::string(when) + ": inject_defect failed (node gone?); the labels would list a spall the simulation " +
+         "may not have");
   else if (!srv.response.success)
-    ROS_ERROR("scenario_player: t = %.3f s: the node refused the defect of the event at %.3f s: %s",
-              c.scenario_time_s, c.event.time_s, srv.response.message.c_str());
+    stop(std::string(when) + ": the node refused the spall: " + srv.response.message +
+         "; the labels would list a spall the simulation does not have");
   else
     ROS_INFO("scenario_player: t = %.3f s (event at %.3f s): %s", c.scenario_time_s, c.event.time_s,
              srv.response.message.c_str());
@@ -253,9 +308,12 @@ void ScenarioPlayer::inject(const TimelineCommand& c) {
 void ScenarioPlayer::clear(const TimelineCommand& c) {
   std_srvs::Trigger srv;
   if (!clear_client_.isValid()) clear_client_ = nh_.serviceClient<std_srvs::Trigger>("clear_defects", true);
-  if (!clear_client_.call(srv))
-    ROS_ERROR("scenario_player: t = %.3f s: clear_defects failed (node gone?)", c.scenario_time_s);
-  else
+  if (!clear_client_.call(srv)) {
+    char when[64];
+    std::snprintf(when, sizeof when, "t = %.3f s", c.scenario_time_s);
+    stop(std::string(when) + ": clear_defects failed (node gone?); the labels would leave out spalls the " +
+         "simulation may still have");
+  } else
     ROS_INFO("scenario_player: t = %.3f s: %s", c.scenario_time_s, srv.response.message.c_str());
 }
 

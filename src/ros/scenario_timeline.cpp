@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iterator>
+#include <sstream>
 #include <string>
 
 #include "bearing_sim/core/errors.hpp"
@@ -110,6 +111,33 @@ void ScenarioTimeline::emit_due(double t, bool end_of_pass, std::vector<Timeline
     next_state_cell_ = cell(t, settings_.state_rate_hz) + 1;
     out->push_back(command(Kind::State, t));
   }
+}
+
+std::string scenario_limit_refusal(const Scenario& scenario, const InputLimits& limits) {
+  constexpr double kRadSToRpm = 60.0 / (2.0 * 3.14159265358979323846);
+  for (const Scenario::InputExtreme& e : scenario.input_extremes()) {
+    std::ostringstream why;
+    if (e.force_N > limits.max_force_N) {
+      // The unbalance named when the load alone stays within the limit.
+      if (e.unbalance_N > 0.0 && e.load_force_N <= limits.max_force_N)
+        why << "load.unbalance: with the load of " << e.force_key << " |(Fx, Fy, Fz)| reaches " << e.force_N
+            << " N at t = " << e.time_s << " s (the unbalance's " << e.unbalance_N << " N at " << e.speed_signed_rad_s
+            << " rad/s, at its worst angle)";
+      else
+        why << e.force_key << ": |(Fx, Fy, Fz)| = " << e.force_N << " N at t = " << e.time_s << " s"
+            << (e.unbalance_N > 0.0 ? " (the unbalance included)" : "");
+      why << " exceeds the node's max_force_N = " << limits.max_force_N << " N";
+    } else if (e.moment_Nm > limits.max_moment_Nm) {
+      why << e.moment_key << ": |(Mx, My)| = " << e.moment_Nm << " N*m at t = " << e.time_s
+          << " s exceeds the node's max_moment_Nm = " << limits.max_moment_Nm << " N*m";
+    } else if (e.speed_rad_s > limits.max_speed_rad_s) {
+      why << (e.speed_key.empty() ? "speed" : e.speed_key) << ": |speed| = " << e.speed_rad_s << " rad/s ("
+          << e.speed_rad_s * kRadSToRpm << " rpm) at t = " << e.time_s << " s exceeds the node's max_speed_rad_s = "
+          << limits.max_speed_rad_s << " rad/s";
+    }
+    if (!why.str().empty()) return why.str();
+  }
+  return "";
 }
 
 std::string scenario_node_parameter(const Scenario& scenario, const std::string& name) {

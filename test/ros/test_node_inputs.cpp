@@ -7,6 +7,7 @@
 #include <std_srvs/Trigger.h>
 
 #include "bearing_sim/InjectDefect.h"
+#include "bearing_sim/InputRejection.h"
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "node_test_support.hpp"
@@ -176,6 +177,16 @@ TEST_F(NodeInputs, BadInputsAreRejectedAndTheNodeKeepsItsLastGoodInputs) {
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
   diagnostic_msgs::DiagnosticStatus in;
   const int rejected_before = inputs_diagnostic(1, &in);
+  // Each refusal is also published on rejected_inputs (the scenario player stops on one).
+  std::mutex refused_mutex;
+  std::vector<bearing_sim::InputRejection> refused;
+  ros::NodeHandle nh;
+  ros::Subscriber refused_sub = nh.subscribe<bearing_sim::InputRejection>(
+      "rejected_inputs", 100, [&](const bearing_sim::InputRejection::ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(refused_mutex);
+        refused.push_back(*m);
+      });
+  ASSERT_TRUE(recorder().wait_for([&] { return refused_sub.getNumPublishers() > 0; }, 60.0));
   Vector5 bad = ct_load();
   bad[0] = nan;
   send_load(bad);
@@ -197,6 +208,30 @@ TEST_F(NodeInputs, BadInputsAreRejectedAndTheNodeKeepsItsLastGoodInputs) {
   EXPECT_EQ(inputs_diagnostic(2, &in) - rejected_before, 6);  // composed after the inputs
   EXPECT_EQ(in.level, diagnostic_msgs::DiagnosticStatus::WARN);
   EXPECT_NEAR(std::stod(Recorder::value(in, "ring speed (rad/s)")), kCtSpeed, 1e-3);
+  ASSERT_TRUE(recorder().wait_for(
+      [&] {
+        std::lock_guard<std::mutex> lock(refused_mutex);
+        return refused.size() >= 6;
+      },
+      60.0));
+  std::lock_guard<std::mutex> lock(refused_mutex);
+  ASSERT_EQ(refused.size(), 6u);
+  int loads = 0, speeds = 0, over_force = 0;
+  for (const bearing_sim::InputRejection& r : refused) {
+    if (r.input == "load") {
+      ++loads;
+      EXPECT_FALSE(r.input_stamp.isZero()) << r.reason;  // the refused message's stamp
+      // |(6800, 0, 2e5)| N
+      if (r.reason == "force 200116 N exceeds max_force_N = 100000") ++over_force;
+    } else {
+      EXPECT_EQ(r.input, "speed") << r.reason;
+      EXPECT_TRUE(r.input_stamp.isZero());
+      ++speeds;
+    }
+  }
+  EXPECT_EQ(loads, 4);
+  EXPECT_EQ(speeds, 2);
+  EXPECT_EQ(over_force, 1);
 }
 
 TEST_F(NodeInputs, ReconfigureClearanceAndChunkSizeLive) {

@@ -303,3 +303,90 @@ TEST(ScenarioTimeline, RingTemperatureGoesOutOnEachStepOnly) {
   ScenarioTimeline without(plain, TimelineSettings{});
   EXPECT_TRUE(of_kind(play(without, 0.001, 6.0), Kind::RingTemperature).empty());
 }
+
+// The node's input limits (its max_force_N, max_moment_Nm, max_speed_rad_s), which the
+// scenario reader does not know: a scenario with an input beyond them is refused before its
+// first sample, naming the key, the value, the time and the limit; the first in time.
+TEST(ScenarioLimits, AForceAboveTheNodesMaxForceIsRefusedNamingTheSegment) {
+  // The bearing carries 150 kN (the reader accepts it); the node's default limit is 100 kN.
+  const Scenario s = make_scenario("    - {type: step, start_s: 5, force_N: [150000, 0, 0]}\n");
+  EXPECT_EQ(scenario_limit_refusal(s, InputLimits{}),
+            "load.segments[1].force_N: |(Fx, Fy, Fz)| = 150000 N at t = 5 s exceeds the node's max_force_N = "
+            "100000 N");
+  // Within the limit (the node refuses only above it): nothing to say.
+  InputLimits at_the_value;
+  at_the_value.max_force_N = 150000.0;
+  EXPECT_EQ(scenario_limit_refusal(s, at_the_value), "");
+  EXPECT_EQ(scenario_limit_refusal(make_scenario(), InputLimits{}), "");
+  // A ramp reaches its target at its end; the first in time is named, not the largest.
+  const Scenario ramp = make_scenario(
+      "    - {type: ramp, start_s: 5, end_s: 5.5, force_N: [0, 110000, 0]}\n"
+      "    - {type: step, start_s: 5.8, force_N: [0, 0, 160000]}\n");
+  EXPECT_EQ(scenario_limit_refusal(ramp, InputLimits{}),
+            "load.segments[1].force_N: |(Fx, Fy, Fz)| = 110000 N at t = 5.5 s exceeds the node's max_force_N = "
+            "100000 N");
+  // The first step beyond a lower limit; the magnitude counts (each component within the limit).
+  InputLimits low;
+  low.max_force_N = 8000.0;
+  EXPECT_EQ(scenario_limit_refusal(s, low),
+            "load.segments[0].force_N: |(Fx, Fy, Fz)| = 9000 N at t = 4 s exceeds the node's max_force_N = 8000 N");
+  const Scenario diagonal = make_scenario("    - {type: step, start_s: 5, force_N: [80000, 80000, 0]}\n");
+  const std::string why = scenario_limit_refusal(diagonal, InputLimits{});
+  EXPECT_NE(why.find("load.segments[1].force_N: |(Fx, Fy, Fz)| = 113137 N at t = 5 s"), std::string::npos) << why;
+}
+
+TEST(ScenarioLimits, AMomentOrSpeedAboveTheNodesLimitIsRefusedNamingTheKey) {
+  const Scenario s = make_scenario();  // 2100 N*m; 60 rpm, ramp to 180 rpm from 1 to 3 s
+  InputLimits moment;
+  moment.max_moment_Nm = 2000.0;
+  EXPECT_EQ(scenario_limit_refusal(s, moment),
+            "load.initial.moment_Nm: |(Mx, My)| = 2100 N*m at t = 0 s exceeds the node's max_moment_Nm = 2000 N*m");
+  // The ramp's target, at its end (the speed is largest there).
+  InputLimits speed;
+  speed.max_speed_rad_s = 10.0;
+  EXPECT_EQ(scenario_limit_refusal(s, speed),
+            "speed.segments[0].to_speed_rpm: |speed| = 18.8496 rad/s (180 rpm) at t = 3 s exceeds the node's "
+            "max_speed_rad_s = 10 rad/s");
+  speed.max_speed_rad_s = 5.0;
+  EXPECT_EQ(scenario_limit_refusal(s, speed),
+            "speed.initial_speed_rpm: |speed| = 6.28319 rad/s (60 rpm) at t = 0 s exceeds the node's "
+            "max_speed_rad_s = 5 rad/s");
+  // A step in a hold, given in rad/s; the speed before it is named by its own key.
+  const std::string text = scenario_text();
+  const std::string stepped = text.substr(0, text.find("load:")) +
+                              "    - {type: hold, start_s: 4, end_s: 5, speed_rad_s: -30}\n" +
+                              text.substr(text.find("load:"));
+  const Scenario hold = Scenario::from_string(stepped, "/tmp/timeline_test.yaml");
+  speed.max_speed_rad_s = 20.0;
+  EXPECT_EQ(scenario_limit_refusal(hold, speed),
+            "speed.segments[1].speed_rad_s: |speed| = 30 rad/s (286.479 rpm) at t = 4 s exceeds the node's "
+            "max_speed_rad_s = 20 rad/s");
+}
+
+// With a rotating unbalance the force the player sends turns: the check takes it at its worst
+// angle, which the ring passes once a revolution, so it bounds every load the player sends
+// and is reached within a revolution.
+TEST(ScenarioLimits, TheUnbalanceCountsAtItsWorstAngle) {
+  // 10 kg*m: 3553 N at 180 rpm, on the radial 6800 N (then 9000 N from 4 s).
+  const Scenario s = make_scenario("  unbalance: {mass_kg: 10, radius_m: 1}\n");
+  double largest_sent = 0.0, largest_extreme = 0.0;
+  for (double t = 0.0; t <= s.duration_s(); t += 1e-4)
+    largest_sent = std::max(largest_sent, s.load_at(t).head<3>().norm());
+  for (const Scenario::InputExtreme& e : s.input_extremes()) largest_extreme = std::max(largest_extreme, e.force_N);
+  EXPECT_GE(largest_extreme, largest_sent);
+  EXPECT_NEAR(largest_sent, largest_extreme, 1e-3 * largest_extreme);
+  EXPECT_NEAR(largest_extreme, 9000.0 + 10.0 * std::pow(180.0 * 2.0 * M_PI / 60.0, 2), 1e-6);
+  // The load alone within the limit, with the unbalance beyond it: named as the unbalance's.
+  InputLimits limits;
+  limits.max_force_N = 10000.0;
+  const std::string why = scenario_limit_refusal(s, limits);
+  EXPECT_EQ(why.rfind("load.unbalance: with the load of load.initial.force_N |(Fx, Fy, Fz)| reaches 1035", 0), 0u)
+      << why;
+  EXPECT_NE(why.find("at t = 3 s (the unbalance's 355"), std::string::npos) << why;
+  EXPECT_NE(why.find("exceeds the node's max_force_N = 10000 N"), std::string::npos) << why;
+  // The load alone beyond the limit: named by its key, the unbalance included in the value.
+  limits.max_force_N = 6000.0;
+  EXPECT_EQ(scenario_limit_refusal(s, limits),
+            "load.initial.force_N: |(Fx, Fy, Fz)| = 7194.78 N at t = 0 s (the unbalance included) exceeds the node's "
+            "max_force_N = 6000 N");
+}

@@ -86,6 +86,29 @@ class Scenario {
 
   // Defect events in time order.
   const std::vector<ScenarioDefectEvent>& defect_events() const { return defect_events_; }
+
+  // The largest inputs the time line sends, for limits the reader does not know (the node's
+  // max_force_N, max_moment_Nm and max_speed_rad_s, checked by the scenario player before the
+  // first sample: docs/scenarios.md "Labels"). Between two consecutive times at which a load
+  // or speed piece starts or ends, the load is constant or linear and the speed constant,
+  // linear or decaying, so each magnitude below is convex there and largest at one of the two
+  // ends: the list holds both ends of every such stretch (the pieces of the stretch evaluated
+  // at each end), and the state at duration_s, in time order.
+  struct InputExtreme {
+    double time_s = 0.0;
+    // |(Fx, Fy, Fz)| with the rotating unbalance at its worst angle (along the radial force):
+    // sqrt((|(Fx, Fy)| + U)^2 + Fz^2), U = m e sqrt(omega^4 + alpha^2).
+    double force_N = 0.0;
+    double unbalance_N = 0.0;  // U, 0 without an unbalance
+    double load_force_N = 0.0;  // |(Fx, Fy, Fz)| of the load alone
+    double moment_Nm = 0.0;    // |(Mx, My)|
+    double speed_rad_s = 0.0;  // |speed|
+    double speed_signed_rad_s = 0.0;
+    // The keys of the file that set the load and the speed there, e.g. "load.segments[1].force_N",
+    // "load.initial.moment_Nm", "speed.segments[0].to_speed_rpm" ("" for a speed never set: 0).
+    std::string force_key, moment_key, speed_key;
+  };
+  std::vector<InputExtreme> input_extremes() const;
   // The spalls present at a time (events at or before it), in the order they appeared.
   std::vector<Spall> spalls_at(double time_s) const;
   // Width and depth of a spall at a time (its growth law: linear from its creation).
@@ -102,10 +125,14 @@ class Scenario {
     double end_speed = 0.0;             // ramp target
     double time_constant_s = 0.0;       // coast
     double start_angle = 0.0;           // rad, integral of the pieces before
+    // Keys that set the speed at the start and the target (input_extremes).
+    std::string start_key, end_key;
   };
   struct LoadPiece {
     double start_s = 0.0, end_s = 0.0;  // a step has end_s == start_s
     Vector5 from = Vector5::Zero(), to = Vector5::Zero();
+    // Keys that set the force and the moment of `from` and `to` (input_extremes).
+    std::string from_force_key, from_moment_key, to_force_key, to_moment_key;
   };
 
   Scenario() = default;

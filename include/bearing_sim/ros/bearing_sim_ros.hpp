@@ -72,11 +72,14 @@ class BearingSimRos : private PipelineSink {
   void on_ring_temperature(const std_msgs::Float64::ConstPtr& msg);
   // The running bearing with `changed` settings (clearance, damping, ring temperature), its ball
   // offsets and present spalls kept, if the accepted load is still carried and the integrator
-  // can follow it; else nullopt, the reason given to reject_input after `what`.
-  std::optional<BearingModel> validated_model(const BearingConfig& changed, const std::string& what);
+  // can follow it; else nullopt, the reason given to reject_input(input, ...) after `what`.
+  std::optional<BearingModel> validated_model(const BearingConfig& changed, const std::string& input,
+                                              const std::string& what);
   bool on_inject_defect(InjectDefect::Request& req, InjectDefect::Response& res);
   bool on_clear_defects(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
-  void reject_input(const std::string& reason);
+  // Logs and counts a refused input and publishes it on `rejected_inputs` (InputRejection):
+  // `input` is load, speed, ring_temperature_difference_K or dynamic_reconfigure.
+  void reject_input(const std::string& input, const std::string& reason, const ros::Time& input_stamp = ros::Time());
   void publish_model_state();
 
   // One computed chunk and everything that belongs to its time span (sensor chunks, level,
@@ -145,6 +148,7 @@ class BearingSimRos : private PipelineSink {
   ros::Time ros_start_;
 
   ros::Publisher vibration_pub_, ideal_pub_, level_pub_, ball_loads_pub_, clock_pub_, health_pub_;
+  ros::Publisher rejected_pub_;  // rejected_inputs (spinner thread)
   // header.seq of each topic, set here: roscpp numbers only the serialised copies, and a
   // subscriber in the same nodelet manager gets the message itself (publisher thread; health:
   // the health worker).

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bearing_sim/core/scenario.hpp"
+#include "bearing_sim/ros/input_validator.hpp"
 
 namespace bearing_sim {
 namespace ros_node {
@@ -72,6 +73,16 @@ class ScenarioTimeline {
   Vector5 last_load_ = Vector5::Zero();
   double last_ring_temperature_K_ = 0.0;
 };
+
+// Why bearing_sim_node with these input limits (its max_force_N, max_moment_Nm and
+// max_speed_rad_s) would refuse an input of the scenario, "" if it would refuse none. The
+// node refuses such an input and runs on at the last good one, so the labels would say an
+// input the data never had; the scenario player refuses the scenario before its first
+// sample instead. Checks every extreme of the time line (Scenario::input_extremes: the
+// unbalance at its worst angle) with the node's rule (a magnitude above its limit) and
+// names the first in time: the key that sets it, the value, the time and the limit, e.g.
+//   load.segments[0].force_N: |(Fx, Fy, Fz)| = 150000 N at t = 1 s exceeds the node's max_force_N = 100000 N
+std::string scenario_limit_refusal(const Scenario& scenario, const InputLimits& limits);
 
 // A parameter of bearing_sim_node for a run of this scenario, as text for roslaunch
 // (`scenario_player --param NAME FILE`): bearing_file, sensor_file (resolved paths), and the
