@@ -57,8 +57,8 @@ Problem config_problem(const AccelerometerConfig& c) {
   }
   // A truncated list of modes may carry more than the whole path at the sensor (sum above 1:
   // the modes above the list then have shapes of the other sign there, the residual
-  // 1 - sum p_r is negative). Bounded at 10 against typing errors (the CWRU rig's six
-  // modes add up to about 6: docs/sensor.md, "Several modes").
+  // 1 - sum p_r is negative). Bounded at 10 against typing errors (the CWRU rig's five
+  // modes add up to 5.6: docs/sensor.md, "Several modes").
   if (participation > kMaxPathParticipation + 1e-9)
     return {"path_modes", "the participations must add up to at most 10"};
   const InstallationProblem ip = installation_problem(c.installation);
