@@ -7,6 +7,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "bearing_sim/core/errors.hpp"
+#include "small_products.hpp"
 
 namespace bearing_sim {
 
@@ -91,32 +92,42 @@ FlexibleAdams::FlexibleAdams(const Acceleration& accel, const Eigen::VectorXd& z
 Eigen::VectorXd FlexibleAdams::remainder(const Acceleration& accel, const Eigen::VectorXd& z, const Eigen::VectorXd& v,
                                          double t, Eigen::VectorXd* a) const {
   *a = accel(z, v, t);
-  return *a - lin_.leftCols(n_) * (z - z_lin_) - lin_.rightCols(n_) * v;
+  // r = a - lin (z - z_lin, v), with the product's base -a and the sign turned after.
+  thread_local Eigen::VectorXd y, minus_r;
+  y.resize(2 * n_);
+  y.head(n_) = z - z_lin_;
+  y.tail(n_) = v;
+  minus_r.resize(n_);
+  const Eigen::VectorXd minus_a = -*a;
+  detail::multiply_add(n_, 2 * n_, lin_.data(), y.data(), minus_a.data(), minus_r.data());
+  return -minus_r;
 }
 
 void FlexibleAdams::step(const Acceleration& accel) {
   const int n = n_;
+  const auto product = [](const Eigen::MatrixXd& a, const double* x, const double* base, double* out) {
+    detail::multiply_add(static_cast<int>(a.rows()), static_cast<int>(a.cols()), a.data(), x, base, out);
+  };
   y_.head(n) = z_ - z_lin_;
   y_.tail(n) = v_;
-  free_.noalias() = exp_ * y_;
+  product(exp_, y_.data(), nullptr, free_.data());
   // Predict from the step's start and the remainders before it.
   const int p = std::min(known_, 4);
-  yp_ = free_;
-  yp_.noalias() += predictor_[p - 1] * remainders_.tail(4 * n);
+  product(predictor_[p - 1], remainders_.data() + n, free_.data(), yp_.data());
   const double t_end = t0_ + static_cast<double>(steps_ + 1) * h_;  // not summed: no drift
   remainders_.head(n) = remainder(accel, z_lin_ + yp_.head(n), yp_.tail(n), t_end, &a_end_);
   // Correct with the predicted end's remainder (PEC: not evaluated again).
   const int c = std::min(known_ + 1, 4);
-  yc_ = free_;
-  yc_.noalias() += corrector_[c - 1] * remainders_.head(4 * n);
+  product(corrector_[c - 1], remainders_.data(), free_.data(), yc_.data());
   // The predicted end's remainder is the newest now.
   std::copy_backward(remainders_.data(), remainders_.data() + 4 * n, remainders_.data() + 5 * n);
   known_ = std::min(known_ + 1, 4);
   z_ = z_lin_ + yc_.head(n);
   v_ = yc_.tail(n);
   // The end's acceleration: the predicted end's moved by the linear part.
-  a_ = a_end_;
-  a_.noalias() += lin_ * (yc_ - yp_);
+  y_ = yc_ - yp_;
+  a_.resize(n);
+  product(lin_, y_.data(), a_end_.data(), a_.data());
   t_ = t_end;
   ++steps_;
 }

@@ -9,6 +9,8 @@
 
 #include "small_products.hpp"
 
+#include <cstddef>
+
 HWY_BEFORE_NAMESPACE();
 namespace bearing_sim::detail {
 namespace HWY_NAMESPACE {
@@ -82,6 +84,32 @@ HWY_INLINE void MultiplyAddFixed(const double* HWY_RESTRICT m, const double* HWY
   }
 }
 
+void MultiplyAddAnySize(int rows, int cols, const double* HWY_RESTRICT m, const double* HWY_RESTRICT x,
+                        const double* HWY_RESTRICT base, double* HWY_RESTRICT out) {
+  const hn::ScalableTag<double> d;
+  using V = hn::Vec<decltype(d)>;
+  const int lanes = static_cast<int>(hn::Lanes(d));
+  if (rows < lanes) {  // fewer rows than one vector: plain sums
+    for (int i = 0; i < rows; ++i) {
+      double sum = base ? base[i] : 0.0;
+      for (int j = 0; j < cols; ++j) sum += m[static_cast<std::size_t>(j) * rows + i] * x[j];
+      out[i] = sum;
+    }
+    return;
+  }
+  for (int block = 0; block < rows; block += lanes) {
+    const int r = block + lanes <= rows ? block : rows - lanes;
+    V even = base ? hn::LoadU(d, base + r) : hn::Zero(d), odd = hn::Zero(d);
+    int j = cols - 1;
+    for (; j > 0; j -= 2) {
+      even = hn::MulAdd(hn::LoadU(d, m + static_cast<std::size_t>(j) * rows + r), hn::Set(d, x[j]), even);
+      odd = hn::MulAdd(hn::LoadU(d, m + static_cast<std::size_t>(j - 1) * rows + r), hn::Set(d, x[j - 1]), odd);
+    }
+    if (j == 0) even = hn::MulAdd(hn::LoadU(d, m + r), hn::Set(d, x[0]), even);
+    hn::StoreU(hn::Add(even, odd), d, out + r);
+  }
+}
+
 void MultiplyAdd5x10(const double* m, const double* x, const double* base, double* out) {
   MultiplyAddFixed<5, 10>(m, x, base, out);
 }
@@ -101,6 +129,11 @@ namespace bearing_sim::detail {
 HWY_EXPORT(MultiplyAdd5x10);
 HWY_EXPORT(MultiplyAdd10x5);
 HWY_EXPORT(MultiplyAdd15x30);
+HWY_EXPORT(MultiplyAddAnySize);
+
+void multiply_add(int rows, int cols, const double* m, const double* x, const double* base, double* out) {
+  BEARING_SIM_DISPATCH(MultiplyAddAnySize)(rows, cols, m, x, base, out);
+}
 
 template <>
 void multiply_add<10, 5>(const double* m, const double* x, const double* base, double* out) {

@@ -13,4 +13,8 @@ namespace bearing_sim::detail {
 template <int Rows, int Cols>
 void multiply_add(const double* m, const double* x, const double* base, double* out);
 
+// The same for any size (sizes not constants: not unrolled): the flexible ring's Adams step
+// (50 x 50 and 50 x 100 for the CT ring's 25 coordinates).
+void multiply_add(int rows, int cols, const double* m, const double* x, const double* base, double* out);
+
 }  // namespace bearing_sim::detail

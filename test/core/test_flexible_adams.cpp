@@ -7,11 +7,13 @@
 #include <cmath>
 #include <complex>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/flexible_adams.hpp"
 #include "bearing_sim/core/flexible_dynamics.hpp"
+#include "../../src/core/small_products.hpp"
 #include "simd_targets.hpp"
 #include "test_support.hpp"
 
@@ -78,6 +80,29 @@ TEST(FlexibleAdams, ForcedOscillatorConvergesAtThirdOrderOrBetter) {
   EXPECT_LT(errors[2], 1e-4 * std::abs(exact));
   EXPECT_GT(errors[0] / errors[1], 8.0);
   EXPECT_GT(errors[1] / errors[2], 8.0);
+}
+
+TEST(FlexibleAdams, ItsMatrixProductsAreEigensOnEveryTarget) {
+  // out = base + m x at the step's sizes (50 x 50, 50 x 100) and at sizes below and between
+  // the vectors' lanes: fused multiply-adds and the order of the sums differ, 1e-14 relative.
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  test::for_each_simd_target([&] {
+    for (const auto& [rows, cols] : {std::pair{50, 50}, {50, 100}, {25, 50}, {3, 5}, {13, 7}, {9, 1}}) {
+      const Eigen::MatrixXd m = Eigen::MatrixXd::NullaryExpr(rows, cols, [&] { return noise(rng); });
+      const Eigen::VectorXd x = Eigen::VectorXd::NullaryExpr(cols, [&] { return noise(rng); });
+      const Eigen::VectorXd base = Eigen::VectorXd::NullaryExpr(rows, [&] { return noise(rng); });
+      Eigen::VectorXd out(rows), plain(rows);
+      detail::multiply_add(rows, cols, m.data(), x.data(), base.data(), out.data());
+      detail::multiply_add(rows, cols, m.data(), x.data(), nullptr, plain.data());
+      const Eigen::VectorXd expected = base + m * x;
+      const double scale = std::sqrt(static_cast<double>(cols)) * 10.0;
+      for (int i = 0; i < rows; ++i) {
+        EXPECT_NEAR(out[i], expected[i], 1e-14 * scale) << rows << "x" << cols << " row " << i;
+        EXPECT_NEAR(plain[i], expected[i] - base[i], 1e-14 * scale) << rows << "x" << cols << " row " << i;
+      }
+    }
+  });
 }
 
 // The CT bearing with its flexible outer ring, near its equilibrium under the operating load.
