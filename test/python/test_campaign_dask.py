@@ -205,3 +205,22 @@ def test_a_run_whose_text_draws_a_list_is_recorded_and_the_campaign_goes_on(camp
         assert rows[i]['status'] == ('failed' if listed[i] else 'ok')
         if listed[i]:
             assert '${tag} is a list or mapping and cannot be part of a text' in rows[i]['error']
+
+
+def test_a_finished_run_handed_out_again_is_not_generated_again(campaign_file, tmp_path):
+    # Dask computes a task again when the worker holding its result dies before the driver
+    # fetched it: run_index then finds the run finished and returns its record untouched.
+    from bearing_sim.campaign.execute import run_index
+    c = Campaign.load(campaign_file(small_campaign(count=2)))
+    out = tmp_path / 'again'
+    RunStore(out, c).prepare()
+    first = run_index(c.path, c.text, str(out), 1)
+    data = out / 'runs' / 'run_0000001.npy'
+    record = (out / 'runs' / 'run_0000001.json').read_bytes()
+    stamp = data.stat().st_mtime_ns
+    assert run_index(c.path, c.text, str(out), 1) == first
+    assert (out / 'runs' / 'run_0000001.json').read_bytes() == record and data.stat().st_mtime_ns == stamp
+    # A run whose data file was cut is not finished: it is generated again, to the same bytes.
+    full = data.read_bytes()
+    data.write_bytes(full[:100])
+    assert run_index(c.path, c.text, str(out), 1)['status'] == 'ok' and data.read_bytes() == full

@@ -56,6 +56,13 @@ def run_index(campaign_path, campaign_text, out_dir, index):
     campaign = _campaign(campaign_path, campaign_text)
     store = RunStore(out_dir, campaign)
     store.remove_leftovers(index)
+    # Dask runs a task again when the worker that holds its result dies before the driver has
+    # fetched it (a node lost right after a run): that run is finished on disk, and is not
+    # generated a second time. (The driver hands out only runs unfinished when it started, and
+    # holds their lock, so a finished record here is this invocation's own.)
+    finished = store.finished_record(index)
+    if finished is not None:
+        return finished
     start = time.perf_counter()
     record = {'index': index, 'campaign': campaign.name, 'host': socket.gethostname(), 'pid': os.getpid()}
     work_dir = os.path.join(store.runs_dir, f'.run_{index:07d}.{socket.gethostname()}.{os.getpid()}.tmp')

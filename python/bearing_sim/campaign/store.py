@@ -100,6 +100,11 @@ class RunStore:
     def is_finished(self, index):
         return self._complete(self.read_status(index))
 
+    def finished_record(self, index):
+        """The status record of run `index` if the run is finished, else None."""
+        record = self.read_status(index)
+        return record if self._complete(record) else None
+
     def with_status(self, indices):
         """Which of `indices` (a range) have a status record, as one byte per index, from one
         listing of runs/: the work is that of the files present, not of the campaign's count."""
