@@ -21,6 +21,16 @@ FlexibleBearing::FlexibleBearing(BearingModel model) : model_(std::move(model)) 
     mode_orders_.push_back(m.order);
     mode_radial_.push_back(m.direction == RingModeDirection::Radial ? 1 : 0);
   }
+  const std::vector<double>& beta = model_.balls().base_azimuth;
+  const int nb = static_cast<int>(beta.size());
+  stride_ = (nb + 63) / 64 * 64;  // whole vectors of up to 64 lanes (4096-bit SVE) read past nb
+  base_cos_n_.assign(static_cast<std::size_t>(max_order_ + 1) * stride_, 0.0);
+  base_sin_n_.assign(static_cast<std::size_t>(max_order_ + 1) * stride_, 0.0);
+  for (int k = 0; k <= max_order_; ++k)
+    for (int b = 0; b < nb; ++b) {
+      base_cos_n_[static_cast<std::size_t>(k) * stride_ + b] = std::cos(k * beta[b]);
+      base_sin_n_[static_cast<std::size_t>(k) * stride_ + b] = std::sin(k * beta[b]);
+    }
   groove_radius_ = model_.groove_centre_radius_m();
   cos_a0_ = std::cos(model_.config().contact_angle_rad);
 }
@@ -233,6 +243,9 @@ Eigen::VectorXd FlexibleBearing::contact_force_load_frame(const Eigen::VectorXd&
   in.radial = mode_radial_.data();
   in.mode_position = z.data() + 5;
   in.mode_rate = rates.data() + 5;
+  in.base_cos_n = base_cos_n_.data();
+  in.base_sin_n = base_sin_n_.data();
+  in.stride = stride_;
   in.cos_base = balls.cos_base.data();
   in.sin_base = balls.sin_base.data();
   in.groove_centre_z = balls.groove_centre_z.data();

@@ -22,11 +22,17 @@ namespace bearing_sim::detail {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
+// The shapes at phi = beta + c: (cos n phi, sin n phi) = R(n c) (cos n beta, sin n beta), so
+// p . shape(phi) = (R(n c)^T p) . shape(beta) and the force's projection sum_b g_b shape(phi_b)
+// = R(n c) sum_b g_b shape(beta_b): the balls' base shapes are constants, the pairs turned
+// once per call (the caller's in.mode_position and mode_rate are turned, the modal forces
+// come back in the base frame). Pass 1 per vector of balls: displacement, load, rigid sums,
+// and each ball's radial and axial force; pass 2 per mode: the projections.
 void FlexibleContact(const FlexibleKernelInput& in, double* force) {
   const hn::ScalableTag<double> d;
   using V = hn::Vec<decltype(d)>;
   const std::size_t N = hn::Lanes(d);
-  const int modes = in.modes, max_order = in.max_order;
+  const int modes = in.modes;
   const double sg = in.sign, rho = in.groove_centre_radius, A = in.groove_centre_distance;
   const double* q = in.q;
   const double* qd = in.q_dot;
@@ -35,30 +41,18 @@ void FlexibleContact(const FlexibleKernelInput& in, double* force) {
   const V a_ca = hn::Set(d, A * in.cos_a0), a_v = hn::Set(d, A), v_rho = hn::Set(d, rho);
   const V a_g0 = hn::Set(d, A + in.clearance), v_sg = hn::Set(d, sg);
   const V kn = hn::Set(d, in.stiffness), cn = hn::Set(d, in.damping);
-  // Per-lane buffers (vectors are not kept in arrays: sizeless on some targets): the shapes
-  // cos n phi, sin n phi of the vector's balls, and the modal force sums.
-  thread_local std::vector<double> cos_n, sin_n, sums;
-  cos_n.resize((max_order + 1) * N);
-  sin_n.resize((max_order + 1) * N);
-  sums.assign((5 + 2 * modes) * N, 0.0);
-  std::fill(cos_n.begin(), cos_n.begin() + N, 1.0);  // order 0
-  std::fill(sin_n.begin(), sin_n.begin() + N, 0.0);
-  auto balls = [&](V cb, V sb, V pz, V nz, V off) HWY_ATTR {
+  const std::size_t stride = static_cast<std::size_t>(in.stride);
+  thread_local std::vector<double> radial_force, axial_force;  // per ball (pass 1 -> 2)
+  radial_force.resize(stride);  // every vector of balls stores its lanes, zero when clear
+  axial_force.resize(stride);
+  V f0 = zero, f1 = zero, f2 = zero, f3 = zero, f4 = zero;
+  auto balls = [&](std::size_t b, V cb, V sb, V pz, V nz, V off) HWY_ATTR {
     const V cphi = hn::MulSub(cc, cb, hn::Mul(sc, sb));
     const V sphi = hn::MulAdd(sc, cb, hn::Mul(cc, sb));
-    hn::StoreU(cphi, d, cos_n.data() + N);
-    hn::StoreU(sphi, d, sin_n.data() + N);
-    V ck = cphi, sk = sphi;
-    for (int k = 2; k <= max_order; ++k) {
-      const V c2 = hn::MulSub(ck, cphi, hn::Mul(sk, sphi));
-      sk = hn::MulAdd(sk, cphi, hn::Mul(ck, sphi));
-      ck = c2;
-      hn::StoreU(ck, d, cos_n.data() + k * N);
-      hn::StoreU(sk, d, sin_n.data() + k * N);
-    }
     V w = zero, uz_ring = zero, w_dot = zero, uz_dot = zero;
     for (int i = 0; i < modes; ++i) {
-      const V c = hn::LoadU(d, cos_n.data() + in.order[i] * N), s = hn::LoadU(d, sin_n.data() + in.order[i] * N);
+      const std::size_t row = static_cast<std::size_t>(in.order[i]) * stride + b;
+      const V c = hn::LoadU(d, in.base_cos_n + row), s = hn::LoadU(d, in.base_sin_n + row);
       const double* p = in.mode_position + 2 * i;
       const double* r = in.mode_rate + 2 * i;
       const V shape = hn::MulAdd(hn::Set(d, p[0]), c, hn::Mul(hn::Set(d, p[1]), s));
@@ -82,7 +76,11 @@ void FlexibleContact(const FlexibleKernelInput& in, double* force) {
     const V norm = hn::Sqrt(hn::MulAdd(vx, vx, hn::MulAdd(vy, vy, hn::Mul(vz, vz))));
     const V deflection = hn::Add(hn::Sub(norm, a_g0), off);
     const auto touching = hn::Gt(deflection, zero);
-    if (hn::AllFalse(d, touching)) return;
+    if (hn::AllFalse(d, touching)) {
+      hn::StoreU(zero, d, radial_force.data() + b);
+      hn::StoreU(zero, d, axial_force.data() + b);
+      return;
+    }
     const V dp = hn::IfThenElseZero(touching, deflection);
     const V inv_norm = hn::Div(one, norm);
     const V udx = hn::MulAdd(w_dot, cphi, hn::MulAdd(hn::Set(d, qd[4]), pz, hn::Set(d, qd[0])));
@@ -95,28 +93,22 @@ void FlexibleContact(const FlexibleKernelInput& in, double* force) {
     const auto pressing = hn::And(touching, hn::Gt(load, zero));
     const V s = hn::IfThenElseZero(pressing, hn::Mul(hn::Mul(v_sg, load), inv_norm));
     const V fx = hn::Mul(s, vx), fy = hn::Mul(s, vy), fz = hn::Mul(s, vz);
-    const V fr = hn::MulAdd(fx, cphi, hn::Mul(fy, sphi));
-    const auto add = [&](int k, V v) HWY_ATTR {
-      hn::StoreU(hn::Add(hn::LoadU(d, sums.data() + k * N), v), d, sums.data() + k * N);
-    };
-    add(0, fx);
-    add(1, fy);
-    add(2, fz);
-    add(3, hn::MulSub(py, fz, hn::Mul(pz, fy)));
-    add(4, hn::MulSub(pz, fx, hn::Mul(px, fz)));
-    for (int i = 0; i < modes; ++i) {
-      const V g = in.radial[i] ? fr : fz;
-      add(5 + 2 * i, hn::Mul(g, hn::LoadU(d, cos_n.data() + in.order[i] * N)));
-      add(6 + 2 * i, hn::Mul(g, hn::LoadU(d, sin_n.data() + in.order[i] * N)));
-    }
+    f0 = hn::Add(f0, fx);
+    f1 = hn::Add(f1, fy);
+    f2 = hn::Add(f2, fz);
+    f3 = hn::Add(f3, hn::MulSub(py, fz, hn::Mul(pz, fy)));
+    f4 = hn::Add(f4, hn::MulSub(pz, fx, hn::Mul(px, fz)));
+    hn::StoreU(hn::MulAdd(fx, cphi, hn::Mul(fy, sphi)), d, radial_force.data() + b);
+    hn::StoreU(fz, d, axial_force.data() + b);
   };
   const std::size_t n = static_cast<std::size_t>(in.n);
   std::size_t b = 0;
   for (; b + N <= n; b += N)
-    balls(hn::LoadU(d, in.cos_base + b), hn::LoadU(d, in.sin_base + b), hn::LoadU(d, in.groove_centre_z + b),
+    balls(b, hn::LoadU(d, in.cos_base + b), hn::LoadU(d, in.sin_base + b), hn::LoadU(d, in.groove_centre_z + b),
           hn::LoadU(d, in.normal_z + b), hn::LoadU(d, in.offset + b));
   if (b < n) {
-    // The rest through a padded copy: padding lanes are balls with a 1 m gap, out of contact.
+    // The rest through a padded copy: padding lanes are balls with a 1 m gap, out of contact
+    // (the base shapes' rows are padded to the stride).
     constexpr std::size_t kMaxLanes = HWY_MAX_BYTES / sizeof(double);
     HWY_ALIGN double cb[kMaxLanes], sb[kMaxLanes], pz[kMaxLanes], nz[kMaxLanes], off[kMaxLanes];
     for (std::size_t i = 0; i < N; ++i) {
@@ -127,9 +119,27 @@ void FlexibleContact(const FlexibleKernelInput& in, double* force) {
       nz[i] = real ? in.normal_z[b + i] : 0.0;
       off[i] = real ? in.offset[b + i] : -1.0;
     }
-    balls(hn::Load(d, cb), hn::Load(d, sb), hn::Load(d, pz), hn::Load(d, nz), hn::Load(d, off));
+    balls(b, hn::Load(d, cb), hn::Load(d, sb), hn::Load(d, pz), hn::Load(d, nz), hn::Load(d, off));
   }
-  for (int k = 0; k < 5 + 2 * modes; ++k) force[k] = hn::GetLane(hn::SumOfLanes(d, hn::LoadU(d, sums.data() + k * N)));
+  force[0] = hn::GetLane(hn::SumOfLanes(d, f0));
+  force[1] = hn::GetLane(hn::SumOfLanes(d, f1));
+  force[2] = hn::GetLane(hn::SumOfLanes(d, f2));
+  force[3] = hn::GetLane(hn::SumOfLanes(d, f3));
+  force[4] = hn::GetLane(hn::SumOfLanes(d, f4));
+  const std::size_t end = b < n ? b + N : b;  // the padded vector included (zero force there)
+  for (int i = 0; i < modes; ++i) {
+    const double* g = in.radial[i] ? radial_force.data() : axial_force.data();
+    const double* c = in.base_cos_n + static_cast<std::size_t>(in.order[i]) * stride;
+    const double* s = in.base_sin_n + static_cast<std::size_t>(in.order[i]) * stride;
+    V sum_c = zero, sum_s = zero;
+    for (std::size_t k = 0; k < end; k += N) {
+      const V gk = hn::LoadU(d, g + k);
+      sum_c = hn::MulAdd(gk, hn::LoadU(d, c + k), sum_c);
+      sum_s = hn::MulAdd(gk, hn::LoadU(d, s + k), sum_s);
+    }
+    force[5 + 2 * i] = hn::GetLane(hn::SumOfLanes(d, sum_c));
+    force[6 + 2 * i] = hn::GetLane(hn::SumOfLanes(d, sum_s));
+  }
 }
 
 }  // namespace HWY_NAMESPACE
@@ -141,7 +151,37 @@ namespace bearing_sim::detail {
 HWY_EXPORT(FlexibleContact);
 
 void flexible_contact_simd(const FlexibleKernelInput& in, double* force) {
-  BEARING_SIM_DISPATCH(FlexibleContact)(in, force);
+  // The pairs turned into the balls' base frame, R(n c)^T b, and the modal forces back.
+  thread_local std::vector<double> position, rate;
+  position.resize(2 * in.modes);
+  rate.resize(2 * in.modes);
+  // cos k c, sin k c by the recurrence (k <= max_order: a few ulp).
+  thread_local std::vector<double> cos_k, sin_k;
+  cos_k.assign(in.max_order + 1, 1.0);
+  sin_k.assign(in.max_order + 1, 0.0);
+  for (int k = 1; k <= in.max_order; ++k) {
+    cos_k[k] = cos_k[k - 1] * in.cos_cage - sin_k[k - 1] * in.sin_cage;
+    sin_k[k] = sin_k[k - 1] * in.cos_cage + cos_k[k - 1] * in.sin_cage;
+  }
+  for (int i = 0; i < in.modes; ++i) {
+    const double c = cos_k[in.order[i]], s = sin_k[in.order[i]];
+    const double* p = in.mode_position + 2 * i;
+    const double* r = in.mode_rate + 2 * i;
+    position[2 * i] = c * p[0] + s * p[1];
+    position[2 * i + 1] = -s * p[0] + c * p[1];
+    rate[2 * i] = c * r[0] + s * r[1];
+    rate[2 * i + 1] = -s * r[0] + c * r[1];
+  }
+  FlexibleKernelInput turned = in;
+  turned.mode_position = position.data();
+  turned.mode_rate = rate.data();
+  BEARING_SIM_DISPATCH(FlexibleContact)(turned, force);
+  for (int i = 0; i < in.modes; ++i) {
+    const double f_c = force[5 + 2 * i], f_s = force[6 + 2 * i];
+    const double c = cos_k[in.order[i]], s = sin_k[in.order[i]];
+    force[5 + 2 * i] = c * f_c - s * f_s;
+    force[6 + 2 * i] = s * f_c + c * f_s;
+  }
 }
 
 void flexible_contact_scalar(const FlexibleKernelInput& in, double* force) {

@@ -20,6 +20,12 @@ struct FlexibleKernelInput {
   const int* radial;
   const double* mode_position;  // 2 per mode
   const double* mode_rate;      // 2 per mode
+  // cos k beta_b and sin k beta_b of the balls' azimuths at cage angle 0, k = 0..max_order,
+  // one row of `stride` (>= n, a multiple of 64, zero past n) per k: the SIMD kernel takes the
+  // shapes at phi = beta + cage from them, with the modal pairs turned by the cage angle.
+  const double* base_cos_n;
+  const double* base_sin_n;
+  int stride;
   // Per ball, as BallArrays; offset: deflection offsets with the imperfections at this phase.
   const double* cos_base;
   const double* sin_base;
