@@ -93,14 +93,13 @@ Eigen::VectorXd FlexibleAdams::remainder(const Acceleration& accel, const Eigen:
                                          double t, Eigen::VectorXd* a) const {
   *a = accel(z, v, t);
   // r = a - lin (z - z_lin, v), with the product's base -a and the sign turned after.
-  thread_local Eigen::VectorXd y, minus_r;
-  y.resize(2 * n_);
-  y.head(n_) = z - z_lin_;
-  y.tail(n_) = v;
-  minus_r.resize(n_);
+  remainder_y_.resize(2 * n_);
+  remainder_y_.head(n_) = z - z_lin_;
+  remainder_y_.tail(n_) = v;
+  minus_remainder_.resize(n_);
   const Eigen::VectorXd minus_a = -*a;
-  detail::multiply_add(n_, 2 * n_, lin_.data(), y.data(), minus_a.data(), minus_r.data());
-  return -minus_r;
+  detail::multiply_add(n_, 2 * n_, lin_.data(), remainder_y_.data(), minus_a.data(), minus_remainder_.data());
+  return -minus_remainder_;
 }
 
 void FlexibleAdams::step(const Acceleration& accel) {

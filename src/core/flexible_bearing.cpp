@@ -217,14 +217,19 @@ Eigen::VectorXd FlexibleBearing::contact_force_and_stiffness(const Eigen::Vector
 }
 
 Eigen::VectorXd FlexibleBearing::contact_force_load_frame(const Eigen::VectorXd& z, const Eigen::VectorXd& rates,
-                                                          const RollingPhase& phase, bool simd) const {
+                                                          const RollingPhase& phase, bool simd,
+                                                          std::vector<double>* work) const {
   const int n = size();
   if (z.size() != n || rates.size() != n)
     throw InvalidInputError("flexible bearing: expected " + std::to_string(n) + " coordinates");
   const BallArrays& balls = model_.balls();
-  thread_local std::vector<double> offsets;
-  offsets = balls.deflection_offset;
-  model_.imperfections().add_offsets(phase, offsets.data());
+  const int nb = static_cast<int>(balls.size()), modes = static_cast<int>(modes_.size());
+  std::vector<double> own;
+  std::vector<double>& scratch = work ? *work : own;
+  scratch.resize(static_cast<std::size_t>(nb + detail::flexible_kernel_work_size(stride_, modes, max_order_)));
+  double* const offsets = scratch.data();
+  std::copy(balls.deflection_offset.begin(), balls.deflection_offset.end(), offsets);
+  model_.imperfections().add_offsets(phase, offsets);
   detail::FlexibleKernelInput in{};
   in.cos_cage = std::cos(phase.cage);
   in.sin_cage = std::sin(phase.cage);
@@ -250,8 +255,9 @@ Eigen::VectorXd FlexibleBearing::contact_force_load_frame(const Eigen::VectorXd&
   in.sin_base = balls.sin_base.data();
   in.groove_centre_z = balls.groove_centre_z.data();
   in.normal_z = balls.normal_z.data();
-  in.offset = offsets.data();
-  in.n = static_cast<int>(balls.size());
+  in.offset = offsets;
+  in.n = nb;
+  in.work = offsets + nb;
   Eigen::VectorXd f(n);
   if (simd) detail::flexible_contact_simd(in, f.data());
   else detail::flexible_contact_scalar(in, f.data());

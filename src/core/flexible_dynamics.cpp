@@ -105,7 +105,7 @@ Eigen::VectorXd FlexibleDynamics::load_frame_acceleration(const Eigen::VectorXd&
   // ring's own stiffness and damping act on b and on that rate (both isotropic per pair).
   const double rate = ring_rate_rad_s();
   const auto& modes = bearing_.modes();
-  thread_local Eigen::VectorXd material_rate;
+  Eigen::VectorXd& material_rate = material_rate_;
   material_rate = z_dot;
   for (std::size_t i = 0; i < modes.size(); ++i) {
     const int j = 5 + 2 * static_cast<int>(i);
@@ -114,7 +114,7 @@ Eigen::VectorXd FlexibleDynamics::load_frame_acceleration(const Eigen::VectorXd&
     material_rate[j + 1] -= w * z[j];
   }
   const RollingPhase phase = advanced(RollingPhase{}, t);
-  Eigen::VectorXd a = mass_.solve(external_ + bearing_.contact_force_load_frame(z, material_rate, phase) -
+  Eigen::VectorXd a = mass_.solve(external_ + bearing_.contact_force_load_frame(z, material_rate, phase, true, &contact_work_) -
                                   k_ring_.cwiseProduct(z) - c_ring_.cwiseProduct(material_rate));
   // b'' = R a'' + 2 w J b' + w^2 b.
   for (std::size_t i = 0; i < modes.size(); ++i) {

@@ -42,9 +42,10 @@ void FlexibleContact(const FlexibleKernelInput& in, double* force) {
   const V a_g0 = hn::Set(d, A + in.clearance), v_sg = hn::Set(d, sg);
   const V kn = hn::Set(d, in.stiffness), cn = hn::Set(d, in.damping);
   const std::size_t stride = static_cast<std::size_t>(in.stride);
-  thread_local std::vector<double> radial_force, axial_force;  // per ball (pass 1 -> 2)
-  radial_force.resize(stride);  // every vector of balls stores its lanes, zero when clear
-  axial_force.resize(stride);
+  // Per ball, pass 1 -> 2 (every vector of balls stores its lanes, zero when clear); the
+  // work's first 2 stride doubles.
+  double* const radial_force = in.work;
+  double* const axial_force = in.work + stride;
   V f0 = zero, f1 = zero, f2 = zero, f3 = zero, f4 = zero;
   auto balls = [&](std::size_t b, V cb, V sb, V pz, V nz, V off) HWY_ATTR {
     const V cphi = hn::MulSub(cc, cb, hn::Mul(sc, sb));
@@ -77,8 +78,8 @@ void FlexibleContact(const FlexibleKernelInput& in, double* force) {
     const V deflection = hn::Add(hn::Sub(norm, a_g0), off);
     const auto touching = hn::Gt(deflection, zero);
     if (hn::AllFalse(d, touching)) {
-      hn::StoreU(zero, d, radial_force.data() + b);
-      hn::StoreU(zero, d, axial_force.data() + b);
+      hn::StoreU(zero, d, radial_force + b);
+      hn::StoreU(zero, d, axial_force + b);
       return;
     }
     const V dp = hn::IfThenElseZero(touching, deflection);
@@ -98,8 +99,8 @@ void FlexibleContact(const FlexibleKernelInput& in, double* force) {
     f2 = hn::Add(f2, fz);
     f3 = hn::Add(f3, hn::MulSub(py, fz, hn::Mul(pz, fy)));
     f4 = hn::Add(f4, hn::MulSub(pz, fx, hn::Mul(px, fz)));
-    hn::StoreU(hn::MulAdd(fx, cphi, hn::Mul(fy, sphi)), d, radial_force.data() + b);
-    hn::StoreU(fz, d, axial_force.data() + b);
+    hn::StoreU(hn::MulAdd(fx, cphi, hn::Mul(fy, sphi)), d, radial_force + b);
+    hn::StoreU(fz, d, axial_force + b);
   };
   const std::size_t n = static_cast<std::size_t>(in.n);
   std::size_t b = 0;
@@ -128,7 +129,7 @@ void FlexibleContact(const FlexibleKernelInput& in, double* force) {
   force[4] = hn::GetLane(hn::SumOfLanes(d, f4));
   const std::size_t end = b < n ? b + N : b;  // the padded vector included (zero force there)
   for (int i = 0; i < modes; ++i) {
-    const double* g = in.radial[i] ? radial_force.data() : axial_force.data();
+    const double* g = in.radial[i] ? radial_force : axial_force;
     const double* c = in.base_cos_n + static_cast<std::size_t>(in.order[i]) * stride;
     const double* s = in.base_sin_n + static_cast<std::size_t>(in.order[i]) * stride;
     V sum_c = zero, sum_s = zero;
@@ -152,13 +153,14 @@ HWY_EXPORT(FlexibleContact);
 
 void flexible_contact_simd(const FlexibleKernelInput& in, double* force) {
   // The pairs turned into the balls' base frame, R(n c)^T b, and the modal forces back.
-  thread_local std::vector<double> position, rate;
-  position.resize(2 * in.modes);
-  rate.resize(2 * in.modes);
-  // cos k c, sin k c by the recurrence (k <= max_order: a few ulp).
-  thread_local std::vector<double> cos_k, sin_k;
-  cos_k.assign(in.max_order + 1, 1.0);
-  sin_k.assign(in.max_order + 1, 0.0);
+  // The work after the kernel's 2 stride doubles: the turned pairs, cos k c and sin k c.
+  double* const position = in.work + 2 * in.stride;
+  double* const rate = position + 2 * in.modes;
+  double* const cos_k = rate + 2 * in.modes;
+  double* const sin_k = cos_k + in.max_order + 1;
+  cos_k[0] = 1.0;
+  sin_k[0] = 0.0;
+  // By the recurrence (k <= max_order: a few ulp).
   for (int k = 1; k <= in.max_order; ++k) {
     cos_k[k] = cos_k[k - 1] * in.cos_cage - sin_k[k - 1] * in.sin_cage;
     sin_k[k] = sin_k[k - 1] * in.cos_cage + cos_k[k - 1] * in.sin_cage;
@@ -173,8 +175,8 @@ void flexible_contact_simd(const FlexibleKernelInput& in, double* force) {
     rate[2 * i + 1] = -s * r[0] + c * r[1];
   }
   FlexibleKernelInput turned = in;
-  turned.mode_position = position.data();
-  turned.mode_rate = rate.data();
+  turned.mode_position = position;
+  turned.mode_rate = rate;
   BEARING_SIM_DISPATCH(FlexibleContact)(turned, force);
   for (int i = 0; i < in.modes; ++i) {
     const double f_c = force[5 + 2 * i], f_s = force[6 + 2 * i];

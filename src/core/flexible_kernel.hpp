@@ -33,7 +33,14 @@ struct FlexibleKernelInput {
   const double* normal_z;
   const double* offset;
   int n;
+  // Scratch of flexible_kernel_work_size doubles, the caller's (no thread_local: the core is
+  // built with the initial-exec TLS model, whose static block a dlopen'ed nodelet shares).
+  double* work;
 };
+
+inline int flexible_kernel_work_size(int stride, int modes, int max_order) {
+  return 2 * stride + 4 * modes + 2 * (max_order + 1);
+}
 
 // force: 5 + 2 modes generalized forces (forces, moments, modal), overwritten.
 void flexible_contact_scalar(const FlexibleKernelInput& in, double* force);

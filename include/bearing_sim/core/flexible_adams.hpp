@@ -55,6 +55,7 @@ class FlexibleAdams {
   Eigen::VectorXd remainders_;
   int known_ = 0;  // how many of the 4 are known
   Eigen::VectorXd y_, free_, yp_, yc_, a_end_;  // work vectors (no allocation per step)
+  mutable Eigen::VectorXd remainder_y_, minus_remainder_;
   Eigen::VectorXd z_, v_, a_;
   double highest_rate_ = 0.0;
 };

@@ -38,8 +38,10 @@ class FlexibleBearing {
   // The same with the modal pairs in the load's frame, b = R(n psi) a (docs/model.md 18.4):
   // the shapes taken at the balls' azimuths. rates: q' and each pair's rate as the ring's
   // material sees it, R a' = b' - n Omega J b. simd: the Highway kernel, else the scalar loop.
+  // work: scratch the caller keeps between calls (none: allocated per call).
   Eigen::VectorXd contact_force_load_frame(const Eigen::VectorXd& z, const Eigen::VectorXd& rates,
-                                           const RollingPhase& phase, bool simd = true) const;
+                                           const RollingPhase& phase, bool simd = true,
+                                           std::vector<double>* work = nullptr) const;
   std::vector<BallState> ball_states(const Eigen::VectorXd& x, const RollingPhase& phase) const;
 
   // Displacement of the ring's centre line at angle theta of the ring's own (material) frame:

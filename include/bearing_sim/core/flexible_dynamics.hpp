@@ -6,6 +6,7 @@
 // equilibrium (the reference).
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -69,6 +70,8 @@ class FlexibleDynamics {
   double highest_frequency_rad_s_ = 0.0;
   int substeps_ = 1;
   IntegrationMethod method_ = IntegrationMethod::ExponentialAdamsPec;
+  mutable Eigen::VectorXd material_rate_;     // load_frame_acceleration's scratch
+  mutable std::vector<double> contact_work_;  // the contact kernel's
   std::optional<FlexibleAdams> adams_;  // holds no reference to this: copies step on their own
   std::uint64_t sample_index_ = 0;
   FlexibleSample current_;
