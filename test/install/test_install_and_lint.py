@@ -41,7 +41,7 @@ DEVELOPMENT_ONLY = {
                            'bearing_sim_integrator_study'},
     'UNINSTALLED_SCRIPT': {'scripts/build.sh', 'scripts/install_deps.sh', 'scripts/setup_and_run.sh',
                            'scripts/capture_rviz_screenshot.sh', 'scripts/make_validation.py', 'scripts/cm_benchmark.py',
-                           'scripts/cwru_indicators.py', 'scripts/compare_builds.sh',
+                           'scripts/cwru_indicators.py', 'scripts/compare_builds.sh', 'scripts/slurm_campaign.sh',
                            'bench/bench_generate.sh', 'bench/bench_campaign.py'},
 }
 
