@@ -9,6 +9,7 @@
 #include "hwy/contrib/math/math-inl.h"
 
 #include "contact_kernel.hpp"
+#include "padded_balls.hpp"
 
 #include <cmath>
 
@@ -124,19 +125,11 @@ HWY_INLINE ContactSums Sums(const ContactKernelInput& in) {
           hn::LoadU(d, in.groove_centre_z + last), hn::LoadU(d, in.normal_z + last), hn::LoadU(d, in.offset + last),
           hn::Not(hn::FirstN(d, b - last)));
   } else if (b < n) {
-    // Fewer balls than lanes: through a padded copy. Padding lanes are a ball at the cage
-    // angle with a 1 m gap, out of contact, so they add exact zeros.
-    constexpr std::size_t kMaxLanes = HWY_MAX_BYTES / sizeof(double);
-    HWY_ALIGN double cb[kMaxLanes], sb[kMaxLanes], pz[kMaxLanes], nz[kMaxLanes], off[kMaxLanes];
-    for (std::size_t i = 0; i < N; ++i) {
-      const bool real = b + i < n;
-      cb[i] = real ? in.cos_base[b + i] : 1.0;
-      sb[i] = real ? in.sin_base[b + i] : 0.0;
-      pz[i] = real ? in.groove_centre_z[b + i] : 0.0;
-      nz[i] = real ? in.normal_z[b + i] : 0.0;
-      off[i] = real ? in.offset[b + i] : -1.0;
-    }
-    balls(hn::Load(d, cb), hn::Load(d, sb), hn::Load(d, pz), hn::Load(d, nz), hn::Load(d, off), all);
+    // Fewer balls than lanes: through a padded copy (its padding adds exact zeros).
+    static_assert(HWY_MAX_BYTES / sizeof(double) <= PaddedBalls::kMaxLanes);
+    const PaddedBalls p(in.cos_base, in.sin_base, in.groove_centre_z, in.normal_z, in.offset, b, n, N);
+    balls(hn::LoadU(d, p.cos_base), hn::LoadU(d, p.sin_base), hn::LoadU(d, p.groove_centre_z),
+          hn::LoadU(d, p.normal_z), hn::LoadU(d, p.offset), all);
   }
   return ContactSums{hn::GetLane(hn::SumOfLanes(d, sx)),  hn::GetLane(hn::SumOfLanes(d, sy)),
                      hn::GetLane(hn::SumOfLanes(d, sz)),  hn::GetLane(hn::SumOfLanes(d, szc)),

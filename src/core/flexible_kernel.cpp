@@ -7,6 +7,7 @@
 
 #include "dispatch.hpp"
 #include "flexible_kernel.hpp"
+#include "padded_balls.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -108,19 +109,12 @@ void FlexibleContact(const FlexibleKernelInput& in, double* force) {
     balls(b, hn::LoadU(d, in.cos_base + b), hn::LoadU(d, in.sin_base + b), hn::LoadU(d, in.groove_centre_z + b),
           hn::LoadU(d, in.normal_z + b), hn::LoadU(d, in.offset + b));
   if (b < n) {
-    // The rest through a padded copy: padding lanes are balls with a 1 m gap, out of contact
-    // (the base shapes' rows are padded to the stride).
-    constexpr std::size_t kMaxLanes = HWY_MAX_BYTES / sizeof(double);
-    HWY_ALIGN double cb[kMaxLanes], sb[kMaxLanes], pz[kMaxLanes], nz[kMaxLanes], off[kMaxLanes];
-    for (std::size_t i = 0; i < N; ++i) {
-      const bool real = b + i < n;
-      cb[i] = real ? in.cos_base[b + i] : 1.0;
-      sb[i] = real ? in.sin_base[b + i] : 0.0;
-      pz[i] = real ? in.groove_centre_z[b + i] : 0.0;
-      nz[i] = real ? in.normal_z[b + i] : 0.0;
-      off[i] = real ? in.offset[b + i] : -1.0;
-    }
-    balls(b, hn::Load(d, cb), hn::Load(d, sb), hn::Load(d, pz), hn::Load(d, nz), hn::Load(d, off));
+    // The rest through a padded copy (its padding adds exact zeros; the base shapes' rows
+    // are padded to the stride).
+    static_assert(HWY_MAX_BYTES / sizeof(double) <= PaddedBalls::kMaxLanes);
+    const PaddedBalls p(in.cos_base, in.sin_base, in.groove_centre_z, in.normal_z, in.offset, b, n, N);
+    balls(b, hn::LoadU(d, p.cos_base), hn::LoadU(d, p.sin_base), hn::LoadU(d, p.groove_centre_z),
+          hn::LoadU(d, p.normal_z), hn::LoadU(d, p.offset));
   }
   force[0] = hn::GetLane(hn::SumOfLanes(d, f0));
   force[1] = hn::GetLane(hn::SumOfLanes(d, f1));
