@@ -75,7 +75,7 @@ void FlexibleDynamics::to_ring_frame(const Eigen::VectorXd& z, const Eigen::Vect
                                      const Eigen::VectorXd* z_ddot, double t, Eigen::VectorXd* x,
                                      Eigen::VectorXd* x_dot, Eigen::VectorXd* x_ddot) const {
   *x = z;
-  *x_dot = z_dot;
+  material_rate(z, z_dot, x_dot);  // R a', turned back below
   if (z_ddot) *x_ddot = *z_ddot;
   const double psi = bearing_.ring_angle_rad(advanced(RollingPhase{}, t)), rate = ring_rate_rad_s();
   const auto& modes = bearing_.modes();
@@ -87,7 +87,7 @@ void FlexibleDynamics::to_ring_frame(const Eigen::VectorXd& z, const Eigen::Vect
     // a = R^T b; a' = R^T (b' - w J b); a'' = R^T (b'' - 2 w J b' - w^2 b), J = [0 -1; 1 0].
     (*x)[j] = c * b0 + s * b1;
     (*x)[j + 1] = -s * b0 + c * b1;
-    const double r0 = z_dot[j] + w * b1, r1 = z_dot[j + 1] - w * b0;
+    const double r0 = (*x_dot)[j], r1 = (*x_dot)[j + 1];
     (*x_dot)[j] = c * r0 + s * r1;
     (*x_dot)[j + 1] = -s * r0 + c * r1;
     if (z_ddot) {
@@ -99,23 +99,30 @@ void FlexibleDynamics::to_ring_frame(const Eigen::VectorXd& z, const Eigen::Vect
   }
 }
 
-Eigen::VectorXd FlexibleDynamics::load_frame_acceleration(const Eigen::VectorXd& z, const Eigen::VectorXd& z_dot,
-                                                          double t) const {
-  // Each pair's rate as the ring's material sees it, R a' = b' - w J b (w = n Omega); the
-  // ring's own stiffness and damping act on b and on that rate (both isotropic per pair).
+void FlexibleDynamics::material_rate(const Eigen::VectorXd& z, const Eigen::VectorXd& z_dot,
+                                     Eigen::VectorXd* rate_out) const {
+  *rate_out = z_dot;
   const double rate = ring_rate_rad_s();
   const auto& modes = bearing_.modes();
-  Eigen::VectorXd& material_rate = material_rate_;
-  material_rate = z_dot;
   for (std::size_t i = 0; i < modes.size(); ++i) {
     const int j = 5 + 2 * static_cast<int>(i);
     const double w = modes[i].order * rate;
-    material_rate[j] += w * z[j + 1];
-    material_rate[j + 1] -= w * z[j];
+    (*rate_out)[j] += w * z[j + 1];
+    (*rate_out)[j + 1] -= w * z[j];
   }
+}
+
+Eigen::VectorXd FlexibleDynamics::load_frame_acceleration(const Eigen::VectorXd& z, const Eigen::VectorXd& z_dot,
+                                                          double t) const {
+  // The ring's own stiffness and damping act on b and on the material's rate (both isotropic
+  // per pair), the contact damping on the material's rate too.
+  const double rate = ring_rate_rad_s();
+  const auto& modes = bearing_.modes();
+  material_rate(z, z_dot, &material_rate_);
   const RollingPhase phase = advanced(RollingPhase{}, t);
-  Eigen::VectorXd a = mass_.solve(external_ + bearing_.contact_force_load_frame(z, material_rate, phase, true, &contact_work_) -
-                                  k_ring_.cwiseProduct(z) - c_ring_.cwiseProduct(material_rate));
+  const Eigen::VectorXd contact = bearing_.contact_force_load_frame(z, material_rate_, phase, true, &contact_work_);
+  Eigen::VectorXd a =
+      mass_.solve(external_ + contact - k_ring_.cwiseProduct(z) - c_ring_.cwiseProduct(material_rate_));
   // b'' = R a'' + 2 w J b' + w^2 b.
   for (std::size_t i = 0; i < modes.size(); ++i) {
     const int j = 5 + 2 * static_cast<int>(i);

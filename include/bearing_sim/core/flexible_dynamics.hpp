@@ -59,6 +59,9 @@ class FlexibleDynamics {
   void step_rk4();
   void step_adams();
   double ring_rate_rad_s() const;
+  // Each pair's rate as the ring's material sees it, in the load's frame: R a' = b' - w J b
+  // (w = n Omega, J = [0 -1; 1 0]); the rigid coordinates' rates as they are.
+  void material_rate(const Eigen::VectorXd& z, const Eigen::VectorXd& z_dot, Eigen::VectorXd* rate_out) const;
 
   FlexibleBearing bearing_;
   Vector5 load_;
