@@ -40,7 +40,7 @@ DEVELOPMENT_ONLY = {
     'UNINSTALLED_TARGET': {'bearing_sim_bench_simulate', 'bearing_sim_bench_sensor', 'bearing_sim_bench_lcm_bridge',
                            'bearing_sim_integrator_study'},
     'UNINSTALLED_SCRIPT': {'scripts/build.sh', 'scripts/install_deps.sh', 'scripts/setup_and_run.sh',
-                           'scripts/capture_rviz_screenshot.sh', 'scripts/make_validation.py', 'scripts/cm_benchmark.py',
+                           'scripts/capture_rviz_screenshot.sh', 'scripts/make_validation.py',
                            'scripts/cwru_indicators.py', 'scripts/compare_builds.sh', 'scripts/slurm_campaign.sh',
                            'bench/bench_generate.sh', 'bench/bench_campaign.py'},
 }
@@ -126,7 +126,7 @@ class InstallSpace(unittest.TestCase):
 
     def test_everything_a_user_runs_or_reads_is_installed(self):
         programs = ['bearing_sim_node', 'bearing_viz_node', 'scenario_player', 'bearing_tool', 'record_bag',
-                    'soak_node.py', 'measure_node.py', 'measure_lcm_bridge.py']
+                    'soak_node.py', 'measure_node.py', 'measure_lcm_bridge.py', 'bearing_campaign', 'cm_benchmark']
         files = ['lib/libbearing_sim_core.so', 'include/bearing_sim/core/bearing_model.hpp',
                  'include/bearing_sim/VibrationChunk.h', 'share/bearing_sim/package.xml',
                  'share/bearing_sim/msg/VibrationChunk.msg', 'share/bearing_sim/srv/InjectDefect.srv']
@@ -193,6 +193,21 @@ class InstallSpace(unittest.TestCase):
             self.assertTrue(os.path.realpath(result[key]).startswith(installed), f'{key}: {result[key]}')
         for key, value in self.closed_form_frequencies(3.0).items():
             self.assertAlmostEqual(result['frequencies'][key], value, delta=1e-9 * value, msg=key)
+
+    def test_python_entry_points_run_from_the_install_space(self):
+        # Thin scripts over the installed module (no --help here: setup.bash would take it).
+        # bearing_campaign without arguments: its own usage, so the module imported.
+        r = self.in_install_space(['rosrun', 'bearing_sim', 'bearing_campaign'], timeout=120)
+        self.assertEqual(r.returncode, 2, r.stderr[-3000:])
+        self.assertIn('usage: bearing_campaign', r.stderr)
+        # cm_benchmark: one case of the quick grid, its bearing and sensor from the installed config/.
+        out = os.path.join(self.tmp, 'cm_benchmark')
+        r = self.in_install_space(['rosrun', 'bearing_sim', 'cm_benchmark', '--quick', '--limit', '1', '--workers', '0',
+                                   '--out', out], timeout=300)
+        self.assertEqual(r.returncode, 0, r.stdout[-3000:] + r.stderr[-3000:])
+        with open(os.path.join(out, 'summary.json')) as f:
+            summary = json.load(f)
+        self.assertEqual((summary['cases'], summary['errors']), (1, 0))
 
     def test_roslaunch_ct_gantry_streams_vibration(self):
         with socket.socket() as s:  # a free port for this test's own ROS master

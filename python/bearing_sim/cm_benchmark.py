@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Condition-monitoring benchmark: can the envelope analyser's diagnosis be trusted?
 
 Generates a grid of simulated runs (bearing x defect type x spall size x position
@@ -8,10 +7,11 @@ measured signal with the right ring speeds (the analyser's defaults: kurtogram b
 evidence rule of docs/health.md; or --band resonance: the band at the sensor's path
 resonance) and scores what the analyser suspects against the truth.
 
-    source scripts/env.sh; source build/devel/setup.bash
-    scripts/cm_benchmark.py --out /tmp/cm_benchmark                 # full grid (docs/health.md, "Benchmark")
-    scripts/cm_benchmark.py --out /tmp/cm_benchmark_res --band resonance
-    scripts/cm_benchmark.py --quick --out /tmp/cm_quick --workers 2  # a few dozen cases
+    rosrun bearing_sim cm_benchmark --out /tmp/cm_benchmark                 # full grid (docs/health.md, "Benchmark")
+    rosrun bearing_sim cm_benchmark --out /tmp/cm_benchmark_res --band resonance
+    rosrun bearing_sim cm_benchmark --quick --out /tmp/cm_quick --workers 2  # a few dozen cases
+    (or python3 -m bearing_sim.cm_benchmark ...; the bearing and sensor files come from the
+    package's config/, in the source tree or the install space)
 
 Writes into --out:
   results.csv     one row per case: its parameters, the truth, the finding, the evidence
@@ -70,8 +70,7 @@ import time
 
 import yaml
 
-SOURCE = pathlib.Path(__file__).resolve().parents[1]
-CONFIG = SOURCE / 'config'
+from bearing_sim.config_files import config_file
 
 TYPES = ('outer', 'inner', 'ball')
 SURFACE = {'outer': 'outer_race', 'inner': 'inner_race', 'ball': 'ball'}
@@ -168,7 +167,7 @@ def load_zone_deg(name, load_index):
         import bearing_sim
         import numpy as np
         load = BEARINGS[name]['loads'][load_index]
-        eq = bearing_sim.static_equilibrium(str(CONFIG / 'bearings' / BEARINGS[name]['file']),
+        eq = bearing_sim.static_equilibrium(str(config_file('bearings/' + BEARINGS[name]['file'])),
                                             force_N=load['force_N'], moment_Nm=load.get('moment_Nm', (0.0, 0.0)))
         az = float(np.degrees(eq['ball_azimuth_rad'][int(np.argmax(eq['ball_load_N']))]))
         _zones[key] = round(az % 360.0, 1)
@@ -212,13 +211,13 @@ _bearing_docs = {}
 
 def _bearing_doc(name):
     if name not in _bearing_docs:
-        with open(CONFIG / 'bearings' / BEARINGS[name]['file'], encoding='utf-8') as f:
+        with open(config_file('bearings/' + BEARINGS[name]['file']), encoding='utf-8') as f:
             _bearing_docs[name] = yaml.safe_load(f)
     return _bearing_docs[name]
 
 
 def _rotating_ring(b):
-    with open(CONFIG / 'bearings' / b['file'], encoding='utf-8') as f:
+    with open(config_file('bearings/' + b['file']), encoding='utf-8') as f:
         return yaml.safe_load(f).get('rotating_ring', 'inner')
 
 
@@ -241,7 +240,7 @@ def scenario_of(case, work_dir):
     bearing = dict(_bearing_doc(case['bearing']))
     bearing['imperfections'] = dict(b['imperfections'], seed=case['seed'])
     bearing.pop('defects', None)
-    with open(CONFIG / 'sensors' / 'ct_gantry_housing_accelerometer.yaml', encoding='utf-8') as f:
+    with open(config_file('sensors/ct_gantry_housing_accelerometer.yaml'), encoding='utf-8') as f:
         sensor = yaml.safe_load(f)['sensor']
     sensor.update(b['sensor'], name=f"{case['bearing']} housing, radial", range_g=SENSOR_RANGE_G,
                   sensitivity_mV_per_g=10.0,
@@ -346,7 +345,6 @@ def run_cases(cases, work_dir, workers=0, log=print):
     # One single-threaded process per worker, as bearing_sim.campaign.
     with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
                       silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
-        client.run(lambda p: sys.path.insert(0, p) if p not in sys.path else None, str(SOURCE / 'scripts'))
         futures = client.map(run_case, cases, [work_dir] * len(cases), pure=False)
         for i, fut in enumerate(as_completed(futures)):
             rows.append(fut.result())
@@ -568,4 +566,7 @@ def main(argv=None):
 
 
 if __name__ == '__main__':
-    sys.exit(main())
+    # Through the module's own name, so that Dask's workers import run_case rather than
+    # receive a copy of this __main__ (python3 -m bearing_sim.cm_benchmark).
+    from bearing_sim import cm_benchmark
+    sys.exit(cm_benchmark.main())
