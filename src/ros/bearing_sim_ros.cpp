@@ -94,6 +94,7 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
   const IntegrationMethod method = params.integrator;
   real_time_ = params.real_time;
   publish_clock_ = params.publish_clock;
+  max_real_time_factor_ = params.max_real_time_factor;
   realtime_priority_ = params.realtime_priority;
   lock_memory_ = params.lock_memory;
   lead_s_ = params.lead_s;
@@ -714,6 +715,7 @@ void BearingSimRos::run() {
     if (!real_time_) {  // as fast as possible: publish each chunk as soon as computed
       ChunkBundle bundle = compute_chunk();
       publish_bundle(bundle);
+      if (max_real_time_factor_ > 0.0) sleep_to_real_time_factor(bundle.last_index);
       continue;
     }
     const std::size_t target = pipeline_->current_chunk_samples();
@@ -736,6 +738,20 @@ void BearingSimRos::run() {
       ready_.push_back(std::move(bundle));
     }
     queue_cv_.notify_all();
+  }
+}
+
+void BearingSimRos::sleep_to_real_time_factor(std::uint64_t last_index) {
+  using Clock = RealtimePacer::Clock;
+  const double simulated_s = static_cast<double>(last_index + 1) / sample_rate_hz_;
+  const Clock::time_point due =
+      wall_start_ + std::chrono::duration_cast<Clock::duration>(
+                        std::chrono::duration<double>(simulated_s / max_real_time_factor_));
+  // In slices, so that stop is noticed.
+  while (!stop_ && ros::ok()) {
+    const Clock::time_point now = Clock::now();
+    if (now >= due) return;
+    std::this_thread::sleep_for(std::min<Clock::duration>(due - now, std::chrono::milliseconds(50)));
   }
 }
 

@@ -28,6 +28,9 @@ SimNodeParameters read_sim_node_parameters(const XmlRpc::XmlRpcValue& private_pa
 
   p.real_time = r.boolean("real_time", p.real_time);
   p.publish_clock = r.boolean("publish_clock", !p.real_time);
+  // 0: as fast as the machine allows. A bound leaves CPU to the nodes that follow /clock (a
+  // scenario player reacts in wall time: its inputs arrive reaction time x factor late).
+  p.max_real_time_factor = r.number("max_real_time_factor", p.max_real_time_factor, 0.0, 1.0e4, "");
   // Linux SCHED_FIFO priorities are 1..99; 0: normal scheduling.
   p.realtime_priority = r.integer("realtime_priority", p.realtime_priority, 0, 99);
   p.lock_memory = r.boolean("lock_memory", p.lock_memory);

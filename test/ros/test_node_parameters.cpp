@@ -120,11 +120,12 @@ TEST(SimNodeParameters, ShippedFileIsReadAsWritten) {
   EXPECT_FALSE(p.frame_id.has_value());  // commented out: the rotating ring's frame
   EXPECT_FALSE(p.clearance_um.has_value());  // commented out: the bearing file's
   EXPECT_EQ(p.publish_clock, !p.real_time);
+  EXPECT_EQ(p.max_real_time_factor, yaml["max_real_time_factor"].as<double>());
 }
 
 TEST(SimNodeParameters, EveryParameterIsDocumentedInItsFile) {
   const auto keys = known_keys([](const XmlRpcValue& v) { read_sim(v); }, sim_file());
-  EXPECT_EQ(keys.size(), 37u);  // the table of docs/node.md
+  EXPECT_EQ(keys.size(), 38u);  // the table of docs/node.md
   EXPECT_TRUE(keys.count("lead_ms") && keys.count("clearance_um") && keys.count("frame_id"));
   expect_all_documented(keys, "bearing_sim_node.yaml");
 }

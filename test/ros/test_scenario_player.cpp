@@ -36,6 +36,9 @@ double kMaxLag_s = 1.0;
 // The scenario's times are those of scenario_short.yaml times this (~time_scale): the
 // fast-mode test stretches them to leave room for its larger lag.
 double kScale = 1.0;
+// Simulated seconds per wall second at most: 1 in real time, the node's max_real_time_factor
+// as fast as possible (~max_real_time_factor).
+double kMaxRealTimeFactor = 1.0;
 
 class ScenarioPlayerTest : public ::testing::Test {
  protected:
@@ -45,6 +48,7 @@ class ScenarioPlayerTest : public ::testing::Test {
     ros::param::get("~scenario_file", file);
     ros::param::get("~max_lag_s", kMaxLag_s);
     ros::param::get("~time_scale", kScale);
+    ros::param::get("~max_real_time_factor", kMaxRealTimeFactor);
     scenario_ = std::make_unique<Scenario>(Scenario::load(file));
     health_sub_ = nh.subscribe("health", 1000, &ScenarioPlayerTest::on_health);
     balls_sub_ = nh.subscribe("ball_loads", 100000, &ScenarioPlayerTest::on_balls);
@@ -82,7 +86,7 @@ class ScenarioPlayerTest : public ::testing::Test {
   }
   static void on_balls(const BallLoads::ConstPtr& m) {
     std::lock_guard<std::mutex> lock(mutex_);
-    balls_.push_back({m->header.stamp, m->cage_angle});
+    balls_.push_back({m->header.stamp, m->cage_angle, ros::WallTime::now()});
   }
   static void on_state(const ScenarioState::ConstPtr& m) {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -105,6 +109,7 @@ class ScenarioPlayerTest : public ::testing::Test {
   struct CageSample {
     ros::Time stamp;  // not in double seconds: wall-clock stamps would lose 0.2 us
     double cage_angle;
+    ros::WallTime received;
   };
   static std::unique_ptr<Scenario> scenario_;
   static std::mutex mutex_;
@@ -202,6 +207,16 @@ TEST_F(ScenarioPlayerTest, RingSpeedFromTheCageAngleFollowsTheScenario) {
   EXPECT_GT(holds, 100);  // 30 Hz over >= 4 s of holds
   EXPECT_GT(ramps, 20);   // 30 Hz over >= 1 s of ramp
   RecordProperty("mean_input_lag_ms", std::to_string(1e3 * lag_sum / std::max(ramps, 1)));
+}
+
+TEST_F(ScenarioPlayerTest, NodeClockNoFasterThanItsRealTimeFactor) {
+  ASSERT_GT(balls_.size(), 2u);
+  const double simulated_s = (balls_.back().stamp - balls_.front().stamp).toSec();
+  const double wall_s = (balls_.back().received - balls_.front().received).toSec();
+  ASSERT_GT(simulated_s, 0.5 * scenario_->duration_s());
+  // The node publishes the sample of time t no earlier than t / factor after its start; only a
+  // late first delivery shortens the wall span, hence half (an unbounded node runs 20-130x).
+  EXPECT_GE(wall_s, 0.5 * simulated_s / kMaxRealTimeFactor) << simulated_s << " s simulated";
 }
 
 TEST_F(ScenarioPlayerTest, HealthSpeedAndLoadAreTheScenariosInTheHolds) {

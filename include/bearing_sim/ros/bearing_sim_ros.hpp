@@ -98,6 +98,7 @@ class BearingSimRos : private PipelineSink {
   void lock_memory();
   // Publisher thread (real time; the sim thread as fast as possible).
   void run_publisher();
+  void sleep_to_real_time_factor(std::uint64_t last_index);  // not real time, bounded factor
   void publish_bundle(ChunkBundle& bundle);
   void apply_pending();
   // PipelineSink (sim thread, inside compute_chunk): into *bundle_.
@@ -120,6 +121,7 @@ class BearingSimRos : private PipelineSink {
   LoadRamp load_ramp_;  // sim thread: a new load over ~load_ramp_s (0: a step)
   bool real_time_ = true;
   bool publish_clock_ = false;
+  double max_real_time_factor_ = 0.0;  // not real time: 0 unbounded
   int realtime_priority_ = 0;  // SCHED_FIFO priority of the publisher in real time (sim thread: one less); 0: normal
   bool lock_memory_ = true;    // mlockall in real time
   double lead_s_ = 0.03;       // real time: chunks computed up to this far ahead of their due time

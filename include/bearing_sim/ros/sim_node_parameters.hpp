@@ -21,6 +21,7 @@ struct SimNodeParameters {
   double load_ramp_s = 0.0;
   bool real_time = true;
   bool publish_clock = false;  // default: !real_time
+  double max_real_time_factor = 0.0;  // not real time: simulated s per wall s at most; 0: unbounded
   int realtime_priority = 0;   // SCHED_FIFO of the publisher thread; 0: normal
   bool lock_memory = true;
   double lead_s = 0.03;
