@@ -1,5 +1,5 @@
 # CMake toolchain file: cross-compile for aarch64 Linux with Debian's g++-aarch64-linux-gnu.
-# Used by scripts/cross_test_arm64.sh (the ROS-free core and its kernel tests under qemu-user).
+# Used by dev/cross_test_arm64.sh (the ROS-free core and its kernel tests under qemu-user).
 #
 # The arm64 libraries (Highway, yaml-cpp, gtest, Eigen's headers) come from a sysroot of
 # unpacked Debian packages (BEARING_SIM_ARM64_SYSROOT, default build-arm64/sysroot), not from

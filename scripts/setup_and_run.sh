@@ -3,8 +3,8 @@
 # Extra arguments go to roslaunch (e.g. rviz:=true).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-"$here/install_deps.sh"
-"$here/build.sh"
+"$here/../dev/install_deps.sh"
+"$here/../dev/build.sh"
 source "$here/env.sh"
 set +u  # catkin's setup hooks read unset variables
 source "$BEARING_SIM_BUILD/devel/setup.bash"

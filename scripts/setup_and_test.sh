@@ -3,10 +3,10 @@
 # and end with a line "N passed, N failed, N skipped". Exit status 0 only if every test passed.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-"$here/install_deps.sh" || exit 1
-"$here/build.sh" || exit 1
+"$here/../dev/install_deps.sh" || exit 1
+"$here/../dev/build.sh" || exit 1
 source "$here/env.sh"
-"$here/build.sh" tests || exit 1
+"$here/../dev/build.sh" tests || exit 1
 set +u  # catkin's setup hooks read unset variables
 source "$BEARING_SIM_BUILD/devel/setup.bash"
 set -u
@@ -16,5 +16,5 @@ cmake --build "$BEARING_SIM_BUILD" -- -j1 run_tests 2>&1 | tee "$BEARING_SIM_BUI
 # Built without LCM (-DBEARING_SIM_WITH_LCM=OFF): its suites are not expected, and said so.
 without=()
 grep -q '^BEARING_SIM_WITH_LCM:BOOL=OFF' "$BEARING_SIM_BUILD/CMakeCache.txt" && without+=(--without lcm)
-/usr/bin/python3 "$here/count_test_results.py" "$BEARING_SIM_BUILD/test_results" "$here/../test/expected_suites.txt" \
+/usr/bin/python3 "$here/../dev/count_test_results.py" "$BEARING_SIM_BUILD/test_results" "$here/../test/expected_suites.txt" \
   "${without[@]}"

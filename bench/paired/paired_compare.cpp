@@ -1,4 +1,4 @@
-// scripts/compare_builds.sh's timer: loads two builds' paired_driver (each with its own copy of
+// dev/compare_builds.sh's timer: loads two builds' paired_driver (each with its own copy of
 // the core library, in its own link namespace) and times them in turns of a few hundred
 // samples, so that both see the same machine: on a shared VM whose speed drifts by tens of
 // percent within minutes, the ratio of neighbouring turns still resolves 1-2 %.

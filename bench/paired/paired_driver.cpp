@@ -1,4 +1,4 @@
-// One build's side of scripts/compare_builds.sh: the bench_simulate cases behind a C interface,
+// One build's side of dev/compare_builds.sh: the bench_simulate cases behind a C interface,
 // so that two builds of the core library can be loaded side by side into one process
 // (dlmopen) and timed in turns. Built by the script against each build; not part of the package.
 #include <ctime>

@@ -1,4 +1,4 @@
-// What the emulated CPU offers, for the log of scripts/cross_test_arm64.sh: Highway picks its
+// What the emulated CPU offers, for the log of dev/cross_test_arm64.sh: Highway picks its
 // SVE targets from these (SVE_256 needs 256-bit vectors, SVE2_128 SVE2 with 128-bit ones), so
 // the log shows that a qemu -cpu option took effect.
 #include <asm/hwcap.h>

@@ -39,9 +39,9 @@ ARGS = None
 DEVELOPMENT_ONLY = {
     'UNINSTALLED_TARGET': {'bearing_sim_bench_simulate', 'bearing_sim_bench_sensor', 'bearing_sim_bench_lcm_bridge',
                            'bearing_sim_integrator_study'},
-    'UNINSTALLED_SCRIPT': {'scripts/build.sh', 'scripts/install_deps.sh', 'scripts/setup_and_run.sh',
-                           'scripts/capture_rviz_screenshot.sh', 'scripts/make_validation.py',
-                           'scripts/cwru_indicators.py', 'scripts/compare_builds.sh', 'scripts/slurm_campaign.sh',
+    'UNINSTALLED_SCRIPT': {'scripts/setup_and_run.sh', 'scripts/cwru_indicators.py',
+                           'dev/build.sh', 'dev/install_deps.sh', 'dev/capture_rviz_screenshot.sh',
+                           'dev/make_validation.py', 'dev/compare_builds.sh', 'dev/slurm_campaign.sh',
                            'bench/bench_generate.sh', 'bench/bench_campaign.py'},
 }
 

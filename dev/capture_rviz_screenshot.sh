@@ -2,11 +2,11 @@
 # Screenshot of the ball-load display: starts Xvfb, the CT gantry launch file with rviz
 # (real bearing_sim_node, or the test fake with --fake), waits for the picture to settle
 # and saves docs/images/ct_gantry_rviz.png.
-#   scripts/capture_rviz_screenshot.sh [--fake] [output.png]
+#   dev/capture_rviz_screenshot.sh [--fake] [output.png]
 # Needs a built package ($BEARING_SIM_BUILD, default build/) and xvfb, x11-apps, imagemagick.
 set -eo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-source "$here/env.sh"
+source "$here/../scripts/env.sh"
 source "$BEARING_SIM_BUILD/devel/setup.bash"  # (not under set -u: ROS setup scripts read unset variables)
 set -u
 

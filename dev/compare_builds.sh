@@ -3,12 +3,12 @@
 # process (bench/paired): on a shared machine whose speed drifts by tens of percent within
 # minutes, bench_simulate cannot show a change of a few percent; neighbouring turns of the
 # two builds see the same machine, and the median of their ratios resolves 1-2 %.
-# Usage: scripts/compare_builds.sh BASE_COMMIT [SIMD_TARGET=AVX2] [TURNS=61]
+# Usage: dev/compare_builds.sh BASE_COMMIT [SIMD_TARGET=AVX2] [TURNS=61]
 # BASE_COMMIT's sources are unpacked (git archive) and built in $BEARING_SIM_COMPARE_DIR
-# (default /tmp/bearing_sim_compare); this tree's core library is built by scripts/build.sh.
+# (default /tmp/bearing_sim_compare); this tree's core library is built by dev/build.sh.
 # Both builds run the cases of this tree's config files. Times are CPU time of one core.
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/../scripts/env.sh"
 if [ $# -lt 1 ]; then
   sed -n '2,10p' "$0"
   exit 2
@@ -23,9 +23,11 @@ if [ ! -d "$tree" ]; then
   git -C "$BEARING_SIM_ROOT" archive "$rev" | tar -x -C "$tree"
 fi
 echo "building $rev's core library in $work/build_$rev and this tree's in $BEARING_SIM_BUILD" >&2
-BEARING_SIM_BUILD="$work/build_$rev" "$tree/scripts/build.sh" bearing_sim_core > "$work/build_$rev.log" 2>&1 \
+base_build="$tree/dev/build.sh"  # scripts/build.sh in commits before dev/
+[ -x "$base_build" ] || base_build="$tree/scripts/build.sh"
+BEARING_SIM_BUILD="$work/build_$rev" "$base_build" bearing_sim_core > "$work/build_$rev.log" 2>&1 \
   || { tail -20 "$work/build_$rev.log"; exit 1; }
-"$BEARING_SIM_ROOT/scripts/build.sh" bearing_sim_core > "$work/build_new.log" 2>&1 \
+"$BEARING_SIM_ROOT/dev/build.sh" bearing_sim_core > "$work/build_new.log" 2>&1 \
   || { tail -20 "$work/build_new.log"; exit 1; }
 driver() {  # source tree, build dir, output
   g++ -O2 -std=c++17 -fPIC -shared -I"$1/include" -I"$1/test/core" -I/usr/include/eigen3 \

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs the test command (setup_and_test.sh) RUNS times in a row (default 3) while one busy
+# Runs the test command (scripts/setup_and_test.sh) RUNS times in a row (default 3) while one busy
 # loop per core loads the machine: the proof that no test depends on the machine's speed.
 # Prints each run's "N passed, N failed, N skipped" line and wall time; exit 0 only if
 # every run passed.
@@ -16,7 +16,7 @@ status=0
 for i in $(seq "$runs"); do
   start=$(date +%s)
   log="$(mktemp /tmp/bearing_sim_test_under_load.XXXXXX)"
-  "$here/setup_and_test.sh" > "$log" 2>&1 || status=1
+  "$here/../scripts/setup_and_test.sh" > "$log" 2>&1 || status=1
   echo "run $i: $(tail -1 "$log") in $(( $(date +%s) - start )) s, load average $(cut -d' ' -f1-3 /proc/loadavg) (log: $log)"
 done
 exit "$status"

@@ -3,7 +3,7 @@
 # Arguments are make targets (default: all); $BEARING_SIM_CMAKE_ARGS adds CMake options, e.g.
 # BEARING_SIM_CMAKE_ARGS=-DBEARING_SIM_WITH_LCM=OFF.
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/../scripts/env.sh"
 # shellcheck disable=SC2086  # BEARING_SIM_CMAKE_ARGS is a list of options
 cmake -S "$BEARING_SIM_ROOT" -B "$BEARING_SIM_BUILD" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
   -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON ${BEARING_SIM_CMAKE_ARGS:-} \

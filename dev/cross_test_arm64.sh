@@ -4,7 +4,7 @@
 # SVE2_128 kernels are checked against the scalar loops (test_contact_kernel forces the
 # dispatcher onto every target the emulated CPU runs). Nothing here touches build/.
 #
-#   scripts/cross_test_arm64.sh [--all] [--tests "test_a test_b"] [--cpus "cpu1 cpu2"] [--jobs N]
+#   dev/cross_test_arm64.sh [--all] [--tests "test_a test_b"] [--cpus "cpu1 cpu2"] [--jobs N]
 #                               [--no-install]
 #
 #   --all         also every other suite of test/core, under the first CPU configuration only

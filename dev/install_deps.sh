@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs the Debian packages of scripts/debian_packages.txt that are missing.
+# Installs the Debian packages of dev/debian_packages.txt that are missing.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 mapfile -t wanted < <(grep -v '^#' "$here/debian_packages.txt" | tr ' ' '\n' | grep -v '^$')

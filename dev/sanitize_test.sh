@@ -5,7 +5,7 @@
 # "N passed, N failed" (test executables); exit 0 only if every one passed with no report.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-source "$here/env.sh"
+source "$here/../scripts/env.sh"
 build="${BEARING_SIM_SANITIZE_BUILD:-$BEARING_SIM_ROOT/build-asan}"
 mkdir -p "$build"
 start=$(date +%s)
