@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Real-time factor per core of `bearing_tool generate` (README, docs/datasets.md): the CT
+# Real-time factor per core of `bearing_tool generate` (docs/performance.md, docs/datasets.md): the CT
 # gantry scan scenario (config/scenarios/ct_gantry_scan.yaml: CT bearing, housing sensor,
 # spin-up, scan, spin-down, rotating unbalance), one thread, into a bag and into NPY, and
 # the run-to-failure scenario (a growing spall) into a bag. The figure is simulated
