@@ -33,6 +33,25 @@ FlexibleAdams::FlexibleAdams(const Acceleration& accel, const Eigen::VectorXd& z
     : n_(static_cast<int>(z_lin.size())), h_(step_s), t0_(t0), t_(t0), z_lin_(z_lin), z_(z0), v_(v0) {
   if (!(step_s > 0.0) || !std::isfinite(step_s)) throw InvalidInputError("flexible ring dynamics: bad step");
   const int n = n_;
+  linearize(accel, z_scale, v_scale, t0);
+  remainders_ = Eigen::VectorXd::Zero(5 * n);
+  history_z_ = Eigen::MatrixXd::Zero(n, 4);
+  history_v_ = Eigen::MatrixXd::Zero(n, 4);
+  history_z_.col(0) = z_;
+  history_v_.col(0) = v_;
+  history_t_[0] = t_;
+  remainders_.segment(n, n) = remainder(accel, z_, v_, t_, &a_);
+  known_ = 1;
+  y_.resize(2 * n);
+  free_.resize(2 * n);
+  yp_.resize(2 * n);
+  yc_.resize(2 * n);
+}
+
+void FlexibleAdams::linearize(const Acceleration& accel, const Eigen::VectorXd& z_scale,
+                              const Eigen::VectorXd& v_scale, double t0) {
+  const int n = n_;
+  const Eigen::VectorXd& z_lin = z_lin_;
   // The linear part: the Jacobian of the acceleration at the equilibrium at rest, by central
   // differences (the remainder takes whatever it misses, so it need only be close).
   lin_.resize(n, 2 * n);
@@ -80,13 +99,36 @@ FlexibleAdams::FlexibleAdams(const Acceleration& accel, const Eigen::VectorXd& z
     predictor_[order - 1] = remainder_weights(ab, order);
     corrector_[order - 1] = remainder_weights(am, order);
   }
-  remainders_ = Eigen::VectorXd::Zero(5 * n);
-  remainders_.segment(n, n) = remainder(accel, z_, v_, t_, &a_);
-  known_ = 1;
-  y_.resize(2 * n);
-  free_.resize(2 * n);
-  yp_.resize(2 * n);
-  yc_.resize(2 * n);
+}
+
+void FlexibleAdams::relinearize(const Acceleration& accel, const Eigen::VectorXd& z_lin,
+                                const Eigen::VectorXd& z_scale, const Eigen::VectorXd& v_scale) {
+  z_lin_ = z_lin;
+  linearize(accel, z_scale, v_scale, t_);
+  refresh(accel);
+}
+
+void FlexibleAdams::refresh(const Acceleration& accel) {
+  Eigen::VectorXd a;
+  for (int k = 0; k < known_; ++k)
+    remainders_.segment(n_ * (k + 1), n_) = remainder(accel, history_z_.col(k), history_v_.col(k), history_t_[k], &a);
+  // The current state's acceleration with the new function (reported until the next step).
+  const Eigen::VectorXd r = remainder(accel, z_, v_, t_, &a_);
+  (void)r;
+}
+
+void FlexibleAdams::add_to_remainders(const std::function<Eigen::VectorXd(double)>& delta) {
+  for (int k = 0; k < known_; ++k) remainders_.segment(n_ * (k + 1), n_) += delta(history_t_[k]);
+  a_ += delta(t_);
+}
+
+void FlexibleAdams::change_velocities(const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& change) {
+  change(z_, v_);
+  for (int k = 0; k < known_; ++k) {
+    Eigen::VectorXd v = history_v_.col(k);
+    change(history_z_.col(k), v);
+    history_v_.col(k) = v;
+  }
 }
 
 Eigen::VectorXd FlexibleAdams::remainder(const Acceleration& accel, const Eigen::VectorXd& z, const Eigen::VectorXd& v,
@@ -118,8 +160,16 @@ void FlexibleAdams::step(const Acceleration& accel) {
   // Correct with the predicted end's remainder (PEC: not evaluated again).
   const int c = std::min(known_ + 1, 4);
   product(corrector_[c - 1], remainders_.data(), free_.data(), yc_.data());
-  // The predicted end's remainder is the newest now.
+  // The predicted end's remainder is the newest now, with its state and time.
   std::copy_backward(remainders_.data(), remainders_.data() + 4 * n, remainders_.data() + 5 * n);
+  for (int k = 3; k > 0; --k) {
+    history_z_.col(k) = history_z_.col(k - 1);
+    history_v_.col(k) = history_v_.col(k - 1);
+    history_t_[k] = history_t_[k - 1];
+  }
+  history_z_.col(0) = z_lin_ + yp_.head(n);
+  history_v_.col(0) = yp_.tail(n);
+  history_t_[0] = t_end;
   known_ = std::min(known_ + 1, 4);
   z_ = z_lin_ + yc_.head(n);
   v_ = yc_.tail(n);

@@ -10,29 +10,23 @@ namespace bearing_sim {
 
 FlexibleDynamics::FlexibleDynamics(FlexibleBearing bearing, const Vector5& load, double ring_speed_rad_s,
                                    double sample_rate_hz, int substeps, IntegrationMethod method)
-    : bearing_(std::move(bearing)), load_(load), sample_rate_hz_(sample_rate_hz), method_(method) {
+    : bearing_(std::move(bearing)), sample_rate_hz_(sample_rate_hz), method_(method) {
   if (method != IntegrationMethod::Rk4 && method != IntegrationMethod::ExponentialAdamsPec)
     throw InvalidInputError(std::string("flexible ring dynamics: integrator ") + integration_method_name(method) +
                             " is not available for a flexible ring (adams_pec or rk4)");
   if (!(sample_rate_hz > 0.0) || !std::isfinite(sample_rate_hz))
     throw InvalidInputError("flexible ring dynamics: the sample rate must be > 0");
   if (!std::isfinite(ring_speed_rad_s)) throw InvalidInputError("flexible ring dynamics: non-finite ring speed");
+  if (!load.allFinite()) throw InvalidInputError("flexible ring dynamics: the load is not finite");
   check_ring_speed(ring_speed_rad_s, bearing_.model().config().pitch_diameter_m, "flexible ring dynamics: ring speed");
   if (substeps < 0 || substeps > 100000) throw InvalidInputError("flexible ring dynamics: substeps out of range");
-  const BearingModel& model = bearing_.model();
-  const Eigen::MatrixXd mass = bearing_.mass_matrix();  // throws without rotating_mass_kg
-  mass_.compute(mass);
-  k_ring_ = bearing_.ring_stiffness();
-  c_ring_ = bearing_.ring_damping();
-  external_ = Eigen::VectorXd::Zero(bearing_.size());
-  external_.head<5>() = load;
-  model.ring_speeds(ring_speed_rad_s, &inner_speed_, &outer_speed_);
-  // The mean cage slip is kept; its random fluctuation is not modelled here.
-  cage_speed_ = model.cage_speed_rad_s(inner_speed_, outer_speed_) * (1.0 - model.config().imperfections.cage_slip);
-  spin_speed_ = model.ball_spin_speed_rad_s(inner_speed_, outer_speed_);
+  load_line_.load = load;
+  ring_speed_ = ring_speed_rad_s;
+  bearing_changed();  // throws without rotating_mass_kg
 
   equilibrium_ = solve_flexible_static(bearing_, load, RollingPhase{});
-  highest_frequency_rad_s_ = flexible_natural_frequencies_rad_s(bearing_, equilibrium_).maxCoeff();
+  const Eigen::VectorXd natural = flexible_natural_frequencies_rad_s(bearing_, equilibrium_);
+  highest_frequency_rad_s_ = natural.maxCoeff();
   const bool adams = method == IntegrationMethod::ExponentialAdamsPec;
   substeps_ = substeps > 0 ? substeps
               : adams    ? kAdamsStepsPerSample
@@ -43,7 +37,7 @@ FlexibleDynamics::FlexibleDynamics(FlexibleBearing bearing, const Vector5& load,
   // own frame each mode's (cos, sin) pair turns at n Omega, (a, b)' = n Omega (b, -a). Starting
   // with that rate instead of at rest spares the run a start-up transient of the ring's modes.
   current_.velocities = Eigen::VectorXd::Zero(bearing_.size());
-  const double ring_rate = model.config().rotating_ring == RotatingRing::Outer ? outer_speed_ : inner_speed_;
+  const double ring_rate = ring_rate_rad_s();
   const auto& modes = bearing_.modes();
   for (std::size_t i = 0; i < modes.size(); ++i) {
     const double turn = modes[i].order * ring_rate;
@@ -51,19 +45,195 @@ FlexibleDynamics::FlexibleDynamics(FlexibleBearing bearing, const Vector5& load,
     current_.velocities[6 + 2 * i] = -turn * current_.coordinates[5 + 2 * i];
   }
   current_.accelerations = acceleration(current_.coordinates, current_.velocities, current_.phase);
+  // In the load's frame the static shape stands still: start from it at rest (at t = 0 the
+  // frames coincide).
   if (adams) {
-    // In the load's frame the static shape stands still: start from it at rest (at t = 0 the
-    // frames coincide). Difference steps for the linear part: 1 nm, 1 nm over the pitch
-    // radius for the tilts; 1 um/s.
-    const int n = bearing_.size();
-    const double rp = model.pitch_radius_m();
-    Eigen::VectorXd z_step = Eigen::VectorXd::Constant(n, 1e-9), v_step = Eigen::VectorXd::Constant(n, 1e-6);
-    z_step.segment<2>(3) /= rp;
-    v_step.segment<2>(3) /= rp;
-    adams_.emplace([this](const Eigen::VectorXd& z, const Eigen::VectorXd& zd,
-                          double t) { return load_frame_acceleration(z, zd, t); },
-                   equilibrium_.coordinates, z_step, v_step, equilibrium_.coordinates, Eigen::VectorXd::Zero(n),
-                   internal_step_s(), 0.0);
+    lowest_frequency_lin_rad_s_ = natural.minCoeff();
+    start_adams(equilibrium_.coordinates, Eigen::VectorXd::Zero(bearing_.size()), 0.0);
+  }
+}
+
+void FlexibleDynamics::bearing_changed() {
+  const BearingModel& model = bearing_.model();
+  mass_.compute(bearing_.mass_matrix());  // throws without rotating_mass_kg
+  k_ring_ = bearing_.ring_stiffness();
+  c_ring_ = bearing_.ring_damping();
+  external_ = Eigen::VectorXd::Zero(bearing_.size());
+  max_order_ = 0;
+  for (const RingMode& m : bearing_.modes()) max_order_ = std::max(max_order_, m.order);
+  (void)model;
+  update_speeds();
+}
+
+void FlexibleDynamics::update_speeds() {
+  const BearingModel& model = bearing_.model();
+  model.ring_speeds(ring_speed_, &inner_speed_, &outer_speed_);
+  // The mean cage slip is kept; its random fluctuation is not modelled here.
+  cage_speed_ = model.cage_speed_rad_s(inner_speed_, outer_speed_) * (1.0 - model.config().imperfections.cage_slip);
+  spin_speed_ = model.ball_spin_speed_rad_s(inner_speed_, outer_speed_);
+}
+
+const Eigen::VectorXd& FlexibleDynamics::external_at(double t) const {
+  external_.head<5>() = load_line_.at(t);
+  return external_;
+}
+
+void FlexibleDynamics::linearization_steps(Eigen::VectorXd* z_step, Eigen::VectorXd* v_step) const {
+  // Difference steps for the linear part: 1 nm, 1 nm over the pitch radius for the tilts; 1 um/s.
+  const int n = bearing_.size();
+  const double rp = bearing_.model().pitch_radius_m();
+  *z_step = Eigen::VectorXd::Constant(n, 1e-9);
+  *v_step = Eigen::VectorXd::Constant(n, 1e-6);
+  z_step->segment<2>(3) /= rp;
+  v_step->segment<2>(3) /= rp;
+}
+
+void FlexibleDynamics::start_adams(const Eigen::VectorXd& z0, const Eigen::VectorXd& v0, double t0) {
+  Eigen::VectorXd z_step, v_step;
+  linearization_steps(&z_step, &v_step);
+  adams_.emplace(load_frame_function(), z0, z_step, v_step, z0, v0, internal_step_s(), t0);
+  load_lin_ = load_line_.load;
+  speed_lin_ = ring_rate_rad_s();
+  samples_since_linearization_ = 0;
+  ++linearizations_;
+}
+
+void FlexibleDynamics::relinearize_adams() {
+  const double t = adams_->time_s();
+  const RollingPhase phase = phase_at(t);
+  // About the equilibrium of the current load (the ring vibrates about it), its shape in the
+  // load's frame, or about the current state when there is none.
+  Eigen::VectorXd z_lin = adams_->position();
+  try {
+    const FlexibleStaticSolution s = solve_flexible_static(bearing_, load_line_.load, phase);
+    z_lin = to_load_frame(s.coordinates, bearing_.ring_angle_rad(phase));
+    lowest_frequency_lin_rad_s_ = flexible_natural_frequencies_rad_s(bearing_, s).minCoeff();
+  } catch (const LoadNotCarriedError&) {
+  }
+  Eigen::VectorXd z_step, v_step;
+  linearization_steps(&z_step, &v_step);
+  adams_->relinearize(load_frame_function(), z_lin, z_step, v_step);
+  load_lin_ = load_line_.load;
+  speed_lin_ = ring_rate_rad_s();
+  samples_since_linearization_ = 0;
+  ++linearizations_;
+}
+
+Eigen::VectorXd FlexibleDynamics::to_load_frame(const Eigen::VectorXd& x, double psi) const {
+  Eigen::VectorXd z = x;
+  const auto& modes = bearing_.modes();
+  for (std::size_t i = 0; i < modes.size(); ++i) {
+    const int j = 5 + 2 * static_cast<int>(i);
+    const double c = std::cos(modes[i].order * psi), s = std::sin(modes[i].order * psi);
+    z[j] = c * x[j] - s * x[j + 1];
+    z[j + 1] = s * x[j] + c * x[j + 1];
+  }
+  return z;
+}
+
+void FlexibleDynamics::set_load(const Vector5& load) { set_load(load, load); }
+
+void FlexibleDynamics::set_load(const Vector5& load, const Vector5& load_at_sample_end) {
+  if (!load.allFinite()) throw InvalidInputError("load is not finite");
+  if (!load_at_sample_end.allFinite()) throw InvalidInputError("load at the sample's end is not finite");
+  const double half_sample_s = 0.5 / sample_rate_hz_;
+  change_load(load, (load_at_sample_end - load) / half_sample_s, state_time_s() + half_sample_s);
+}
+
+void FlexibleDynamics::change_load(const Vector5& load, const Vector5& rate, double mid_time_s) {
+  const LoadLine before = load_line_;
+  load_line_ = LoadLine{load, rate, mid_time_s};
+  // The contact forces do not depend on the external load: the accelerations move by the
+  // change over the mass (zero on the modes: the mass matrix is block diagonal), the current
+  // one and the Adams remainders each at its time.
+  const int n = bearing_.size();
+  const auto moved = [&](double t) {
+    Eigen::VectorXd df = Eigen::VectorXd::Zero(n);
+    df.head<5>() = load_line_.at(t) - before.at(t);
+    return Eigen::VectorXd(mass_.solve(df));
+  };
+  if (adams_) adams_->add_to_remainders(moved);
+  current_.accelerations += moved(state_time_s());
+}
+
+void FlexibleDynamics::set_ring_speed(double ring_speed_rad_s) {
+  if (!std::isfinite(ring_speed_rad_s)) throw InvalidInputError("ring speed is not finite");
+  check_ring_speed(ring_speed_rad_s, bearing_.model().config().pitch_diameter_m, "ring speed");
+  // The phases go on from now at the new speeds.
+  origin_ = current_.phase;
+  origin_.time_s = state_time_s();
+  const double rate_before = ring_rate_rad_s();
+  ring_speed_ = ring_speed_rad_s;
+  update_speeds();
+  const double change = ring_rate_rad_s() - rate_before;
+  if (adams_ && change != 0.0) {
+    // The material's motion stays; its rate in the load's frame, b' = R a' + n Omega J b, moves.
+    const auto& modes = bearing_.modes();
+    adams_->change_velocities([&](const Eigen::VectorXd& z, Eigen::VectorXd& v) {
+      for (std::size_t i = 0; i < modes.size(); ++i) {
+        const int j = 5 + 2 * static_cast<int>(i);
+        const double dw = modes[i].order * change;
+        v[j] -= dw * z[j + 1];
+        v[j + 1] += dw * z[j];
+      }
+    });
+  }
+  // The ring frame's accelerations (RK4's first stage) hold: x and x' are the material's.
+}
+
+void FlexibleDynamics::set_model(BearingModel model) {
+  if (!model.config().flexible_ring.present)
+    throw InvalidInputError(model.config().name + ": a flexible-ring run needs a bearing with a flexible_ring block");
+  FlexibleBearing bearing(std::move(model));
+  if (bearing.size() != bearing_.size())
+    throw InvalidInputError(bearing.model().config().name + ": the new bearing's ring has " +
+                            std::to_string(bearing.modes().size()) + " modes, the running one " +
+                            std::to_string(bearing_.modes().size()));
+  bearing_ = std::move(bearing);
+  bearing_changed();
+  current_.accelerations = acceleration(current_.coordinates, current_.velocities, current_.phase);
+  if (adams_) relinearize_adams();
+}
+
+void FlexibleDynamics::add_spall(Spall spall) {
+  spall.created_at_s = state_time_s();
+  BearingModel model = bearing_.model();
+  model.add_spall(spall);
+  bearing_ = FlexibleBearing(std::move(model));
+  current_.accelerations = acceleration(current_.coordinates, current_.velocities, current_.phase);
+  if (adams_) adams_->refresh(load_frame_function());  // the remainder jumps
+}
+
+void FlexibleDynamics::clear_spalls() {
+  BearingModel model = bearing_.model();
+  model.clear_spalls();
+  bearing_ = FlexibleBearing(std::move(model));
+  current_.accelerations = acceleration(current_.coordinates, current_.velocities, current_.phase);
+  if (adams_) adams_->refresh(load_frame_function());
+}
+
+void FlexibleDynamics::reset_to_equilibrium() {
+  const double t = state_time_s();
+  RollingPhase phase = current_.phase;
+  phase.time_s = t;
+  const FlexibleStaticSolution s = solve_flexible_static(bearing_, load_line_.load, phase);
+  current_.time_s = t;
+  current_.phase = phase;
+  current_.coordinates = s.coordinates;
+  current_.velocities = Eigen::VectorXd::Zero(bearing_.size());
+  const double ring_rate = ring_rate_rad_s();
+  const auto& modes = bearing_.modes();
+  for (std::size_t i = 0; i < modes.size(); ++i) {
+    const double turn = modes[i].order * ring_rate;
+    current_.velocities[5 + 2 * i] = turn * current_.coordinates[6 + 2 * i];
+    current_.velocities[6 + 2 * i] = -turn * current_.coordinates[5 + 2 * i];
+  }
+  current_.accelerations = acceleration(current_.coordinates, current_.velocities, phase);
+  origin_ = phase;
+  if (adams_) {
+    lowest_frequency_lin_rad_s_ = flexible_natural_frequencies_rad_s(bearing_, s).minCoeff();
+    start_adams(to_load_frame(s.coordinates, bearing_.ring_angle_rad(phase)), Eigen::VectorXd::Zero(bearing_.size()),
+                t);
   }
 }
 
@@ -77,7 +247,7 @@ void FlexibleDynamics::to_ring_frame(const Eigen::VectorXd& z, const Eigen::Vect
   *x = z;
   material_rate(z, z_dot, x_dot);  // R a', turned back below
   if (z_ddot) *x_ddot = *z_ddot;
-  const double psi = bearing_.ring_angle_rad(advanced(RollingPhase{}, t)), rate = ring_rate_rad_s();
+  const double psi = bearing_.ring_angle_rad(phase_at(t)), rate = ring_rate_rad_s();
   const auto& modes = bearing_.modes();
   for (std::size_t i = 0; i < modes.size(); ++i) {
     const int j = 5 + 2 * static_cast<int>(i);
@@ -119,10 +289,10 @@ Eigen::VectorXd FlexibleDynamics::load_frame_acceleration(const Eigen::VectorXd&
   const double rate = ring_rate_rad_s();
   const auto& modes = bearing_.modes();
   material_rate(z, z_dot, &material_rate_);
-  const RollingPhase phase = advanced(RollingPhase{}, t);
+  const RollingPhase phase = phase_at(t);
   const Eigen::VectorXd contact = bearing_.contact_force_load_frame(z, material_rate_, phase, true, &contact_work_);
   Eigen::VectorXd a =
-      mass_.solve(external_ + contact - k_ring_.cwiseProduct(z) - c_ring_.cwiseProduct(material_rate_));
+      mass_.solve(external_at(t) + contact - k_ring_.cwiseProduct(z) - c_ring_.cwiseProduct(material_rate_));
   // b'' = R a'' + 2 w J b' + w^2 b.
   for (std::size_t i = 0; i < modes.size(); ++i) {
     const int j = 5 + 2 * static_cast<int>(i);
@@ -140,14 +310,29 @@ RollingPhase FlexibleDynamics::advanced(const RollingPhase& p, double dt) const 
 
 Eigen::VectorXd FlexibleDynamics::acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                                                const RollingPhase& phase) const {
-  const Eigen::VectorXd f = external_ + bearing_.contact_force(x, v, phase) - k_ring_.cwiseProduct(x) -
-                            c_ring_.cwiseProduct(v);
+  const Eigen::VectorXd f = external_at(phase.time_s) + bearing_.contact_force(x, v, phase) -
+                            k_ring_.cwiseProduct(x) - c_ring_.cwiseProduct(v);
   return mass_.solve(f);
 }
 
 const FlexibleSample& FlexibleDynamics::step() {
-  if (adams_) step_adams();
-  else step_rk4();
+  if (adams_) {
+    // A changed load or speed is followed at most every kSamplesPerLinearization samples, so
+    // that an input changing every sample cannot make every sample pay for a linearization.
+    ++samples_since_linearization_;
+    if (samples_since_linearization_ >= kSamplesPerLinearization &&
+        ((load_line_.load - load_lin_).norm() > kRelinearizeLoadChange * load_lin_.norm() ||
+         max_order_ * std::abs(ring_rate_rad_s() - speed_lin_) > kRelinearizeTurnChange * lowest_frequency_lin_rad_s_))
+      relinearize_adams();
+    step_adams();
+  } else {
+    step_rk4();
+  }
+  // A load line is for one sample: from its end on the load holds the end value.
+  if (!load_line_.rate.isZero()) {
+    const double t = state_time_s();
+    change_load(load_line_.at(t), Vector5::Zero(), t);
+  }
   return current_;
 }
 
@@ -161,7 +346,7 @@ void FlexibleDynamics::step_adams() {
                           std::to_string(adams_->time_s()) + " s");
   ++sample_index_;
   const double t = static_cast<double>(sample_index_) / sample_rate_hz_;
-  RollingPhase phase = advanced(RollingPhase{}, adams_->time_s());
+  RollingPhase phase = phase_at(adams_->time_s());
   phase.time_s = t;
   current_.time_s = t;
   current_.phase = phase;

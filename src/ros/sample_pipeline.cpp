@@ -18,12 +18,12 @@ std::size_t sensor_chunk_samples(std::size_t ideal_chunk_samples, int decimation
 
 }  // namespace
 
-SamplePipeline::SamplePipeline(BearingDynamics dynamics, std::unique_ptr<TriaxialSensor> sensor,
+SamplePipeline::SamplePipeline(std::unique_ptr<RingDynamics> dynamics, std::unique_ptr<TriaxialSensor> sensor,
                                const OutputSettings& settings, double health_rate_hz)
     : source_(std::move(dynamics)),
       sensor_(std::move(sensor)),
       settings_(settings),
-      sample_rate_hz_(source_.dynamics().sample_rate_hz()),
+      sample_rate_hz_(source_.ring().sample_rate_hz()),
       measured_rate_hz_(sensor_ ? sensor_->output_rate_hz() : sample_rate_hz_),
       assembler_(settings.chunk_samples),
       level_rms_(window_samples(settings.level_window_s, measured_rate_hz_)),
@@ -61,7 +61,7 @@ bool SamplePipeline::step(PipelineSink& sink) {
   if (level_divider_.due(sample.index))
     sink.level(sample, level_rms_.rms(), static_cast<double>(level_rms_.size()) / measured_rate_hz_);
   if (ball_loads_divider_.due(sample.index) && sink.wants_ball_loads())
-    sink.ball_loads(sample, source_.dynamics().model());
+    sink.ball_loads(sample, source_.ring().model(), source_.ring().ball_states());
   sink.sample_done(sample);
   if (health_divider_ && health_divider_->due(sample.index)) {
     std::vector<float> x = take_health_samples();
@@ -91,7 +91,7 @@ void SamplePipeline::close_ideal_chunk(PipelineSink& sink) {
     std::vector<float> x = take_health_samples();
     sink.health_samples(std::move(x), std::nullopt);
   }
-  sink.chunk_end(last_index, n, source_.dynamics().load(), source_.dynamics().ring_speed_rad_s());
+  sink.chunk_end(last_index, n, source_.ring().load(), source_.ring().ring_speed_rad_s());
 }
 
 void SamplePipeline::close_sensor_chunk(PipelineSink& sink) {

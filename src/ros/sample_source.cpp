@@ -1,5 +1,6 @@
 #include "bearing_sim/ros/sample_source.hpp"
 
+#include <stdexcept>
 #include <utility>
 
 #include "bearing_sim/core/errors.hpp"
@@ -7,21 +8,32 @@
 namespace bearing_sim {
 namespace ros_node {
 
-SampleSource::SampleSource(BearingDynamics dynamics) : dynamics_(std::move(dynamics)) {}
+SampleSource::SampleSource(std::unique_ptr<RingDynamics> dynamics) : dynamics_(std::move(dynamics)) {
+  if (!dynamics_) throw std::invalid_argument("SampleSource: no dynamics");
+}
+
+SampleSource::SampleSource(BearingDynamics dynamics)
+    : dynamics_(std::make_unique<RigidRingDynamics>(std::move(dynamics))) {}
+
+BearingDynamics& SampleSource::dynamics() {
+  BearingDynamics* rigid = dynamics_->rigid();
+  if (!rigid) throw std::logic_error("SampleSource::dynamics(): the ring is flexible; use ring()");
+  return *rigid;
+}
 
 SampleSource::Sample SampleSource::next() {
   Sample out;
   out.index = next_index_;
-  out.time_s = static_cast<double>(next_index_) / dynamics_.sample_rate_hz();
+  out.time_s = static_cast<double>(next_index_) / dynamics_->sample_rate_hz();
   if (next_index_ > 0) {
     try {
-      dynamics_.step();
+      dynamics_->step();
     } catch (const DivergenceError& e) {
       ++divergence_count_;
       last_divergence_ = e.what();
       out.diverged = true;
       try {
-        dynamics_.reset_to_equilibrium();
+        dynamics_->reset_to_equilibrium();
       } catch (const std::exception& reset_error) {
         // No equilibrium either: the state is still the last good one (step() leaves it
         // unchanged when it throws), which is finite.
@@ -29,7 +41,7 @@ SampleSource::Sample SampleSource::next() {
       }
     }
   }
-  held_ = dynamics_.current();
+  held_ = dynamics_->current();
   // Our index and time; after a reset the core's own counter lags ours.
   held_.time_s = out.time_s;
   if (!held_.displacement.allFinite() || !held_.velocity.allFinite() || !held_.acceleration.allFinite()) {

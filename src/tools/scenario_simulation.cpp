@@ -7,7 +7,7 @@
 #include <cstdio>
 
 #include "bearing_sim/core/bearing_config.hpp"
-#include "bearing_sim/core/bearing_dynamics.hpp"
+#include "bearing_sim/core/ring_dynamics.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/simd_info.hpp"
 #include "bearing_sim/core/thermal_clearance.hpp"
@@ -127,9 +127,9 @@ class DatasetPipelineSink : public ros_node::PipelineSink {
     for (DatasetSink* s : sinks_) s->level(sample.index, accel_rms, window_s);
   }
   bool wants_ball_loads() const override { return want_balls_; }
-  void ball_loads(const ros_node::SampleSource::Sample& sample, const BearingModel& model) override {
+  void ball_loads(const ros_node::SampleSource::Sample& sample, const BearingModel& model,
+                  const std::vector<BallState>& balls) override {
     SinkTimer t(&stats_->sink_cpu_s);
-    const std::vector<BallState> balls = model.ball_states(sample.state->displacement, sample.state->cage_angle_rad);
     for (DatasetSink* s : sinks_)
       s->ball_loads(sample.index, balls, model.rows(), model.balls_per_row(), sample.state->cage_angle_rad);
   }
@@ -188,10 +188,10 @@ RunStats ScenarioSimulation::run(const std::vector<DatasetSink*>& sinks, const s
   outputs.level_rate_hz = settings_.level_rate_hz;
   outputs.ball_loads_rate_hz = settings_.ball_loads_rate_hz;
   // The live node's pipeline: same chunks, sensor, level, dividers and health hand-over.
-  SamplePipeline pipeline(BearingDynamics(*model_, start.load, start.ring_speed_rad_s, DynamicsOptions{rate, 0}),
+  SamplePipeline pipeline(make_ring_dynamics(*model_, start.load, start.ring_speed_rad_s, DynamicsOptions{rate, 0}),
                           sensor_config_ ? std::make_unique<TriaxialSensor>(*sensor_config_, rate) : nullptr, outputs,
                           want_health ? settings_.health_rate_hz : 0.0);
-  BearingDynamics& dynamics = pipeline.source().dynamics();
+  RingDynamics& dynamics = pipeline.source().ring();
   std::unique_ptr<HealthMonitor> health;
   if (want_health) {
     HealthSettings hs;

@@ -27,6 +27,23 @@ class FlexibleAdams {
 
   // One step of step_s from the current state.
   void step(const Acceleration& accel);
+  // A new linear part at (z_lin, 0) at the current time, for an acceleration function that
+  // changed (load, speed, bearing): the Jacobian, e^{hL} and the phi weights again, and the
+  // remainders of the history evaluated again at their states and times with `accel` (4
+  // force evaluations), so that the method keeps its order across the change.
+  void relinearize(const Acceleration& accel, const Eigen::VectorXd& z_lin, const Eigen::VectorXd& z_scale,
+                   const Eigen::VectorXd& v_scale);
+  // The history's remainders evaluated again with `accel` (a spall added or cleared: the
+  // remainder jumps), keeping the linear part.
+  void refresh(const Acceleration& accel);
+  // Adds delta(t) to the remainder of each history entry at its time t (a changed external
+  // load: as if the new one had always acted; r is linear in it).
+  void add_to_remainders(const std::function<Eigen::VectorXd(double)>& delta);
+  // change(z, v) adds to v what a change of frame speed makes of it, for the state and the
+  // history's states (the ring's speed changed: the load frame's rate of the same material
+  // motion moves by dw J b).
+  void change_velocities(const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& change);
+  const Eigen::VectorXd& linearization_point() const { return z_lin_; }
   const Eigen::VectorXd& position() const { return z_; }
   const Eigen::VectorXd& velocity() const { return v_; }
   const Eigen::VectorXd& acceleration() const { return a_; }
@@ -35,6 +52,7 @@ class FlexibleAdams {
   double highest_rate_rad_s() const { return highest_rate_; }
 
  private:
+  void linearize(const Acceleration& accel, const Eigen::VectorXd& z_scale, const Eigen::VectorXd& v_scale, double t);
   // r = z'' - lin (z - z_lin, z'), and z'' in *accel.
   Eigen::VectorXd remainder(const Acceleration& accel, const Eigen::VectorXd& z, const Eigen::VectorXd& v, double t,
                             Eigen::VectorXd* a) const;
@@ -54,6 +72,9 @@ class FlexibleAdams {
   // predicted end's, so that both products read one contiguous vector.
   Eigen::VectorXd remainders_;
   int known_ = 0;  // how many of the 4 are known
+  // The states and times the 4 history remainders were evaluated at, newest first (columns).
+  Eigen::MatrixXd history_z_, history_v_;
+  std::array<double, 4> history_t_{};
   Eigen::VectorXd y_, free_, yp_, yc_, a_end_;  // work vectors (no allocation per step)
   mutable Eigen::VectorXd remainder_y_, minus_remainder_;
   Eigen::VectorXd z_, v_, a_;

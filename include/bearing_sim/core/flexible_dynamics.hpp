@@ -38,6 +38,42 @@ class FlexibleDynamics {
   // One output sample. Throws DivergenceError on a non-finite state.
   const FlexibleSample& step();
 
+  // Inputs between samples, as BearingDynamics' (InvalidInputError when not finite). A load
+  // given with its end value follows the straight line through the mid value at the sample's
+  // middle and the end value at its end, then holds the end value. The Adams method's history
+  // moves with a new load (as if it had always acted: the remainder is linear in it) and with
+  // a new speed (its load-frame rates: the material's rate is what stays); its linear part is
+  // made again when the load or the speed has moved far enough since the last (see below).
+  void set_load(const Vector5& load);
+  void set_load(const Vector5& load_over_sample, const Vector5& load_at_sample_end);
+  void set_ring_speed(double ring_speed_rad_s);
+  // Replace the bearing (clearance, damping, temperature; it must keep its flexible_ring
+  // block) keeping the state; the Adams method linearizes again.
+  void set_model(BearingModel model);
+  // Spalls at runtime (a new one starts growing now); InvalidInputError for one that does not fit.
+  void add_spall(Spall spall);
+  void clear_spalls();
+  // Back to the static equilibrium of the current load, the ring's shape standing in the load's
+  // frame, keeping time and phases.
+  void reset_to_equilibrium();
+
+  const Vector5& load() const { return load_line_.load; }
+  double ring_speed_rad_s() const { return ring_speed_; }
+  double sample_rate_hz() const { return sample_rate_hz_; }
+  std::uint64_t sample_index() const { return sample_index_; }
+  // Linear parts made by the Adams method since construction (the first included).
+  std::uint64_t linearizations() const { return linearizations_; }
+  // The Adams method linearizes again (at the static equilibrium of the current load) when,
+  // since the last linearization, the load has moved by more than kRelinearizeLoadChange of
+  // its size then (the contacts' stiffness goes as F^(1/3): 20 % of load is 6 % of stiffness,
+  // as the rigid ring's rule), or the highest ring order's turning rate n_max Omega by more than
+  // kRelinearizeTurnChange of the lowest natural frequency then (the turning terms 2 n Omega
+  // and (n Omega)^2 of the linear part are all the speed changes in it); at most once per
+  // kSamplesPerLinearization samples (docs/model.md 18.5).
+  static constexpr double kRelinearizeLoadChange = 0.2;
+  static constexpr double kRelinearizeTurnChange = 0.05;
+  static constexpr int kSamplesPerLinearization = 16;
+
   const FlexibleSample& current() const { return current_; }
   const FlexibleBearing& bearing() const { return bearing_; }
   const FlexibleStaticSolution& equilibrium() const { return equilibrium_; }
@@ -59,13 +95,48 @@ class FlexibleDynamics {
   void step_rk4();
   void step_adams();
   double ring_rate_rad_s() const;
+  // The phases at time t (from the last speed change on, at the current speeds).
+  RollingPhase phase_at(double t) const { return advanced(origin_, t - origin_.time_s); }
+  void update_speeds();
+  // The external force on x at time t (the load line's, zero on the ring's modes).
+  const Eigen::VectorXd& external_at(double t) const;
+  // The ring-frame coordinates x at ring angle psi in the load's frame, b = R(n psi) a.
+  Eigen::VectorXd to_load_frame(const Eigen::VectorXd& x, double psi) const;
+  void start_adams(const Eigen::VectorXd& z0, const Eigen::VectorXd& v0, double t0);
+  void relinearize_adams();
+  void linearization_steps(Eigen::VectorXd* z_step, Eigen::VectorXd* v_step) const;
+  FlexibleAdams::Acceleration load_frame_function() {
+    return [this](const Eigen::VectorXd& z, const Eigen::VectorXd& zd, double t) {
+      return load_frame_acceleration(z, zd, t);
+    };
+  }
+  // After a change of bearing: mass, ring stiffness and damping, speeds, lowest frequency.
+  void bearing_changed();
+  void change_load(const Vector5& load, const Vector5& rate, double mid_time_s);
+  // The time of the state the next step starts from (the last sample's).
+  double state_time_s() const { return static_cast<double>(sample_index_) / sample_rate_hz_; }
   // Each pair's rate as the ring's material sees it, in the load's frame: R a' = b' - w J b
   // (w = n Omega, J = [0 -1; 1 0]); the rigid coordinates' rates as they are.
   void material_rate(const Eigen::VectorXd& z, const Eigen::VectorXd& z_dot, Eigen::VectorXd* rate_out) const;
 
   FlexibleBearing bearing_;
-  Vector5 load_;
-  Eigen::VectorXd external_, k_ring_, c_ring_;
+  // The external load in time: load + rate (t - mid_time_s), as BearingDynamics'.
+  struct LoadLine {
+    Vector5 load = Vector5::Zero(), rate = Vector5::Zero();
+    double mid_time_s = 0.0;
+    Vector5 at(double t) const { return load + rate * (t - mid_time_s); }
+  };
+  LoadLine load_line_;
+  mutable Eigen::VectorXd external_;
+  Eigen::VectorXd k_ring_, c_ring_;
+  double ring_speed_ = 0.0;
+  RollingPhase origin_;  // the phases at the last speed change (time_s: its time)
+  // At the last linearization: load, ring speed, lowest natural frequency (rad/s).
+  Vector5 load_lin_ = Vector5::Zero();
+  double speed_lin_ = 0.0, lowest_frequency_lin_rad_s_ = 0.0;
+  int samples_since_linearization_ = 0;
+  std::uint64_t linearizations_ = 0;
+  int max_order_ = 0;
   Eigen::LDLT<Eigen::MatrixXd> mass_;
   double sample_rate_hz_;
   double inner_speed_ = 0.0, outer_speed_ = 0.0, cage_speed_ = 0.0, spin_speed_ = 0.0;

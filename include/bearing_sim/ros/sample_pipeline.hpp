@@ -5,7 +5,7 @@
 // measured samples to health. What becomes of the outputs is the sink's business: the
 // node's sink makes messages and queues them for their due time, generate's writes files
 // and analyses health synchronously. Inputs (load, speed, defects) are set on
-// source().dynamics() between steps by the caller.
+// source().ring() between steps by the caller; the ring is rigid or flexible (RingDynamics).
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "bearing_sim/core/bearing_dynamics.hpp"
+#include "bearing_sim/core/ring_dynamics.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
 #include "bearing_sim/ros/chunk_assembler.hpp"
 #include "bearing_sim/ros/sample_divider.hpp"
@@ -44,6 +44,14 @@ class PipelineSink {
   virtual void level(const SampleSource::Sample& sample, double accel_rms, double window_s) = 0;
   // Only asked when a ball-load sample is due (per-ball states cost microseconds per ball).
   virtual bool wants_ball_loads() const { return false; }
+  // The balls' states at the sample (RingDynamics::ball_states: with a flexible ring's
+  // deformation). By default handed to the two-argument form, which computes the rigid
+  // ring's states itself.
+  virtual void ball_loads(const SampleSource::Sample& sample, const BearingModel& model,
+                          const std::vector<BallState>& balls) {
+    (void)balls;
+    ball_loads(sample, model);
+  }
   virtual void ball_loads(const SampleSource::Sample& sample, const BearingModel& model) {
     (void)sample, (void)model;
   }
@@ -65,8 +73,12 @@ class PipelineSink {
 class SamplePipeline {
  public:
   // sensor: null for none. health_rate_hz 0: no health hand-over.
+  SamplePipeline(std::unique_ptr<RingDynamics> dynamics, std::unique_ptr<TriaxialSensor> sensor,
+                 const OutputSettings& settings, double health_rate_hz);
   SamplePipeline(BearingDynamics dynamics, std::unique_ptr<TriaxialSensor> sensor, const OutputSettings& settings,
-                 double health_rate_hz);
+                 double health_rate_hz)
+      : SamplePipeline(std::make_unique<RigidRingDynamics>(std::move(dynamics)), std::move(sensor), settings,
+                       health_rate_hz) {}
 
   // One dynamics sample through everything; returns true when it closed an ideal chunk.
   bool step(PipelineSink& sink);

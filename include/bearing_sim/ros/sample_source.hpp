@@ -4,15 +4,18 @@
 // leaves this class: the model is reset to the static equilibrium and that finite
 // state is the sample (ROS-free).
 #include <cstdint>
+#include <memory>
 #include <string>
 
-#include "bearing_sim/core/bearing_dynamics.hpp"
+#include "bearing_sim/core/ring_dynamics.hpp"
 
 namespace bearing_sim {
 namespace ros_node {
 
 class SampleSource {
  public:
+  // The rigid or flexible ring's dynamics (make_ring_dynamics).
+  explicit SampleSource(std::unique_ptr<RingDynamics> dynamics);
   explicit SampleSource(BearingDynamics dynamics);
 
   struct Sample {
@@ -24,14 +27,16 @@ class SampleSource {
   Sample next();
 
   // For inputs and model changes, between samples.
-  BearingDynamics& dynamics() { return dynamics_; }
-  const BearingDynamics& dynamics() const { return dynamics_; }
+  RingDynamics& ring() { return *dynamics_; }
+  const RingDynamics& ring() const { return *dynamics_; }
+  // The rigid ring's BearingDynamics (std::logic_error for a flexible ring).
+  BearingDynamics& dynamics();
   std::uint64_t next_index() const { return next_index_; }
   std::uint64_t divergence_count() const { return divergence_count_; }
   const std::string& last_divergence() const { return last_divergence_; }
 
  private:
-  BearingDynamics dynamics_;
+  std::unique_ptr<RingDynamics> dynamics_;
   // Our own count: after a reset the core's sample counter does not advance, but the
   // published sequence must.
   std::uint64_t next_index_ = 0;
