@@ -1,33 +1,17 @@
 # The Python package bearing_sim (docs/python.md): python/bearing_sim (campaigns, the
 # re-export) through catkin_python_setup, and the compiled core bearing_sim._core (pybind11,
 # Debian's pybind11-dev) beside the generated messages in the devel and install space.
-# Included after the core library, whose sources and settings it copies.
+# Included after the core and pipeline object libraries, whose objects it links.
 # catkin_python_setup() is called in CMakeLists.txt, before generate_messages() as catkin requires.
 
 # Python3 is already found (Interpreter only) by a ROS package, which sends pybind11 to
 # CMake's FindPython: it then needs the Development.Module component too.
 find_package(Python3 REQUIRED COMPONENTS Interpreter Development.Module)
 find_package(pybind11 CONFIG REQUIRED)
-# The module links its own static, position-independent copy of the core, built from the
-# core target's sources and settings: bearing_sim_core turns into a shared library once
-# catkin has cached BUILD_SHARED_LIBS, and is not installed, so an installed module could
-# not load it.
-get_target_property(bearing_sim_core_sources bearing_sim_core SOURCES)
-add_library(bearing_sim_core_python STATIC ${bearing_sim_core_sources})
-foreach(property INCLUDE_DIRECTORIES COMPILE_OPTIONS COMPILE_DEFINITIONS INTERFACE_INCLUDE_DIRECTORIES)
-  get_target_property(value bearing_sim_core ${property})
-  if(value)
-    set_target_properties(bearing_sim_core_python PROPERTIES ${property} "${value}")
-  endif()
-endforeach()
-# Its libraries (Highway included, private to the core) go to the module's link line.
-get_target_property(bearing_sim_core_libraries bearing_sim_core LINK_LIBRARIES)
-target_link_libraries(bearing_sim_core_python PUBLIC ${bearing_sim_core_libraries})
-set_target_properties(bearing_sim_core_python PROPERTIES POSITION_INDEPENDENT_CODE ON)
-
-# Scenario generation reuses bearing_tool generate's ScenarioSimulation and the node's
-# ROS-free per-sample pipeline; they are compiled in here (position-independent), not linked
-# from the static helper library.
+# The module carries the core's objects itself (the same position-independent objects as
+# libbearing_sim_core.so, compiled once): that library is installed in lib/bearing_sim, where
+# an installed module would not find it. Scenario generation reuses bearing_tool generate's
+# ScenarioSimulation and the node's ROS-free per-sample pipeline, the same way.
 # A plain MODULE library with pybind11's extension naming (no link-time optimisation, so
 # the module builds in the time of its objects; and a target catkin_lint can follow).
 add_library(bearing_sim_python MODULE
@@ -35,18 +19,15 @@ add_library(bearing_sim_python MODULE
   src/python/bearing_binding.cpp
   src/python/scenario_binding.cpp
   src/python/analysis_binding.cpp
-  src/tools/scenario_simulation.cpp
-  src/ros/sample_pipeline.cpp
-  src/ros/sample_source.cpp
-  src/ros/sample_divider.cpp
-  src/ros/chunk_assembler.cpp
-  src/ros/triaxial_sensor.cpp
-  src/ros/health_monitor.cpp
-  src/ros/message_conversion.cpp
+  $<TARGET_OBJECTS:bearing_sim_core_objects>
+  $<TARGET_OBJECTS:bearing_sim_pipeline_objects>
+  $<TARGET_OBJECTS:bearing_sim_scenario_simulation_objects>
+  $<TARGET_OBJECTS:bearing_sim_message_conversion_objects>
 )
 pybind11_extension(bearing_sim_python)
 target_include_directories(bearing_sim_python PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/tools)
-target_link_libraries(bearing_sim_python PRIVATE pybind11::module bearing_sim_core_python ${rostime_LIBRARIES})
+target_link_libraries(bearing_sim_python PRIVATE pybind11::module Eigen3::Eigen yaml-cpp hwy::hwy
+  ${rostime_LIBRARIES})
 # message_conversion.cpp includes the generated message headers.
 add_dependencies(bearing_sim_python bearing_sim_generate_messages_cpp)
 bearing_sim_optimize(bearing_sim_python)
