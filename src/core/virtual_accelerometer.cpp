@@ -31,6 +31,10 @@ Problem config_problem(const AccelerometerConfig& c) {
   // settles and its filter loses its digits (a denormal gave an all-NaN signal).
   if (!(c.path_damping_ratio >= 1e-4 && c.path_damping_ratio < 1.0))
     return {"path_damping_ratio", "must be in [1e-4, 1)"};
+  if (!(c.mount_resonance_hz >= 0.0) || !std::isfinite(c.mount_resonance_hz))
+    return {"mount_resonance_Hz", "must be >= 0 (0: no mounted resonance)"};
+  if (!(c.mount_damping_ratio >= 1e-4 && c.mount_damping_ratio < 1.0))
+    return {"mount_damping_ratio", "must be in [1e-4, 1)"};
   if (!(c.sensitivity_V_per_m_s2 > 0.0) || !std::isfinite(c.sensitivity_V_per_m_s2))
     return {"sensitivity_mV_per_g", "must be > 0"};
   if (!(c.noise_density_m_s2_per_sqrt_hz >= 0.0) || !std::isfinite(c.noise_density_m_s2_per_sqrt_hz))
@@ -57,8 +61,8 @@ Problem config_problem(const AccelerometerConfig& c) {
   }
   // A truncated list of modes may carry more than the whole path at the sensor (sum above 1:
   // the modes above the list then have shapes of the other sign there, the residual
-  // 1 - sum p_r is negative). Bounded at 10 against typing errors (the CWRU rig's five
-  // modes add up to 5.6: docs/sensor.md, "Several modes").
+  // 1 - sum p_r is negative). Bounded at 10 against typing errors (docs/sensor.md,
+  // "Several modes").
   if (participation > kMaxPathParticipation + 1e-9)
     return {"path_modes", "the participations must add up to at most 10"};
   const InstallationProblem ip = installation_problem(c.installation);
@@ -106,6 +110,7 @@ AccelerometerConfig parse_accelerometer_config(const YAML::Node& sensor, const s
   if (!sensor || !sensor.IsMap()) throw ConfigError(source + ": key 'sensor': expected a YAML mapping of sensor keys");
   detail::Reader r(sensor, source, "sensor.");
   r.check_keys({"name", "mount", "mount_point_mm", "axis", "path_resonance_Hz", "path_damping_ratio", "path_modes",
+                "mount_resonance_Hz", "mount_damping_ratio",
                 "sensitivity_mV_per_g", "noise_density_ug_per_sqrt_Hz", "range_g", "adc_bits", "output_rate_Hz",
                 "anti_alias_cutoff_fraction", "anti_alias_order", "seed", "output_unit", "installation"});
   AccelerometerConfig c;
@@ -123,6 +128,8 @@ AccelerometerConfig parse_accelerometer_config(const YAML::Node& sensor, const s
       r.fail("path_modes", "give either path_modes or path_resonance_Hz / path_damping_ratio (one mode), not both");
     c.path_modes = parse_path_modes(r, sensor);
   }
+  c.mount_resonance_hz = r.number("mount_resonance_Hz", c.mount_resonance_hz);
+  c.mount_damping_ratio = r.number("mount_damping_ratio", c.mount_damping_ratio);
   if (const YAML::Node installation = r.map("installation"))
     c.installation = parse_installation_config(installation, source, "sensor.installation.");
   c.sensitivity_V_per_m_s2 =
@@ -150,6 +157,14 @@ AccelerometerConfig parse_accelerometer_config(const YAML::Node& sensor, const s
     const PathMode& dominant = dominant_mode(c.path_modes);
     c.path_resonance_hz = dominant.frequency_hz;
     c.path_damping_ratio = dominant.damping_ratio;
+  }
+  // A mounted resonance (participation 1) whose peak stands higher is the band's centre.
+  if (c.mount_resonance_hz > 0.0 &&
+      (c.path_resonance_hz <= 0.0 || 1.0 / c.mount_damping_ratio >
+                                         (c.path_modes.empty() ? 1.0 : dominant_mode(c.path_modes).participation) /
+                                             c.path_damping_ratio)) {
+    c.path_resonance_hz = c.mount_resonance_hz;
+    c.path_damping_ratio = c.mount_damping_ratio;
   }
   return c;
 }
@@ -193,10 +208,17 @@ VirtualAccelerometer::VirtualAccelerometer(AccelerometerConfig config, double in
                               std::to_string(modes[i].frequency_hz) + " must be below 0.45 x the input rate (" +
                               std::to_string(input_rate_hz) + " Hz): raise the dynamics' sample rate, or 0 for no path");
 
+  if (config_.mount_resonance_hz > kMaxPathResonanceFraction * input_rate_hz)
+    throw InvalidInputError(who + "mount_resonance_Hz " + std::to_string(config_.mount_resonance_hz) +
+                            " must be below 0.45 x the input rate (" + std::to_string(input_rate_hz) +
+                            " Hz): raise the dynamics' sample rate, or 0 for no mounted resonance");
+
   axis_ = config_.axis.normalized();
   lever_ = config_.mount_point_m.cross(axis_);
   has_path_ = !modes.empty();
   if (has_path_) path_ = TransmissionPath(modes, input_rate_hz);
+  has_mount_ = config_.mount_resonance_hz > 0.0;
+  if (has_mount_) mount_ = design_seismic_path(config_.mount_resonance_hz, config_.mount_damping_ratio, input_rate_hz);
   const std::vector<Biquad> aa = design_butterworth_lowpass(
       config_.anti_alias_order, config_.anti_alias_cutoff_fraction * f_out, input_rate_hz);
   anti_alias_sections_ = static_cast<int>(aa.size());
@@ -221,6 +243,7 @@ VirtualAccelerometer::VirtualAccelerometer(AccelerometerConfig config, double in
 
 void VirtualAccelerometer::reset() {
   path_.reset();
+  mount_.reset();
   for (int i = 0; i < anti_alias_sections_; ++i) anti_alias_[i].reset();
   decimation_phase_ = 0;
   clipped_samples_ = 0;
@@ -230,7 +253,8 @@ void VirtualAccelerometer::reset() {
 }
 
 std::complex<double> VirtualAccelerometer::path_response(double f_hz) const {
-  return has_path_ ? path_.response(f_hz) : std::complex<double>(1.0);
+  const std::complex<double> path = has_path_ ? path_.response(f_hz) : std::complex<double>(1.0);
+  return has_mount_ ? path * mount_.response(f_hz, input_rate_hz_) : path;
 }
 
 double VirtualAccelerometer::ideal_axis_acceleration(const Vector5& a, double ring_angle_rad) const {
@@ -271,6 +295,9 @@ bool VirtualAccelerometer::push_sample(double a_m_s2, const MachineBackground::S
   // The shaft-rate load variation modulates the bearing's own vibration at its source.
   if (has_background_) a_m_s2 *= background.bearing_gain;
   double y = has_path_ ? path_.process(a_m_s2) : a_m_s2;
+  // The sensor on its mount: in series with the structure (its lines below are measured
+  // through it already).
+  if (has_mount_) y = mount_.process(y);
   // The machine's lines reach the sensor by their own paths: given as measured there.
   if (has_background_) y += background.lines_m_s2;
   // Sensor noise after the path: it is electronic, not shaped by the mechanics.

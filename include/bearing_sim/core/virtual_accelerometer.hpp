@@ -2,7 +2,8 @@
 // Virtual accelerometer (docs/sensor.md): what a real sensor and its data acquisition
 // record from the ideal ring acceleration of BearingDynamics. Per input sample:
 //   projection onto the sensing axis at the mounting point -> shaft-rate modulation ->
-//   transmission path (one or several modes) -> + the machine's lines -> sensor noise ->
+//   transmission path (one or several modes) -> the sensor's mounted resonance -> + the
+//   machine's lines -> sensor noise ->
 //   anti-alias low-pass -> decimation -> + the machine's broadband floor -> clipping to
 //   the range -> ADC quantization -> sensitivity (optional volts).
 // Cheap and allocation-free per sample, deterministic for a seed.
@@ -48,6 +49,11 @@ struct AccelerometerConfig {
   double path_damping_ratio = 0.05;
   // Several modes (transmission_path.hpp); when not empty, they are the path.
   std::vector<PathMode> path_modes;
+  // The sensor's mounted resonance: its seismic mass on the stiffness of its mount (a magnet
+  // or an adhesive pad: a few kHz; a stud: tens of kHz, above the band), in series with the
+  // path (seismic transmissibility, biquad.hpp). 0 Hz: none (the default).
+  double mount_resonance_hz = 0.0;
+  double mount_damping_ratio = 0.05;
   // The machine around the bearing (machine_background.hpp); empty: none.
   InstallationConfig installation;
   double sensitivity_V_per_m_s2 = 0.100 / kStandardGravity_m_s2;               // 100 mV/g
@@ -107,7 +113,8 @@ class VirtualAccelerometer {
   double quantization_step_m_s2() const { return quantization_step_m_s2_; }
   double noise_sigma_m_s2() const { return noise_sigma_m_s2_; }  // per input sample
   std::uint64_t clipped_sample_count() const { return clipped_samples_; }
-  // The path as digitised, at f_hz (the analog form: modal_transmissibility).
+  // The path as digitised, at f_hz (the analog form: modal_transmissibility), the mounted
+  // resonance included.
   std::complex<double> path_response(double f_hz) const;
   // The broadband floor's density as realised, at f_hz (0 without a floor).
   double floor_density(double f_hz) const { return has_floor_ ? floor_.realised_density(f_hz) : 0.0; }
@@ -123,6 +130,8 @@ class VirtualAccelerometer {
   Eigen::Vector3d lever_ = Eigen::Vector3d::Zero();  // r x n: the tilt pick-up
   bool has_path_ = false;
   TransmissionPath path_;
+  bool has_mount_ = false;
+  Biquad mount_;
   bool has_background_ = false, has_floor_ = false;
   MachineBackground background_;
   ColouredFloor floor_;
