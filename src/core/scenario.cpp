@@ -160,8 +160,6 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
     r.fail("bearing_file", std::string("the bearing file is invalid: ") + e.what());
   }
   r.require(bearing_config.has_dynamics(), "bearing_file", "the bearing needs rotating_mass_kg for a scenario");
-  r.require(!bearing_config.flexible_ring.present, "bearing_file",
-            std::string("the bearing file's key 'flexible_ring': ") + kFlexibleRingOfflineOnly);
 
   // Phases.
   if (const YAML::Node phases = root["phases"]) {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/ring_dynamics.hpp"
 #include "bearing_sim/core/signal_statistics.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
 
@@ -20,8 +21,12 @@ SimulationSummary run_simulation(const BearingModel& model, const SimulationRequ
   if (n < 4) throw InvalidInputError("the run must hold at least 4 samples (duration x rate)");
   if (n > 1'000'000'000) throw InvalidInputError("the run is too long (over 1e9 samples)");
 
-  BearingDynamics dynamics(model, request.load, request.ring_speed_rad_s,
-                           DynamicsOptions{request.sample_rate_hz, request.substeps, true, request.method});
+  // The rigid ring's BearingDynamics, or a flexible ring's FlexibleDynamics (its rigid-body
+  // coordinates' samples).
+  const std::unique_ptr<RingDynamics> ring = make_ring_dynamics(
+      model, request.load, request.ring_speed_rad_s,
+      DynamicsOptions{request.sample_rate_hz, request.substeps, true, request.method});
+  RingDynamics& dynamics = *ring;
   const std::size_t half = n / 2;
   // Mean and RMS about it streamed: a buffer of the accelerations took 12 bytes per sample,
   // 12 GB for the longest run.

@@ -15,6 +15,7 @@
 
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/flexible_bearing.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 #include "yaml_reader.hpp"
 
@@ -262,14 +263,11 @@ SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string
     fail(source, "bearing", std::string("cannot read the base bearing file: ") + e.what());
   }
   // The base file must be valid on its own.
-  bool flexible = false;
   try {
-    flexible = parse_bearing_config(d.bearing, d.bearing_path).flexible_ring.present;
+    parse_bearing_config(d.bearing, d.bearing_path);
   } catch (const ConfigError& e) {
     fail(source, "bearing", std::string("the base bearing file is invalid: ") + e.what());
   }
-  // Its static and dynamic cases run the rigid ring's solvers.
-  if (flexible) fail(source, "bearing", std::string("the base bearing file's key 'flexible_ring': ") + kFlexibleRingOfflineOnly);
 
   const std::string analysis = root["analysis"] ? root["analysis"].as<std::string>() : "dynamic";
   if (analysis == "dynamic") d.dynamic = true;
@@ -441,7 +439,12 @@ SweepResult run_sweep_case(const SweepCase& c, bool dynamic) {
   const auto t0 = std::chrono::steady_clock::now();
   try {
     const BearingModel model(c.config);
-    r.statics = solve_static(model, c.operating_point.load);
+    // A flexible ring: its static solution with the ring's modes, the stiffness condensed onto
+    // the rigid-body coordinates (what the bearing offers them), so the modes below are the
+    // ring's rigid-body modes on its balls with the ring's flexibility in the contacts.
+    r.statics = c.config.flexible_ring.present
+                    ? solve_flexible_static(FlexibleBearing(model), c.operating_point.load).rigid_coordinates
+                    : solve_static(model, c.operating_point.load);
     if (c.config.has_dynamics()) {
       const Matrix5 k = 0.5 * (r.statics.stiffness + r.statics.stiffness.transpose());
       const Matrix5 m = model.mass_matrix();

@@ -11,6 +11,7 @@
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
+#include "bearing_sim/core/ring_dynamics.hpp"
 #include "bearing_sim/core/simulation_run.hpp"
 
 namespace bearing_sim::python {
@@ -75,15 +76,16 @@ double probe_seconds_per_sample(const BearingModel& model, const Vector5& load, 
                                 double sample_rate_hz, int substeps, IntegrationMethod method) {
   using Clock = std::chrono::steady_clock;
   try {
-    BearingDynamics dynamics(model, load, ring_speed_rad_s, DynamicsOptions{sample_rate_hz, substeps, true, method});
+    const std::unique_ptr<RingDynamics> dynamics =
+        make_ring_dynamics(model, load, ring_speed_rad_s, DynamicsOptions{sample_rate_hz, substeps, true, method});
     const Clock::time_point start = Clock::now();
     int n = 0;
     double elapsed = 0.0;
     while (n < 200 && elapsed < 0.2) {
       try {
-        dynamics.step();
+        dynamics->step();
       } catch (const DivergenceError&) {
-        dynamics.reset_to_equilibrium();
+        dynamics->reset_to_equilibrium();
       }
       ++n;
       elapsed = std::chrono::duration<double>(Clock::now() - start).count();

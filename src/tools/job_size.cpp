@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "bearing_sim/core/bearing_dynamics.hpp"
+#include "bearing_sim/core/ring_dynamics.hpp"
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/ros/input_validator.hpp"
@@ -54,12 +55,13 @@ double measure_seconds_per_step(const std::function<void()>& step) {
 
 double measure_seconds_per_sample(const BearingModel& model, const Vector5& load, double ring_speed_rad_s,
                                   double sample_rate_hz, int substeps, IntegrationMethod method) {
-  BearingDynamics dynamics(model, load, ring_speed_rad_s, DynamicsOptions{sample_rate_hz, substeps, true, method});
+  const std::unique_ptr<RingDynamics> dynamics =
+      make_ring_dynamics(model, load, ring_speed_rad_s, DynamicsOptions{sample_rate_hz, substeps, true, method});
   return measure_seconds_per_step([&dynamics] {
     try {
-      dynamics.step();
+      dynamics->step();
     } catch (const DivergenceError&) {
-      dynamics.reset_to_equilibrium();
+      dynamics->reset_to_equilibrium();
     }
   });
 }

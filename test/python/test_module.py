@@ -150,6 +150,47 @@ def test_generate_gives_bearing_tool_generate_samples(tmp_path):
     assert np.array_equal(again['vibration'], r['vibration'])
 
 
+def test_a_flexible_ring_simulates_as_bearing_tool_simulates_it():
+    # ct_gantry_flexible.yaml runs FlexibleDynamics (docs/model.md 18.6): the summary is its
+    # rigid-body coordinates' over the second half, the numbers bearing_tool simulate reports
+    # from the same samples (RMS about the mean summed in another order: 1e-9).
+    b = bearing_sim.load_bearing(BEARINGS / 'ct_gantry_flexible.yaml')
+    r = bearing_sim.simulate(b, [6800.0, 0.0, 0.0], ring_speed_rad_s=180.0 * math.pi / 30.0,
+                             moment_Nm=[0.0, 2100.0], duration_s=0.1)
+    out = subprocess.run([str(tool_path()), 'simulate', '--bearing', str(BEARINGS / 'ct_gantry_flexible.yaml'),
+                          '--force', '6800,0,0', '--moment', '0,2100', '--outer-rpm', '180', '--duration', '0.1',
+                          '--json'], check=True, capture_output=True, text=True, timeout=120).stdout
+    import json
+    tool = json.loads(out)
+    for axis, key in enumerate(('a_rms_x', 'a_rms_y', 'a_rms_z')):
+        assert r['a_rms'][axis] == pytest.approx(tool[key], rel=1e-9)
+    assert r['displacement'].shape == (1000, 5)
+    with pytest.raises(bearing_sim.InvalidInputError, match='adams_pec or rk4'):
+        bearing_sim.simulate(b, [6800.0, 0.0, 0.0], ring_speed_rad_s=18.0, moment_Nm=[0.0, 2100.0],
+                             duration_s=0.01, integrator='etdrk4')
+
+
+def test_a_flexible_ring_scenario_generates_as_bearing_tool_generates_it(tmp_path):
+    scenario = {
+        'name': 'py_flexible', 'duration_s': 0.05, 'seed': 2, 'bearing_file': 'ct_gantry_flexible.yaml',
+        'speed': {'initial_speed_rpm': 170.0,
+                  'segments': [{'type': 'ramp', 'start_s': 0.01, 'end_s': 0.04, 'to_speed_rpm': 180.0}]},
+        'load': {'initial': {'force_N': [6800.0, 0.0, 0.0], 'moment_Nm': [0.0, 2100.0]}},
+    }
+    import yaml
+    path = tmp_path / 'scenarios' / 'py_flexible.yaml'
+    path.parent.mkdir()
+    (tmp_path / 'bearings').symlink_to(BEARINGS)
+    path.write_text(yaml.safe_dump(scenario))
+    out = tmp_path / 'out'
+    subprocess.run([str(tool_path()), 'generate', str(path), '--out', str(out), '--format', 'npy', '--quiet'],
+                   check=True, capture_output=True, timeout=120)
+    r = bearing_sim.generate(path)
+    assert np.array_equal(r['vibration_ideal'], np.load(out / 'py_flexible_vibration_ideal.npy'))
+    assert r['vibration_ideal'].shape == (500, 3)
+    assert np.all(np.isfinite(r['vibration_ideal']))
+
+
 def test_analyze_a_modulated_carrier():
     # A 3 kHz carrier amplitude-modulated at BPFO and its 2nd harmonic. Its RMS is
     # A sqrt((1 + m1^2/2 + m2^2/2)/2) in closed form, and the envelope lines sit at BPFO and

@@ -25,6 +25,9 @@
 #include "bearing_sim/ScenarioState.h"
 #include "bearing_sim/VibrationChunk.h"
 #include "bearing_sim/VibrationLevel.h"
+#include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/flexible_dynamics.hpp"
+#include "bearing_sim/core/scenario.hpp"
 #include "bearing_sim/core/simd_info.hpp"
 #include "tool_runner.hpp"
 
@@ -297,6 +300,46 @@ TEST_F(Generate, BadInputExitsTwoNamingTheProblem) {
   expect_bad("'" + scenario_ + "' --out '" + dir_ + "/x' --format hdf5", "hdf5");
   expect_bad("'" + scenario_ + "' '" + scenario_ + "' --out '" + dir_ + "/x'", "gen_test");  // same name twice
   expect_bad("'" + scenario_ + "' --out '" + dir_ + "/x' --duration-s -1", "duration");
+}
+
+TEST_F(Generate, AFlexibleRingScenarioIsFlexibleDynamicsDrivenByIt) {
+  // The CT bearing with its flexible ring through a speed ramp, a load step and a spall: the
+  // ideal stream is FlexibleDynamics' rigid-body x acceleration driven as the scenario says
+  // (speed at each sample's middle, the load's line through it, defects before the sample
+  // after their time), to the float.
+  const std::string file = dir_ + "/flexible.yaml";
+  std::ofstream(file) << "name: flexible\nduration_s: 0.12\nseed: 3\nbearing_file: "
+                      << source_file("config/bearings/ct_gantry_flexible.yaml")
+                      << "\nspeed:\n  initial_speed_rpm: 150\n"
+                         "  segments: [{type: ramp, start_s: 0.02, end_s: 0.1, to_speed_rpm: 180}]\n"
+                         "load:\n  initial: {force_N: [6800, 0, 0], moment_Nm: [0, 2100]}\n"
+                         "  segments: [{type: step, start_s: 0.05, force_N: [9000, 0, 0], moment_Nm: [0, 2100]}]\n"
+                         "defects:\n  - {type: spall, at_s: 0.03, surface: outer_race, position_deg: 0, width_mm: 1, depth_um: 20}\n";
+  const auto r = run_bearing_tool("generate '" + file + "' --out '" + dir_ + "/f' --format npy --quiet", dir_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::uint64_t rows = 0;
+  const std::vector<float> ideal = read_npy(dir_ + "/f/flexible_vibration_ideal.npy", &rows);
+  ASSERT_EQ(rows, 1200u);
+
+  const bearing_sim::Scenario sc = bearing_sim::Scenario::load(file);
+  bearing_sim::BearingConfig config = bearing_sim::load_bearing_config(sc.bearing_file());
+  config.imperfections.seed = 3;
+  const double rate = sc.sample_rate_hz();
+  bearing_sim::FlexibleDynamics d(bearing_sim::FlexibleBearing(bearing_sim::BearingModel(config)), sc.load_at(0.0),
+                                  sc.ring_speed_at(0.0), rate);
+  EXPECT_EQ(ideal[0], static_cast<float>(d.current().accelerations[0]));
+  std::size_t next_event = 0;
+  const auto& events = sc.defect_events();
+  for (std::uint64_t i = 1; i < rows; ++i) {
+    for (; next_event < events.size() && events[next_event].time_s <= (i - 1) / rate; ++next_event)
+      d.add_spall(events[next_event].spall);
+    const double mid = (i - 0.5) / rate;
+    if (sc.ring_speed_at(mid) != d.ring_speed_rad_s()) d.set_ring_speed(sc.ring_speed_at(mid));
+    const bearing_sim::Vector5 load = sc.load_at(mid), load_end = sc.load_at(i / rate);
+    if (load != d.load() || load_end != load) d.set_load(load, load_end);
+    ASSERT_EQ(ideal[3 * i], static_cast<float>(d.step().accelerations[0])) << "sample " << i;
+  }
+  EXPECT_EQ(next_event, events.size());
 }
 
 int main(int argc, char** argv) {

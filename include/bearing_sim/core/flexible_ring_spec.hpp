@@ -3,10 +3,11 @@
 // the rotating ring as a thin elastic ring described by its bending modes (docs/model.md 18).
 namespace bearing_sim {
 
-// Why the rigid-ring dynamics (BearingDynamics, the node, scenarios) refuse a flexible ring.
+// Why the rigid-ring dynamics (BearingDynamics) refuse a flexible ring: FlexibleDynamics runs
+// it, and make_ring_dynamics (ring_dynamics.hpp) chooses between them for every front.
 inline constexpr const char* kFlexibleRingOfflineOnly =
-    "a flexible ring is an offline model for now (bearing_tool static and simulate, "
-    "FlexibleDynamics); the rigid-ring dynamics, the node and scenarios do not take it: remove the block";
+    "the rigid-ring dynamics (BearingDynamics) do not take a flexible ring: FlexibleDynamics runs it "
+    "(make_ring_dynamics chooses by this block)";
 
 struct FlexibleRingSpec {
   bool present = false;            // no block: the ring is rigid (the default)

@@ -29,7 +29,9 @@ struct SimulationSummary {
   double realtime_factor = 0.0;  // simulated seconds per wall second of the integration
 };
 
-// Calls on_sample (if given) for every sample in order. Throws like BearingDynamics.
+// Calls on_sample (if given) for every sample in order. A bearing file with a flexible_ring
+// block runs FlexibleDynamics (make_ring_dynamics; integrator adams_pec or rk4), the samples
+// its rigid-body coordinates. Throws like BearingDynamics / FlexibleDynamics.
 SimulationSummary run_simulation(const BearingModel& model, const SimulationRequest& request,
                                  const std::function<void(const DynamicSample&)>& on_sample = {});
 
