@@ -33,7 +33,7 @@ BearingDynamics::BearingDynamics(BearingModel model, const Vector5& load, double
     throw InvalidInputError("sample rate must be a positive number of Hz");
   if (options_.substeps < 0) throw InvalidInputError("substeps must be >= 0 (0: automatic)");
   if (model_.config().flexible_ring.present)
-    throw ConfigError(model_.config().name + ": key 'flexible_ring': " + kFlexibleRingOfflineOnly);
+    throw ConfigError(model_.config().name + ": key 'flexible_ring': " + kFlexibleRingNotRigid);
   set_inverse_mass(model_.mass_matrix().inverse());
   displacement_limit_m_ = 0.25 * model_.config().ball_diameter_m + std::abs(model_.clearance_m());
   set_load(load);
@@ -328,7 +328,7 @@ void BearingDynamics::update_cage_speed() {
 
 void BearingDynamics::set_model(BearingModel model) {
   if (model.config().flexible_ring.present)
-    throw ConfigError(model.config().name + ": key 'flexible_ring': " + kFlexibleRingOfflineOnly);
+    throw ConfigError(model.config().name + ": key 'flexible_ring': " + kFlexibleRingNotRigid);
   const Matrix5 inverse_mass = model.mass_matrix().inverse();
   model_ = std::move(model);
   set_inverse_mass(inverse_mass);

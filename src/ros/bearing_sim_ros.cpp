@@ -85,8 +85,6 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
   BearingModel model(load_bearing_config(bearing_file));
   if (!model.config().has_dynamics())
     throw std::runtime_error("bearing file " + bearing_file + " has no rotating_mass_kg: no dynamics possible");
-  if (model.config().flexible_ring.present)
-    throw std::runtime_error("bearing file " + bearing_file + ": key 'flexible_ring': " + kFlexibleRingOfflineOnly);
 
   sample_rate_hz_ = params.sample_rate_hz;
   load_ramp_ = LoadRamp(static_cast<std::uint64_t>(std::llround(params.load_ramp_s * sample_rate_hz_)));
@@ -125,8 +123,15 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
   accepted_max_pressure_Pa_ = load_check.max_contact_pressure_Pa;
 
   validation_model_ = std::make_unique<BearingModel>(model);
-  BearingDynamics dynamics(model, load, speed, DynamicsOptions{sample_rate_hz_, substeps, true, method});
-  substeps_ = dynamics.substeps();
+  // The rigid ring's dynamics, or the flexible ring's with a flexible_ring block.
+  std::unique_ptr<RingDynamics> dynamics;
+  try {
+    dynamics = make_ring_dynamics(model, load, speed, DynamicsOptions{sample_rate_hz_, substeps, true, method});
+  } catch (const InvalidInputError& e) {
+    throw std::runtime_error("bearing file " + bearing_file + " with ~integrator " + integration_method_name(method) +
+                             ": " + e.what());
+  }
+  substeps_ = dynamics->substeps();
 
   // Virtual sensor: `vibration` carries what it records, at its output rate.
   const std::string& sensor_file = params.sensor_file;
@@ -472,7 +477,7 @@ void BearingSimRos::apply_pending() {
     pending_ = Pending{};
     pending_flag_ = false;
   }
-  BearingDynamics& dynamics = pipeline_->source().dynamics();
+  RingDynamics& dynamics = pipeline_->source().ring();
   // Inputs were validated by the callbacks; the core only rejects non-finite values.
   try {
     if (p.model) {
@@ -528,12 +533,12 @@ bool BearingSimRos::wants_ball_loads() const {
   return ball_loads_pub_.getNumSubscribers() > 0;  // per-ball states cost a few microseconds per ball
 }
 
-void BearingSimRos::ball_loads(const SampleSource::Sample& sample, const BearingModel& model) {
+void BearingSimRos::ball_loads(const SampleSource::Sample& sample, const BearingModel& model,
+                               const std::vector<BallState>& balls) {
   auto msg = boost::make_shared<BallLoads>();
   msg->header.stamp = stamp_of(sample.index);
   msg->header.frame_id = bearing_frame_id_;
-  fill_ball_loads(model.ball_states(sample.state->displacement, sample.state->cage_angle_rad), model.rows(),
-                  model.balls_per_row(), sample.state->cage_angle_rad, msg.get());
+  fill_ball_loads(balls, model.rows(), model.balls_per_row(), sample.state->cage_angle_rad, msg.get());
   bundle_->actions.emplace_back([this, msg] {
     msg->header.seq = ball_loads_seq_++;
     ball_loads_pub_.publish(msg);
@@ -687,7 +692,7 @@ BearingSimRos::ChunkBundle BearingSimRos::compute_chunk() {
   while (!full) {
     // New inputs take effect from the next sample not yet computed.
     if (pending_flag_.load(std::memory_order_acquire)) apply_pending();
-    if (load_ramp_.active()) source.dynamics().set_load(load_ramp_.next());
+    if (load_ramp_.active()) source.ring().set_load(load_ramp_.next());
     full = pipeline_->step(*this);
   }
   bundle_ = nullptr;

@@ -15,12 +15,6 @@ SampleSource::SampleSource(std::unique_ptr<RingDynamics> dynamics) : dynamics_(s
 SampleSource::SampleSource(BearingDynamics dynamics)
     : dynamics_(std::make_unique<RigidRingDynamics>(std::move(dynamics))) {}
 
-BearingDynamics& SampleSource::dynamics() {
-  BearingDynamics* rigid = dynamics_->rigid();
-  if (!rigid) throw std::logic_error("SampleSource::dynamics(): the ring is flexible; use ring()");
-  return *rigid;
-}
-
 SampleSource::Sample SampleSource::next() {
   Sample out;
   out.index = next_index_;

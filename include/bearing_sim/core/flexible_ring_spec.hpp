@@ -5,7 +5,7 @@ namespace bearing_sim {
 
 // Why the rigid-ring dynamics (BearingDynamics) refuse a flexible ring: FlexibleDynamics runs
 // it, and make_ring_dynamics (ring_dynamics.hpp) chooses between them for every front.
-inline constexpr const char* kFlexibleRingOfflineOnly =
+inline constexpr const char* kFlexibleRingNotRigid =
     "the rigid-ring dynamics (BearingDynamics) do not take a flexible ring: FlexibleDynamics runs it "
     "(make_ring_dynamics chooses by this block)";
 

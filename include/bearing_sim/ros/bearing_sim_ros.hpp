@@ -1,6 +1,7 @@
 #pragma once
 // ROS front end of the bearing model: parameters, topics, dynamic_reconfigure and the
-// real-time simulation thread. The physics is all in the core (BearingDynamics).
+// real-time simulation thread. The physics is all in the core (RingDynamics: the rigid or
+// flexible ring).
 #include <atomic>
 #include <condition_variable>
 #include <deque>
@@ -106,7 +107,8 @@ class BearingSimRos : private PipelineSink {
   void measured_chunk(SampleChunk&& chunk) override;
   void level(const SampleSource::Sample& sample, double accel_rms, double window_s) override;
   bool wants_ball_loads() const override;
-  void ball_loads(const SampleSource::Sample& sample, const BearingModel& model) override;
+  void ball_loads(const SampleSource::Sample& sample, const BearingModel& model,
+                  const std::vector<BallState>& balls) override;
   void health_samples(std::vector<float>&& x, std::optional<double> analysis_time_s) override;
   void chunk_end(std::uint64_t last_index, std::size_t samples, const Vector5& load, double ring_speed_rad_s) override;
   void divergence(const std::string& message) override;

@@ -45,15 +45,10 @@ class PipelineSink {
   // Only asked when a ball-load sample is due (per-ball states cost microseconds per ball).
   virtual bool wants_ball_loads() const { return false; }
   // The balls' states at the sample (RingDynamics::ball_states: with a flexible ring's
-  // deformation). By default handed to the two-argument form, which computes the rigid
-  // ring's states itself.
+  // deformation).
   virtual void ball_loads(const SampleSource::Sample& sample, const BearingModel& model,
                           const std::vector<BallState>& balls) {
-    (void)balls;
-    ball_loads(sample, model);
-  }
-  virtual void ball_loads(const SampleSource::Sample& sample, const BearingModel& model) {
-    (void)sample, (void)model;
+    (void)sample, (void)model, (void)balls;
   }
   // After the level and ball loads of every sample (generate's labels).
   virtual void sample_done(const SampleSource::Sample& sample) { (void)sample; }

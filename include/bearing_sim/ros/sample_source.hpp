@@ -29,8 +29,6 @@ class SampleSource {
   // For inputs and model changes, between samples.
   RingDynamics& ring() { return *dynamics_; }
   const RingDynamics& ring() const { return *dynamics_; }
-  // The rigid ring's BearingDynamics (std::logic_error for a flexible ring).
-  BearingDynamics& dynamics();
   std::uint64_t next_index() const { return next_index_; }
   std::uint64_t divergence_count() const { return divergence_count_; }
   const std::string& last_divergence() const { return last_divergence_; }
