@@ -14,6 +14,8 @@
 #include "bearing_sim/ros/health_monitor.hpp"
 #include "bearing_sim/ros/triaxial_sensor.hpp"
 
+#include "test_support.hpp"
+
 using namespace bearing_sim;
 using namespace bearing_sim::ros_node;
 
@@ -22,11 +24,7 @@ const std::string kCtBearing = std::string(BEARING_SIM_SOURCE_DIR) + "/config/be
 constexpr double kFs = 10000.0;
 constexpr double kCtSpeed = 180.0 * 2.0 * M_PI / 60.0;
 
-Vector5 ct_load() {
-  Vector5 l;
-  l << 6800.0, 0.0, 0.0, 0.0, 2100.0;
-  return l;
-}
+using bearing_sim::test::ct_load;  // the CT gantry's load (test_support)
 
 HealthSettings settings() {
   HealthSettings s;

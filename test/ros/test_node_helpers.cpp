@@ -25,17 +25,15 @@
 #include "bearing_sim/ros/sample_source.hpp"
 #include "bearing_sim/ros/timing_stats.hpp"
 
+#include "test_support.hpp"
+
 using namespace bearing_sim;
 using namespace bearing_sim::ros_node;
 
 namespace {
 const std::string kCtBearing = std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/ct_gantry_lyc.yaml";
 
-Vector5 ct_load() {
-  Vector5 l;
-  l << 6800.0, 0.0, 0.0, 0.0, 2100.0;
-  return l;
-}
+using bearing_sim::test::ct_load;  // the CT gantry's load (test_support)
 constexpr double kCtSpeed = 180.0 * 2.0 * M_PI / 60.0;
 
 DynamicSample sample_with(double v) {

@@ -1,12 +1,9 @@
 #pragma once
-// Runs the built bearing_tool (BEARING_TOOL_PATH) for the tool tests.
+// Runs the built bearing_tool for the tool tests (tool_runner.cpp, compiled once with its path).
 #include <stdlib.h>
-#include <sys/wait.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -19,29 +16,15 @@ struct RunResult {
   std::string err;
 };
 
-inline std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+// The whole text of a file ("" when it cannot be read).
+std::string read_file(const std::string& path);
+
+// The built bearing_tool's path.
+std::string bearing_tool_path();
 
 // bearing_tool with `args` (shell words); stdout and stderr captured apart, stderr via a
 // file in `scratch_dir`.
-inline RunResult run_bearing_tool(const std::string& args, const std::string& scratch_dir) {
-  const std::string err_path = scratch_dir + "/stderr.txt";
-  const std::string command = std::string("'") + BEARING_TOOL_PATH + "' " + args + " 2>'" + err_path + "'";
-  RunResult r;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return r;
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.err = read_file(err_path);
-  return r;
-}
+RunResult run_bearing_tool(const std::string& args, const std::string& scratch_dir);
 
 // A test with a scratch directory of its own (removed afterwards) to write inputs into and
 // run bearing_tool in.
