@@ -117,9 +117,9 @@ void FlexibleAdams::refresh(const Acceleration& accel) {
   (void)r;
 }
 
-void FlexibleAdams::add_to_remainders(const std::function<Eigen::VectorXd(double)>& delta) {
-  for (int k = 0; k < known_; ++k) remainders_.segment(n_ * (k + 1), n_) += delta(history_t_[k]);
-  a_ += delta(t_);
+void FlexibleAdams::add_to_rigid_remainders(const std::function<Eigen::Matrix<double, 5, 1>(double)>& delta) {
+  for (int k = 0; k < known_; ++k) remainders_.segment<5>(n_ * (k + 1)) += delta(history_t_[k]);
+  a_.head<5>() += delta(t_);
 }
 
 void FlexibleAdams::change_velocities(const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& change) {

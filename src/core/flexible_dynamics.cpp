@@ -55,7 +55,9 @@ FlexibleDynamics::FlexibleDynamics(FlexibleBearing bearing, const Vector5& load,
 
 void FlexibleDynamics::bearing_changed() {
   const BearingModel& model = bearing_.model();
-  mass_.compute(bearing_.mass_matrix());  // throws without rotating_mass_kg
+  const Eigen::MatrixXd mass = bearing_.mass_matrix();  // throws without rotating_mass_kg
+  mass_.compute(mass);
+  inverse_rigid_mass_ = mass.topLeftCorner<5, 5>().inverse();
   k_ring_ = bearing_.ring_stiffness();
   c_ring_ = bearing_.ring_damping();
   external_ = Eigen::VectorXd::Zero(bearing_.size());
@@ -146,14 +148,9 @@ void FlexibleDynamics::change_load(const Vector5& load, const Vector5& rate, dou
   // The contact forces do not depend on the external load: the accelerations move by the
   // change over the mass (zero on the modes: the mass matrix is block diagonal), the current
   // one and the Adams remainders each at its time.
-  const int n = bearing_.size();
-  const auto moved = [&](double t) {
-    Eigen::VectorXd df = Eigen::VectorXd::Zero(n);
-    df.head<5>() = load_line_.at(t) - before.at(t);
-    return Eigen::VectorXd(mass_.solve(df));
-  };
-  if (adams_) adams_->add_to_remainders(moved);
-  current_.accelerations += moved(state_time_s());
+  const auto moved = [&](double t) -> Vector5 { return inverse_rigid_mass_ * (load_line_.at(t) - before.at(t)); };
+  if (adams_) adams_->add_to_rigid_remainders(moved);
+  current_.accelerations.head<5>() += moved(state_time_s());
 }
 
 void FlexibleDynamics::set_ring_speed(double ring_speed_rad_s) {

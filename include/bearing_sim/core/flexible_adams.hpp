@@ -36,9 +36,10 @@ class FlexibleAdams {
   // The history's remainders evaluated again with `accel` (a spall added or cleared: the
   // remainder jumps), keeping the linear part.
   void refresh(const Acceleration& accel);
-  // Adds delta(t) to the remainder of each history entry at its time t (a changed external
-  // load: as if the new one had always acted; r is linear in it).
-  void add_to_remainders(const std::function<Eigen::VectorXd(double)>& delta);
+  // Adds delta(t) to the first 5 coordinates (the rigid body's) of the remainder of each
+  // history entry at its time t and of the current acceleration (a changed external load: as
+  // if the new one had always acted; r is linear in it).
+  void add_to_rigid_remainders(const std::function<Eigen::Matrix<double, 5, 1>(double)>& delta);
   // change(z, v) adds to v what a change of frame speed makes of it, for the state and the
   // history's states (the ring's speed changed: the load frame's rate of the same material
   // motion moves by dw J b).

@@ -138,6 +138,7 @@ class FlexibleDynamics {
   std::uint64_t linearizations_ = 0;
   int max_order_ = 0;
   Eigen::LDLT<Eigen::MatrixXd> mass_;
+  Matrix5 inverse_rigid_mass_ = Matrix5::Identity();  // of the rigid-body block (M is block diagonal)
   double sample_rate_hz_;
   double inner_speed_ = 0.0, outer_speed_ = 0.0, cage_speed_ = 0.0, spin_speed_ = 0.0;
   FlexibleStaticSolution equilibrium_;
