@@ -28,8 +28,9 @@ FlexibleDynamics::FlexibleDynamics(FlexibleBearing bearing, const Vector5& load,
   const Eigen::VectorXd natural = flexible_natural_frequencies_rad_s(bearing_, equilibrium_);
   highest_frequency_rad_s_ = natural.maxCoeff();
   const bool adams = method == IntegrationMethod::ExponentialAdamsPec;
+  automatic_substeps_ = substeps == 0;
   substeps_ = substeps > 0 ? substeps
-              : adams    ? kAdamsStepsPerSample
+              : adams    ? automatic_adams_steps()
                          : std::max(1, static_cast<int>(std::ceil(highest_frequency_rad_s_ /
                                                                   (kStepTimesOmegaMax * sample_rate_hz))));
   current_.coordinates = equilibrium_.coordinates;
@@ -198,7 +199,25 @@ void FlexibleDynamics::add_spall(Spall spall) {
   model.add_spall(spall);
   bearing_ = FlexibleBearing(std::move(model));
   current_.accelerations = acceleration(current_.coordinates, current_.velocities, current_.phase);
-  if (adams_) adams_->refresh(load_frame_function());  // the remainder jumps
+  defects_changed();
+}
+
+int FlexibleDynamics::automatic_adams_steps() const {
+  return bearing_.model().imperfections().spalls().empty() ? kAdamsStepsPerSample : kAdamsStepsPerSampleWithSpall;
+}
+
+void FlexibleDynamics::defects_changed() {
+  if (!adams_) return;
+  if (!automatic_substeps_ || automatic_adams_steps() == substeps_) {
+    adams_->refresh(load_frame_function());  // the remainder jumps
+    return;
+  }
+  // Another step: the history's spacing no longer fits; start again from the state.
+  substeps_ = automatic_adams_steps();
+  const Eigen::VectorXd z = adams_->position(), v = adams_->velocity();
+  const double t = adams_->time_s();
+  start_adams(z, v, t);
+  relinearize_adams();  // at the static equilibrium of the load
 }
 
 void FlexibleDynamics::clear_spalls() {
@@ -206,7 +225,7 @@ void FlexibleDynamics::clear_spalls() {
   model.clear_spalls();
   bearing_ = FlexibleBearing(std::move(model));
   current_.accelerations = acceleration(current_.coordinates, current_.velocities, current_.phase);
-  if (adams_) adams_->refresh(load_frame_function());
+  defects_changed();
 }
 
 void FlexibleDynamics::reset_to_equilibrium() {
