@@ -34,17 +34,9 @@ FlexibleDynamics::FlexibleDynamics(FlexibleBearing bearing, const Vector5& load,
                          : std::max(1, static_cast<int>(std::ceil(highest_frequency_rad_s_ /
                                                                   (kStepTimesOmegaMax * sample_rate_hz))));
   current_.coordinates = equilibrium_.coordinates;
-  // The static shape is fixed to the load, so the turning ring runs through it: in the ring's
-  // own frame each mode's (cos, sin) pair turns at n Omega, (a, b)' = n Omega (b, -a). Starting
-  // with that rate instead of at rest spares the run a start-up transient of the ring's modes.
-  current_.velocities = Eigen::VectorXd::Zero(bearing_.size());
-  const double ring_rate = ring_rate_rad_s();
-  const auto& modes = bearing_.modes();
-  for (std::size_t i = 0; i < modes.size(); ++i) {
-    const double turn = modes[i].order * ring_rate;
-    current_.velocities[5 + 2 * i] = turn * current_.coordinates[6 + 2 * i];
-    current_.velocities[6 + 2 * i] = -turn * current_.coordinates[5 + 2 * i];
-  }
+  // Starting with the shape's turning rate instead of at rest spares the run a start-up
+  // transient of the ring's modes.
+  current_.velocities = static_shape_velocities(current_.coordinates);
   current_.accelerations = acceleration(current_.coordinates, current_.velocities, current_.phase);
   // In the load's frame the static shape stands still: start from it at rest (at t = 0 the
   // frames coincide).
@@ -228,6 +220,20 @@ void FlexibleDynamics::clear_spalls() {
   defects_changed();
 }
 
+Eigen::VectorXd FlexibleDynamics::static_shape_velocities(const Eigen::VectorXd& coordinates) const {
+  // The static shape is fixed to the load, so the turning ring runs through it: in the ring's
+  // own frame each mode's (cos, sin) pair turns at n Omega, (a, b)' = n Omega (b, -a).
+  Eigen::VectorXd velocities = Eigen::VectorXd::Zero(bearing_.size());
+  const double ring_rate = ring_rate_rad_s();
+  const auto& modes = bearing_.modes();
+  for (std::size_t i = 0; i < modes.size(); ++i) {
+    const double turn = modes[i].order * ring_rate;
+    velocities[5 + 2 * i] = turn * coordinates[6 + 2 * i];
+    velocities[6 + 2 * i] = -turn * coordinates[5 + 2 * i];
+  }
+  return velocities;
+}
+
 void FlexibleDynamics::reset_to_equilibrium() {
   const double t = state_time_s();
   RollingPhase phase = current_.phase;
@@ -236,14 +242,7 @@ void FlexibleDynamics::reset_to_equilibrium() {
   current_.time_s = t;
   current_.phase = phase;
   current_.coordinates = s.coordinates;
-  current_.velocities = Eigen::VectorXd::Zero(bearing_.size());
-  const double ring_rate = ring_rate_rad_s();
-  const auto& modes = bearing_.modes();
-  for (std::size_t i = 0; i < modes.size(); ++i) {
-    const double turn = modes[i].order * ring_rate;
-    current_.velocities[5 + 2 * i] = turn * current_.coordinates[6 + 2 * i];
-    current_.velocities[6 + 2 * i] = -turn * current_.coordinates[5 + 2 * i];
-  }
+  current_.velocities = static_shape_velocities(current_.coordinates);
   current_.accelerations = acceleration(current_.coordinates, current_.velocities, phase);
   origin_ = phase;
   if (adams_) {

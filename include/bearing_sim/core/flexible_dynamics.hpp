@@ -100,6 +100,8 @@ class FlexibleDynamics {
   void step_rk4();
   void step_adams();
   double ring_rate_rad_s() const;
+  // Ring-frame velocities of a static shape that stands in the load's frame while the ring turns.
+  Eigen::VectorXd static_shape_velocities(const Eigen::VectorXd& coordinates) const;
   // The phases at time t (from the last speed change on, at the current speeds).
   RollingPhase phase_at(double t) const { return advanced(origin_, t - origin_.time_s); }
   void update_speeds();
