@@ -120,6 +120,20 @@ def test_integrators_are_chosen_by_name_and_agree():
         bearing_sim.simulate(b, [1500.0, 0.0, 0.0], ring_speed_rad_s=150.0, duration_s=0.1, integrator='euler')
 
 
+def write_scenario_and_generate_with_the_tool(tmp_path, scenario):
+    """The scenario written to tmp_path/scenarios (its bearings beside it) and run through
+    bearing_tool generate to npy files in tmp_path/out: (scenario path, out directory)."""
+    import yaml
+    path = tmp_path / 'scenarios' / f"{scenario['name']}.yaml"
+    path.parent.mkdir()
+    (tmp_path / 'bearings').symlink_to(BEARINGS)
+    path.write_text(yaml.safe_dump(scenario))
+    out = tmp_path / 'out'
+    subprocess.run([str(tool_path()), 'generate', str(path), '--out', str(out), '--format', 'npy', '--quiet'],
+                   check=True, capture_output=True, timeout=120)
+    return path, out
+
+
 def test_generate_gives_bearing_tool_generate_samples(tmp_path):
     scenario = {
         'name': 'py_vs_tool', 'duration_s': 0.3, 'seed': 5, 'bearing_file': 'deep_groove_6205.yaml',
@@ -128,14 +142,7 @@ def test_generate_gives_bearing_tool_generate_samples(tmp_path):
         'defects': [{'type': 'spall', 'at_s': 0.1, 'surface': 'inner_race', 'position_deg': 0.0,
                      'width_mm': 0.5, 'depth_um': 10.0, 'width_growth_mm_per_s': 1.0}],
     }
-    import yaml
-    path = tmp_path / 'scenarios' / 'py_vs_tool.yaml'
-    path.parent.mkdir()
-    (tmp_path / 'bearings').symlink_to(BEARINGS)
-    path.write_text(yaml.safe_dump(scenario))
-    out = tmp_path / 'out'
-    subprocess.run([str(tool_path()), 'generate', str(path), '--out', str(out), '--format', 'npy', '--quiet'],
-                   check=True, capture_output=True, timeout=120)
+    path, out = write_scenario_and_generate_with_the_tool(tmp_path, scenario)
     r = bearing_sim.generate(path)
     assert np.array_equal(r['vibration'], np.load(out / 'py_vs_tool_vibration.npy'))
     assert np.array_equal(r['vibration_ideal'], np.load(out / 'py_vs_tool_vibration_ideal.npy'))
@@ -177,14 +184,7 @@ def test_a_flexible_ring_scenario_generates_as_bearing_tool_generates_it(tmp_pat
                   'segments': [{'type': 'ramp', 'start_s': 0.01, 'end_s': 0.04, 'to_speed_rpm': 180.0}]},
         'load': {'initial': {'force_N': [6800.0, 0.0, 0.0], 'moment_Nm': [0.0, 2100.0]}},
     }
-    import yaml
-    path = tmp_path / 'scenarios' / 'py_flexible.yaml'
-    path.parent.mkdir()
-    (tmp_path / 'bearings').symlink_to(BEARINGS)
-    path.write_text(yaml.safe_dump(scenario))
-    out = tmp_path / 'out'
-    subprocess.run([str(tool_path()), 'generate', str(path), '--out', str(out), '--format', 'npy', '--quiet'],
-                   check=True, capture_output=True, timeout=120)
+    path, out = write_scenario_and_generate_with_the_tool(tmp_path, scenario)
     r = bearing_sim.generate(path)
     assert np.array_equal(r['vibration_ideal'], np.load(out / 'py_flexible_vibration_ideal.npy'))
     assert r['vibration_ideal'].shape == (500, 3)
