@@ -228,6 +228,8 @@ void BearingSimRos::start() {
   ros_start_ = real_time_ ? ros::Time::now() : ros::Time(0, 0);
   const auto lead = std::chrono::duration_cast<RealtimePacer::Clock::duration>(std::chrono::duration<double>(lead_s_));
   scheduler_.emplace(RealtimePacer(sample_rate_hz_, wall_start_), lead);
+  if (!real_time_ && max_real_time_factor_ > 0.0)
+    bounded_pacer_.emplace(sample_rate_hz_ * max_real_time_factor_, wall_start_);
   // Speed figures mean little without the CPU and the SIMD code path that produced them.
   diagnostics_->set_realtime_value("CPU", cpu_model_name());
   diagnostics_->set_realtime_value("SIMD target", simd_target_name());
@@ -720,7 +722,8 @@ void BearingSimRos::run() {
     if (!real_time_) {  // as fast as possible: publish each chunk as soon as computed
       ChunkBundle bundle = compute_chunk();
       publish_bundle(bundle);
-      if (max_real_time_factor_ > 0.0) sleep_to_real_time_factor(bundle.last_index);
+      // A bounded factor: the chunk's end is due at that multiple of real time.
+      if (bounded_pacer_ && !bounded_pacer_->sleep_until_due(bundle.last_index + 1, stop_)) break;
       continue;
     }
     const std::size_t target = pipeline_->current_chunk_samples();
@@ -743,20 +746,6 @@ void BearingSimRos::run() {
       ready_.push_back(std::move(bundle));
     }
     queue_cv_.notify_all();
-  }
-}
-
-void BearingSimRos::sleep_to_real_time_factor(std::uint64_t last_index) {
-  using Clock = RealtimePacer::Clock;
-  const double simulated_s = static_cast<double>(last_index + 1) / sample_rate_hz_;
-  const Clock::time_point due =
-      wall_start_ + std::chrono::duration_cast<Clock::duration>(
-                        std::chrono::duration<double>(simulated_s / max_real_time_factor_));
-  // In slices, so that stop is noticed.
-  while (!stop_ && ros::ok()) {
-    const Clock::time_point now = Clock::now();
-    if (now >= due) return;
-    std::this_thread::sleep_for(std::min<Clock::duration>(due - now, std::chrono::milliseconds(50)));
   }
 }
 

@@ -99,7 +99,6 @@ class BearingSimRos : private PipelineSink {
   void lock_memory();
   // Publisher thread (real time; the sim thread as fast as possible).
   void run_publisher();
-  void sleep_to_real_time_factor(std::uint64_t last_index);  // not real time, bounded factor
   void publish_bundle(ChunkBundle& bundle);
   void apply_pending();
   // PipelineSink (sim thread, inside compute_chunk): into *bundle_.
@@ -166,6 +165,7 @@ class BearingSimRos : private PipelineSink {
 
   // Real time: chunks computed ahead (sim thread) waiting for their due time (publisher).
   std::optional<LeadScheduler> scheduler_;
+  std::optional<RealtimePacer> bounded_pacer_;  // not real time with max_real_time_factor > 0
   RealtimePacer::Clock::time_point wall_start_;
   std::mutex queue_mutex_;
   std::condition_variable queue_cv_;
