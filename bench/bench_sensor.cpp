@@ -33,9 +33,8 @@ void sensor(benchmark::State& state, AccelerometerConfig config, double input_ra
     benchmark::DoNotOptimize(output.data());
   }
   // kIsRate | kInvert gives seconds per unit; counting in units of 1e-9 samples gives ns.
-  state.counters["ns_per_input_sample"] =
-      benchmark::Counter(static_cast<double>(state.iterations()) * kSamples * 1e-9,
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_input_sample"] = benchmark::Counter(static_cast<double>(state.iterations()) * kSamples * 1e-9,
+                                                             benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 void BM_SensorHousing10kHz(benchmark::State& state) { sensor(state, AccelerometerConfig{}, 10000.0); }

@@ -13,28 +13,28 @@
 //        bearing_sim_integrator_study production [duration_s]  (BearingDynamics, every method)
 //        bearing_sim_integrator_study spall_steps [duration_s]  (race spalls on the CT bearing at whole steps)
 //        bearing_sim_integrator_study barrier
+#include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <thread>
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
-#include <unsupported/Eigen/MatrixFunctions>
 #include <yaml-cpp/yaml.h>
+#include <unsupported/Eigen/MatrixFunctions>
 
+#include "bearing_6205_yaml.hpp"
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "bearing_sim/core/simulation_run.hpp"
 #include "bearing_sim/core/spectrum.hpp"
-#include "bearing_6205_yaml.hpp"
 #include "reference_cases.hpp"
 
 namespace {
@@ -73,7 +73,8 @@ std::vector<Case> cases() {
   shallow.imperfections.spalls.at(0).depth_m = 3e-6;
   out.push_back({"6205 outer spall 3 um", shallow, load5(1000, 0, 200, 0, 0), 1800.0 * 2.0 * kPi / 60.0});
   // The INS pair of the benchmark: smooth, but its tilt mode is stiff (|lambda| h ~ 5 per sample).
-  out.push_back({"INS 618/22 pair", bearing("ins_618_22_db.yaml"), load5(3400, 0, 1750, 0, 0), 60.0 * 2.0 * kPi / 60.0});
+  out.push_back(
+      {"INS 618/22 pair", bearing("ins_618_22_db.yaml"), load5(3400, 0, 1750, 0, 0), 60.0 * 2.0 * kPi / 60.0});
   return out;
 }
 
@@ -369,7 +370,7 @@ Stepper etd_pec_dense(const Exponential& x0, int n, int m, double H) {
     Vector10 y, y_prev;
     Vector5 a;
     RollingPhase phase, phase_prev;
-    std::vector<Vector10> history;  // remainders at the last step starts, newest first
+    std::vector<Vector10> history;                        // remainders at the last step starts, newest first
     std::vector<std::pair<long long, PhiAll>> theta_phi;  // keyed by the numerator theta * m
   };
   const double h = H * m / n;
@@ -585,10 +586,12 @@ void production(const Case& c, double duration) {
                                 {"exponential Adams PECE", IntegrationMethod::ExponentialAdams},
                                 {"exponential Adams PEC", IntegrationMethod::ExponentialAdamsPec}}) {
     const SimulationSummary s = run_it(m, 0);
-    const int per_step = m == IntegrationMethod::ExponentialAdams ? 2 : m == IntegrationMethod::ExponentialAdamsPec ? 1 : 4;
+    const int per_step = m == IntegrationMethod::ExponentialAdams      ? 2
+                         : m == IntegrationMethod::ExponentialAdamsPec ? 1
+                                                                       : 4;
     const double evaluations = per_step * s.substeps;
-    std::printf("| %s | BearingDynamics %s, automatic (x%g) | %g | %+.2f %% | %+.3f | - | %.2f |\n", c.name.c_str(), name,
-                s.substeps, evaluations, 100.0 * (s.a_rms_x / ref.a_rms_x - 1.0), s.level_db - ref.level_db,
+    std::printf("| %s | BearingDynamics %s, automatic (x%g) | %g | %+.2f %% | %+.3f | - | %.2f |\n", c.name.c_str(),
+                name, s.substeps, evaluations, 100.0 * (s.a_rms_x / ref.a_rms_x - 1.0), s.level_db - ref.level_db,
                 s.realtime_factor);
     std::fflush(stdout);
   }
@@ -683,7 +686,9 @@ void spall_steps(double duration, const std::string& only) {
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "production") {
     const double duration = argc > 2 ? std::stod(argv[2]) : 0.3;
-    std::printf("| case | method | evaluations per sample | a_rms error | L error (dB) | worst octave band (dB) | real-time factor |\n");
+    std::printf(
+        "| case | method | evaluations per sample | a_rms error | L error (dB) | worst octave band (dB) | real-time "
+        "factor |\n");
     std::printf("|---|---|---|---|---|---|---|\n");
     for (const Case& c : cases()) production(c, duration);
     // Cost of one relinearization (static solution and two matrix exponentials): the
@@ -732,15 +737,18 @@ int main(int argc, char** argv) {
     char* end = nullptr;
     duration = std::strtod(argv[1], &end);
     if (end == argv[1] || *end != '\0' || !(duration > 0.0)) {
-      std::fprintf(stderr,
-                   "usage: bearing_sim_integrator_study [duration_s > 0] [case name part] [method name part]\n"
-                   "       bearing_sim_integrator_study production [duration_s] | spall_steps [duration_s] | barrier\n");
+      std::fprintf(
+          stderr,
+          "usage: bearing_sim_integrator_study [duration_s > 0] [case name part] [method name part]\n"
+          "       bearing_sim_integrator_study production [duration_s] | spall_steps [duration_s] | barrier\n");
       return 2;
     }
   }
   const double rate = 10000.0;
   std::printf("Integrator study: %.2f s simulated per run, output %.0f Hz, all balls integrated\n\n", duration, rate);
-  std::printf("| case | method | evaluations per sample | a_rms error | L error (dB) | worst octave band (dB) | real-time factor |\n");
+  std::printf(
+      "| case | method | evaluations per sample | a_rms error | L error (dB) | worst octave band (dB) | real-time "
+      "factor |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   const std::string only = argc > 2 ? argv[2] : "";
   const std::string method_only = argc > 3 ? argv[3] : "";

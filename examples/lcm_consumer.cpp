@@ -25,8 +25,8 @@ class PerSecond {
 
   void on_chunk(const lcm::ReceiveBuffer*, const std::string&, const bearing_sim_lcm::vibration_chunk_t* msg) {
     if (have_next_ && msg->first_sample != next_sample_) {
-      std::printf("gap: expected sample %lld, got %lld; restarting the second\n",
-                  static_cast<long long>(next_sample_), static_cast<long long>(msg->first_sample));
+      std::printf("gap: expected sample %lld, got %lld; restarting the second\n", static_cast<long long>(next_sample_),
+                  static_cast<long long>(msg->first_sample));
       ++gaps_;
       window_.clear();
     }
@@ -36,7 +36,8 @@ class PerSecond {
     for (std::int32_t i = 0; i < msg->num_samples; ++i) {
       if (window_.empty())  // time of this second's first sample, from the chunk's exact stamp
         window_start_s_ = static_cast<double>(msg->header.stamp_sec) +
-                          1e-9 * static_cast<double>(msg->header.stamp_nsec) + static_cast<double>(i) / msg->sample_rate;
+                          1e-9 * static_cast<double>(msg->header.stamp_nsec) +
+                          static_cast<double>(i) / msg->sample_rate;
       window_.push_back(msg->accel_x[static_cast<std::size_t>(i)]);
       if (window_.size() >= per_second) print();
     }
@@ -48,8 +49,8 @@ class PerSecond {
  private:
   void print() {
     const double rms = bearing_sim::rms_about_mean(window_, 0, window_.size());
-    std::printf("t = %12.6f s  samples %zu  rms(accel_x) = %.6e m/s^2  L = %7.2f dB\n", window_start_s_,
-                window_.size(), rms, bearing_sim::vibration_level_db(rms));
+    std::printf("t = %12.6f s  samples %zu  rms(accel_x) = %.6e m/s^2  L = %7.2f dB\n", window_start_s_, window_.size(),
+                rms, bearing_sim::vibration_level_db(rms));
     std::fflush(stdout);
     window_.clear();
     ++lines_;

@@ -69,10 +69,11 @@ int main(int argc, char** argv) {
       ratio.push_back(x / y);
     }
     // Real-time factor at 10 kHz: 1e5 / (ns per sample).
-    std::printf("%-27s %s | base %6.1fx (best %6.1fx) | new %6.1fx (best %6.1fx) | new/base speed %.3f (quartiles %.3f-%.3f)\n",
-                base.case_name(c), next.simd_target(), 1e5 / quantile(ta, 0.5), 1e5 / quantile(ta, 0.0),
-                1e5 / quantile(tb, 0.5), 1e5 / quantile(tb, 0.0), quantile(ratio, 0.5), quantile(ratio, 0.25),
-                quantile(ratio, 0.75));
+    std::printf(
+        "%-27s %s | base %6.1fx (best %6.1fx) | new %6.1fx (best %6.1fx) | new/base speed %.3f (quartiles %.3f-%.3f)\n",
+        base.case_name(c), next.simd_target(), 1e5 / quantile(ta, 0.5), 1e5 / quantile(ta, 0.0),
+        1e5 / quantile(tb, 0.5), 1e5 / quantile(tb, 0.0), quantile(ratio, 0.5), quantile(ratio, 0.25),
+        quantile(ratio, 0.75));
   }
   return 0;
 }

@@ -47,15 +47,18 @@ void* paired_make_case(int which, const char* source_dir, const char* simd_targe
   const std::string bearings = std::string(source_dir) + "/config/bearings/";
   const Vector5 ct = load5(6800.0, 0.0, 0.0, 0.0, 2100.0);
   switch (which) {
-    case 0: return new Case(bearing_sim::load_bearing_config(bearings + "ct_gantry_lyc.yaml"), ct, 180.0);
-    case 1: return new Case(bearing_sim::test::ct_gantry_with_defects(source_dir), ct, 180.0);
+    case 0:
+      return new Case(bearing_sim::load_bearing_config(bearings + "ct_gantry_lyc.yaml"), ct, 180.0);
+    case 1:
+      return new Case(bearing_sim::test::ct_gantry_with_defects(source_dir), ct, 180.0);
     case 2:
       return new Case(bearing_sim::load_bearing_config(bearings + "ins_618_22_db.yaml"),
                       load5(3400.0, 0.0, 1750.0, 0.0, 0.0), 60.0);
     default: {
       BearingConfig config = bearing_sim::load_bearing_config(bearings + "deep_groove_6205.yaml");
       config.imperfections = bearing_sim::parse_imperfections(
-          YAML::Load("{}"), YAML::Load("[{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 20}]"), "paired");
+          YAML::Load("{}"), YAML::Load("[{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 20}]"),
+          "paired");
       return new Case(config, load5(1000.0, 0.0, 0.0, 0.0, 0.0), 1797.0);
     }
   }

@@ -85,7 +85,8 @@ void resolve_modal_damping(const Reader& dr, BearingConfig* c) {
     c->contact_damping_Ns_per_m = contact_damping_for_ratio(model, load, c->modal_damping_ratio);
   } catch (const std::exception& e) {  // LoadNotCarriedError, InvalidInputError, ConfigError
     dr.fail("modal_damping_ratio", std::string("cannot be met at the reference load (damping.reference_force_N, "
-                                               "damping.reference_moment_Nm; zero if absent): ") + e.what());
+                                               "damping.reference_moment_Nm; zero if absent): ") +
+                                       e.what());
   }
 }
 
@@ -94,11 +95,29 @@ void resolve_modal_damping(const Reader& dr, BearingConfig* c) {
 BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& source) {
   if (!root || !root.IsMap()) throw ConfigError(source + ": expected a YAML mapping of bearing keys");
   Reader r(root, source, "");
-  r.check_keys({"name", "rows", "arrangement", "balls_per_row", "ball_diameter_mm",
-                "pitch_diameter_mm", "row_spacing_mm", "row_phase_deg", "contact_angle_deg",
-                "inner_groove_curvature", "outer_groove_curvature", "clearance_um",
-                "outer_diameter_mm", "inner_diameter_mm", "width_mm", "rotating_ring", "material",
-                "rotating_mass_kg", "tilt_inertia_kg_m2", "carried_body", "damping", "imperfections", "defects",
+  r.check_keys({"name",
+                "rows",
+                "arrangement",
+                "balls_per_row",
+                "ball_diameter_mm",
+                "pitch_diameter_mm",
+                "row_spacing_mm",
+                "row_phase_deg",
+                "contact_angle_deg",
+                "inner_groove_curvature",
+                "outer_groove_curvature",
+                "clearance_um",
+                "outer_diameter_mm",
+                "inner_diameter_mm",
+                "width_mm",
+                "rotating_ring",
+                "material",
+                "rotating_mass_kg",
+                "tilt_inertia_kg_m2",
+                "carried_body",
+                "damping",
+                "imperfections",
+                "defects",
                 "flexible_ring"});
 
   BearingConfig c;
@@ -142,11 +161,11 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
   c.contact_angle_rad = a0_deg * kPi / 180.0;
 
   c.inner_groove_curvature = r.number("inner_groove_curvature", 0.0, true);
-  r.require(c.inner_groove_curvature > 0.5 && c.inner_groove_curvature < 1.0,
-            "inner_groove_curvature", "must be in (0.5, 1.0) (groove radius / ball diameter)");
+  r.require(c.inner_groove_curvature > 0.5 && c.inner_groove_curvature < 1.0, "inner_groove_curvature",
+            "must be in (0.5, 1.0) (groove radius / ball diameter)");
   c.outer_groove_curvature = r.number("outer_groove_curvature", 0.0, true);
-  r.require(c.outer_groove_curvature > 0.5 && c.outer_groove_curvature < 1.0,
-            "outer_groove_curvature", "must be in (0.5, 1.0) (groove radius / ball diameter)");
+  r.require(c.outer_groove_curvature > 0.5 && c.outer_groove_curvature < 1.0, "outer_groove_curvature",
+            "must be in (0.5, 1.0) (groove radius / ball diameter)");
 
   const double g0_um = r.number("clearance_um", 0.0);
   r.require(std::abs(g0_um * 1e-6) < 0.05 * c.ball_diameter_m, "clearance_um",
@@ -180,8 +199,8 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
   }
 
   c.rotating_mass_kg = r.number("rotating_mass_kg", 0.0);
-  r.require(c.rotating_mass_kg >= 0.0 && (c.rotating_mass_kg > 0.0 || !r.has("rotating_mass_kg")),
-            "rotating_mass_kg", "must be > 0");
+  r.require(c.rotating_mass_kg >= 0.0 && (c.rotating_mass_kg > 0.0 || !r.has("rotating_mass_kg")), "rotating_mass_kg",
+            "must be > 0");
 
   c.tilt_inertia_given = r.has("tilt_inertia_kg_m2");
   c.tilt_inertia_kg_m2 = r.number("tilt_inertia_kg_m2", 0.0);
@@ -194,13 +213,15 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
   }
 
   if (const YAML::Node body = r.map("carried_body")) read_carried_body(Reader(body, source, "carried_body."), &c);
-  if (const YAML::Node ring = r.map("flexible_ring")) detail::read_flexible_ring(Reader(ring, source, "flexible_ring."), &c);
+  if (const YAML::Node ring = r.map("flexible_ring"))
+    detail::read_flexible_ring(Reader(ring, source, "flexible_ring."), &c);
   const YAML::Node dmp = r.map("damping");
   if (dmp) read_damping(Reader(dmp, source, "damping."), dmp, &c);
   c.imperfections = parse_imperfections(root["imperfections"], root["defects"], source, c.rows);
   if (c.imperfections.ball_spacing_jitter_m > 0.1 * kPi * c.pitch_diameter_m / c.balls_per_row)
-    throw ConfigError(source + ": key 'imperfections.ball_spacing_jitter_mm': must be below a tenth of the ball "
-                               "pitch, or balls would overlap");
+    throw ConfigError(source +
+                      ": key 'imperfections.ball_spacing_jitter_mm': must be below a tenth of the ball "
+                      "pitch, or balls would overlap");
   if (c.modal_damping_ratio > 0.0) resolve_modal_damping(Reader(dmp, source, "damping."), &c);
   return c;
 }

@@ -70,10 +70,14 @@ double BearingDynamics::fastest_rate_rad_s(const BearingModel& model, const Vect
 
 const char* integration_method_name(IntegrationMethod method) {
   switch (method) {
-    case IntegrationMethod::ExponentialAdamsPec: return "adams_pec";
-    case IntegrationMethod::ExponentialAdams: return "adams_pece";
-    case IntegrationMethod::ExponentialRk4: return "etdrk4";
-    case IntegrationMethod::Rk4: return "rk4";
+    case IntegrationMethod::ExponentialAdamsPec:
+      return "adams_pec";
+    case IntegrationMethod::ExponentialAdams:
+      return "adams_pece";
+    case IntegrationMethod::ExponentialRk4:
+      return "etdrk4";
+    case IntegrationMethod::Rk4:
+      return "rk4";
   }
   return "unknown";
 }
@@ -89,10 +93,13 @@ std::optional<IntegrationMethod> integration_method_from_name(const std::string&
 
 double BearingDynamics::step_times_omega_max(IntegrationMethod method) {
   switch (method) {
-    case IntegrationMethod::Rk4: return kStepTimesOmegaMax;
-    case IntegrationMethod::ExponentialRk4: return kExponentialStepTimesOmegaMax;
+    case IntegrationMethod::Rk4:
+      return kStepTimesOmegaMax;
+    case IntegrationMethod::ExponentialRk4:
+      return kExponentialStepTimesOmegaMax;
     case IntegrationMethod::ExponentialAdams:
-    case IntegrationMethod::ExponentialAdamsPec: return kAdamsStepTimesOmegaMax;
+    case IntegrationMethod::ExponentialAdamsPec:
+      return kAdamsStepTimesOmegaMax;
   }
   return kStepTimesOmegaMax;
 }
@@ -105,7 +112,7 @@ int BearingDynamics::choose_substeps(const BearingModel& model, const Vector5& l
 }
 
 BearingDynamics::StepRatio BearingDynamics::choose_step_ratio(const BearingModel& model, const Vector5& load,
-                                                             double sample_rate_hz, IntegrationMethod method) {
+                                                              double sample_rate_hz, IntegrationMethod method) {
   if (method != IntegrationMethod::ExponentialAdams && method != IntegrationMethod::ExponentialAdamsPec)
     return {choose_substeps(model, load, sample_rate_hz, method), 1};
   const Imperfections& imperfections = model.imperfections();
@@ -316,8 +323,8 @@ void BearingDynamics::update_slip_fluctuation() {
     return;
   }
   const double decay = std::exp(-1.0 / (options_.sample_rate_hz * spec.cage_slip_correlation_s));
-  slip_fluctuation_ = decay * slip_fluctuation_ +
-                      spec.cage_slip_variation * std::sqrt(1.0 - decay * decay) * slip_noise_(slip_rng_);
+  slip_fluctuation_ =
+      decay * slip_fluctuation_ + spec.cage_slip_variation * std::sqrt(1.0 - decay * decay) * slip_noise_(slip_rng_);
 }
 
 void BearingDynamics::update_cage_speed() {
@@ -334,7 +341,7 @@ void BearingDynamics::set_model(BearingModel model) {
   set_inverse_mass(inverse_mass);
   displacement_limit_m_ = 0.25 * model_.config().ball_diameter_m + std::abs(model_.clearance_m());
   update_cage_speed();
-  update_substeps();  // clearance and damping change the fastest mode
+  update_substeps();         // clearance and damping change the fastest mode
   linearized_step_s_ = 0.0;  // and the linearized contacts: again before the next sample
   acceleration_current_ = false;
   samples_since_split_ = 0;  // the contact margin depends on the inputs
@@ -390,8 +397,7 @@ Vector5 BearingDynamics::acceleration(const Vector5& q, const Vector5& q_dot, co
 
 Vector5 BearingDynamics::acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
                                       const BallArrays& balls, const CageTrig& trig) const {
-  return divided_by_mass(load_line_.at(phase.time_s) +
-                         model_.contact_force(q, q_dot, phase, balls, trig.c, trig.s));
+  return divided_by_mass(load_line_.at(phase.time_s) + model_.contact_force(q, q_dot, phase, balls, trig.c, trig.s));
 }
 
 double BearingDynamics::slipping_cage_speed() const {
@@ -400,8 +406,8 @@ double BearingDynamics::slipping_cage_speed() const {
 
 RollingPhase BearingDynamics::advanced(const RollingPhase& p, double dt) const {
   const double slipping_cage_speed = this->slipping_cage_speed();
-  return RollingPhase{p.cage + slipping_cage_speed * dt, p.inner_ring + inner_speed_ * dt, p.outer_ring + outer_speed_ * dt,
-                      p.ball_spin + spin_speed_ * dt, p.time_s + dt};
+  return RollingPhase{p.cage + slipping_cage_speed * dt, p.inner_ring + inner_speed_ * dt,
+                      p.outer_ring + outer_speed_ * dt, p.ball_spin + spin_speed_ * dt, p.time_s + dt};
 }
 
 double BearingDynamics::contact_margin_m(const Vector5& q, const Vector5& v, const Vector5& a) const {
@@ -417,8 +423,7 @@ double BearingDynamics::contact_margin_m(const Vector5& q, const Vector5& v, con
   const double kinematic = speed * h + accel * h * h;
   const double w = slowest_mode_rad_s_;
   const double oscillation = w > 0.0 ? 2.0 * std::hypot(accel / (w * w), speed / w) : kinematic;
-  const double travel =
-      std::abs(cage_speed_) * h * (2.0 * q.head<3>().norm() + 3.0 * q.tail<2>().norm() * lever);
+  const double travel = std::abs(cage_speed_) * h * (2.0 * q.head<3>().norm() + 3.0 * q.tail<2>().norm() * lever);
   const double imperfections = model_.max_offset_change_m(inner_speed_, outer_speed_, h);
   return 2.0 * (std::min(kinematic, oscillation) + travel + imperfections) + 1e-10;
 }
@@ -429,10 +434,8 @@ bool BearingDynamics::integrate_sample(Vector5& q, Vector5& v, RollingPhase& pha
     integrate_sample_adams(q, v, phase, a_start, balls, adams_state, a_end);
     return true;
   }
-  if (exponential())
-    integrate_sample_exponential(q, v, phase, a_start, balls);
-  else
-    integrate_sample_rk4(q, v, phase, a_start, balls);
+  if (exponential()) integrate_sample_exponential(q, v, phase, a_start, balls);
+  else integrate_sample_rk4(q, v, phase, a_start, balls);
   return false;
 }
 
@@ -475,8 +478,8 @@ BearingDynamics::Vector10 BearingDynamics::etdrk4_step(const Vector10& y, const 
   return exp_full_.lazyProduct(y) + w1_.lazyProduct(r1) + w2_.lazyProduct(Vector5(r2 + r3)) + w3_.lazyProduct(r4);
 }
 
-void BearingDynamics::integrate_sample_exponential(Vector5& q, Vector5& v, RollingPhase& phase,
-                                                   const Vector5& a_start, const BallArrays& balls) const {
+void BearingDynamics::integrate_sample_exponential(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
+                                                   const BallArrays& balls) const {
   const double h = internal_step_s();
   const CageTrig rot = half_step_rotation();
   CageTrig trig{std::cos(phase.cage), std::sin(phase.cage)};
@@ -564,10 +567,10 @@ void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
     detail::multiply_add<10, 5>(adams_corrector_.data(), fourth_difference.data(), predicted.data(), x.data());
     for (int i = 29; i >= 15; --i) x[i] = x[i - 5];  // the history one place down
     // The next step's r: the predicted end's (PEC) or the corrected end's (PECE).
-    x.segment<5>(10) = evaluate_end ? Vector5(acceleration(q_lin_ + x.head<5>(), x.segment<5>(5), end, balls,
-                                                           trig_end) -
-                                              times(lin_accel_, x.data()))
-                                    : r_p;
+    x.segment<5>(10) = evaluate_end
+                           ? Vector5(acceleration(q_lin_ + x.head<5>(), x.segment<5>(5), end, balls, trig_end) -
+                                     times(lin_accel_, x.data()))
+                           : r_p;
     method_phase = end;
     trig = trig_end;
     adams.lead += step_ratio_.samples;
@@ -618,8 +621,8 @@ DynamicSample BearingDynamics::step() {
   // Only the balls that can touch during the next kSamplesPerBallSplit samples take part
   // in the integration; the others carry no load now, so a_start holds for either set.
   if (samples_since_split_ == 0) {
-    const double margin = options_.skip_clear_balls ? contact_margin_m(q0, v0, a_start)
-                                                    : std::numeric_limits<double>::infinity();
+    const double margin =
+        options_.skip_clear_balls ? contact_margin_m(q0, v0, a_start) : std::numeric_limits<double>::infinity();
     split_clear_max_deflection_m_ = model_.split_by_deflection(q0, phase_, margin, &active_balls_, &clear_balls_);
     split_displacement_ = q0;
     split_travel_ = {};
@@ -628,10 +631,9 @@ DynamicSample BearingDynamics::step() {
   // A moving load is followed at most every kSamplesPerLinearization samples, so that an
   // input changing every sample cannot make every sample pay for a linearization.
   ++samples_since_linearization_;
-  if (exponential() &&
-      (linearized_step_s_ != internal_step_s() ||
-       (samples_since_linearization_ >= kSamplesPerLinearization &&
-        (load_line_.load - load_lin_).norm() > kRelinearizeLoadChange * load_lin_.norm()))) {
+  if (exponential() && (linearized_step_s_ != internal_step_s() ||
+                        (samples_since_linearization_ >= kSamplesPerLinearization &&
+                         (load_line_.load - load_lin_).norm() > kRelinearizeLoadChange * load_lin_.norm()))) {
     // About the equilibrium of the current load (the ring vibrates about it), or about the
     // current displacement when there is none.
     Vector5 q_eq = q0;
@@ -723,7 +725,8 @@ DynamicSample BearingDynamics::commit_sample(const Vector5& q, const Vector5& v,
   current_.time_s = phase_.time_s;
   update_slip_fluctuation();
   current_.cage_angle_rad = phase_.cage;
-  current_.ring_angle_rad = model_.config().rotating_ring == RotatingRing::Outer ? phase_.outer_ring : phase_.inner_ring;
+  current_.ring_angle_rad =
+      model_.config().rotating_ring == RotatingRing::Outer ? phase_.outer_ring : phase_.inner_ring;
   current_.displacement = q;
   current_.velocity = v;
   current_.acceleration = a;  // with the load at its time

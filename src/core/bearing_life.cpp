@@ -78,8 +78,7 @@ double iso281_groove_radius_factor(const BearingConfig& b) {
     return qi * std::pow(1.0 + std::pow(qi / qe, 10.0 / 3.0), -0.3);
   };
   constexpr double kTableInner = 0.52, kTableOuter = 0.53;
-  return ring_rating(std::max(b.inner_groove_curvature, kTableInner),
-                     std::max(b.outer_groove_curvature, kTableOuter)) /
+  return ring_rating(std::max(b.inner_groove_curvature, kTableInner), std::max(b.outer_groove_curvature, kTableOuter)) /
          ring_rating(kTableInner, kTableOuter);
 }
 
@@ -169,7 +168,8 @@ double contact_dynamic_load_rating_N(const BearingConfig& b, Surface race, const
   const bool inner = race == Surface::InnerRace;
   const double f = inner ? b.inner_groove_curvature : b.outer_groove_curvature;
   const double conformity = std::pow(2.0 * f / (2.0 * f - 1.0), 0.41);
-  const double shape = inner ? std::pow(1.0 - g, 1.39) / std::cbrt(1.0 + g) : std::pow(1.0 + g, 1.39) / std::cbrt(1.0 - g);
+  const double shape =
+      inner ? std::pow(1.0 - g, 1.39) / std::cbrt(1.0 + g) : std::pow(1.0 + g, 1.39) / std::cbrt(1.0 - g);
   return 98.1 * kLambda * life.material_factor * conformity * shape *
          std::pow(b.ball_diameter_m / b.pitch_diameter_m, 0.3) * std::pow(dw_mm, 1.8) /
          std::cbrt(static_cast<double>(b.balls_per_row));

@@ -88,8 +88,8 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
 }
 
 void BearingModel::update_race_spalls_in_kernel() {
-  race_spalls_in_kernel_ = imperfections_.has_race_spalls() && !imperfections_.offsets_vary_without_race_spalls() &&
-                           rows_apart_axially_;
+  race_spalls_in_kernel_ =
+      imperfections_.has_race_spalls() && !imperfections_.offsets_vary_without_race_spalls() && rows_apart_axially_;
   standing_window_count_ = 0;
   windows_follow_outer_ = windows_follow_inner_ = false;
   if (!race_spalls_in_kernel_) return;
@@ -225,8 +225,7 @@ int BearingModel::row_contact_sign(int row) const {
 }
 
 Matrix5 BearingModel::mass_matrix() const {
-  if (!config_.has_dynamics())
-    throw InvalidInputError(config_.name + ": rotating_mass_kg is required for dynamics");
+  if (!config_.has_dynamics()) throw InvalidInputError(config_.name + ": rotating_mass_kg is required for dynamics");
   Vector5 ring;
   ring << config_.rotating_mass_kg, config_.rotating_mass_kg, config_.rotating_mass_kg, config_.tilt_inertia_kg_m2,
       config_.tilt_inertia_kg_m2;
@@ -268,8 +267,8 @@ struct Kinematics {
   double deflection;  // delta
 };
 
-inline Kinematics kinematics(double cphi, double sphi, double gz, double nz, double offset, double rho,
-                             double cos_a0, double A, double g0, double sign, const double* q) {
+inline Kinematics kinematics(double cphi, double sphi, double gz, double nz, double offset, double rho, double cos_a0,
+                             double A, double g0, double sign, const double* q) {
   Kinematics k;
   k.px = rho * cphi;
   k.py = rho * sphi;
@@ -356,10 +355,8 @@ Vector5 BearingModel::contact_force(const Vector5& q, const Vector5& q_dot, cons
   int window_count = 0;
   const double* offsets = nullptr;
   if (race_spalls_in_kernel_) windows = kernel_windows(phase, scratch, &window_count);
-  if (window_count > 0)
-    offsets = balls.deflection_offset.data();
-  else
-    offsets = offsets_at(phase, balls);
+  if (window_count > 0) offsets = balls.deflection_offset.data();
+  else offsets = offsets_at(phase, balls);
   const detail::ContactKernelInput in{cos_cage,
                                       sin_cage,
                                       groove_centre_radius_,
@@ -496,9 +493,9 @@ std::vector<BallState> BearingModel::ball_states(const Vector5& q, const Rolling
   const double* off = offsets_at(phase, balls_);
   for (int b = 0; b < ball_count(); ++b) {
     const double phi = phase.cage + base_azimuth_[b];
-    const Kinematics k = kinematics(std::cos(phi), std::sin(phi), balls_.groove_centre_z[b], balls_.normal_z[b],
-                                    off[b], groove_centre_radius_, cos_a0_, groove_centre_distance_,
-                                    clearance_m_, moving_sign_, q.data());
+    const Kinematics k =
+        kinematics(std::cos(phi), std::sin(phi), balls_.groove_centre_z[b], balls_.normal_z[b], off[b],
+                   groove_centre_radius_, cos_a0_, groove_centre_distance_, clearance_m_, moving_sign_, q.data());
     BallState& s = balls[b];
     s.row = balls_.row[b];
     s.index_in_row = b % config_.balls_per_row;

@@ -35,12 +35,10 @@ Biquad design_seismic_path(double resonance_hz, double damping_ratio, double fs_
   // Numerator B(x) = b0 + b1 x + b2 x^2 (x = z^-1): B(1) = A(1) (unity at DC) and
   // B(x_n) = H(j wn) A(x_n) at x_n = exp(-j wn T): three real equations, three unknowns.
   const std::complex<double> xn = std::polar(1.0, -wn * t);
-  const std::complex<double> target = seismic_transmissibility(resonance_hz, resonance_hz, damping_ratio) *
-                                      (1.0 + xn * (q.a1 + xn * q.a2));
+  const std::complex<double> target =
+      seismic_transmissibility(resonance_hz, resonance_hz, damping_ratio) * (1.0 + xn * (q.a1 + xn * q.a2));
   Eigen::Matrix3d m;
-  m << 1.0, 1.0, 1.0,
-       1.0, xn.real(), (xn * xn).real(),
-       0.0, xn.imag(), (xn * xn).imag();
+  m << 1.0, 1.0, 1.0, 1.0, xn.real(), (xn * xn).real(), 0.0, xn.imag(), (xn * xn).imag();
   const Eigen::Vector3d rhs(1.0 + q.a1 + q.a2, target.real(), target.imag());
   const Eigen::Vector3d b = m.fullPivLu().solve(rhs);
   q.b0 = b(0);

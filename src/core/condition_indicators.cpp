@@ -12,13 +12,16 @@
 
 namespace bearing_sim {
 
-
 const char* velocity_zone_name(VelocityZone zone) {
   switch (zone) {
-    case VelocityZone::A: return "A";
-    case VelocityZone::B: return "B";
-    case VelocityZone::C: return "C";
-    case VelocityZone::D: return "D";
+    case VelocityZone::A:
+      return "A";
+    case VelocityZone::B:
+      return "B";
+    case VelocityZone::C:
+      return "C";
+    case VelocityZone::D:
+      return "D";
   }
   return "?";
 }
@@ -32,58 +35,80 @@ VelocityZone velocity_zone(double v, const VelocityZoneBoundaries& b) {
 
 const char* health_level_name(HealthLevel level) {
   switch (level) {
-    case HealthLevel::Ok: return "OK";
-    case HealthLevel::Warn: return "WARN";
-    case HealthLevel::Error: return "ERROR";
+    case HealthLevel::Ok:
+      return "OK";
+    case HealthLevel::Warn:
+      return "WARN";
+    case HealthLevel::Error:
+      return "ERROR";
   }
   return "?";
 }
 
 const char* verdict_outcome_name(VerdictOutcome outcome) {
   switch (outcome) {
-    case VerdictOutcome::None: return "none";
-    case VerdictOutcome::Fault: return "fault";
-    case VerdictOutcome::Ambiguous: return "ambiguous";
+    case VerdictOutcome::None:
+      return "none";
+    case VerdictOutcome::Fault:
+      return "fault";
+    case VerdictOutcome::Ambiguous:
+      return "ambiguous";
   }
   return "?";
 }
 
 const char* fault_kind_name(FaultKind kind) {
   switch (kind) {
-    case FaultKind::OuterRace: return "outer race";
-    case FaultKind::InnerRace: return "inner race";
-    case FaultKind::Ball: return "ball";
-    case FaultKind::Cage: return "cage";
+    case FaultKind::OuterRace:
+      return "outer race";
+    case FaultKind::InnerRace:
+      return "inner race";
+    case FaultKind::Ball:
+      return "ball";
+    case FaultKind::Cage:
+      return "cage";
   }
   return "?";
 }
 
 const char* fault_frequency_label(FaultKind kind) {
   switch (kind) {
-    case FaultKind::OuterRace: return "BPFO";
-    case FaultKind::InnerRace: return "BPFI";
-    case FaultKind::Ball: return "2xBSF";
-    case FaultKind::Cage: return "FTF";
+    case FaultKind::OuterRace:
+      return "BPFO";
+    case FaultKind::InnerRace:
+      return "BPFI";
+    case FaultKind::Ball:
+      return "2xBSF";
+    case FaultKind::Cage:
+      return "FTF";
   }
   return "?";
 }
 
 double fault_frequency_hz(const BearingFrequencies& f, FaultKind kind) {
   switch (kind) {
-    case FaultKind::OuterRace: return f.ball_pass_outer_race_hz;
-    case FaultKind::InnerRace: return f.ball_pass_inner_race_hz;
-    case FaultKind::Ball: return 2.0 * f.ball_spin_hz;  // the spall meets both races once per spin turn
-    case FaultKind::Cage: return std::abs(f.cage_hz);
+    case FaultKind::OuterRace:
+      return f.ball_pass_outer_race_hz;
+    case FaultKind::InnerRace:
+      return f.ball_pass_inner_race_hz;
+    case FaultKind::Ball:
+      return 2.0 * f.ball_spin_hz;  // the spall meets both races once per spin turn
+    case FaultKind::Cage:
+      return std::abs(f.cage_hz);
   }
   return 0.0;
 }
 
 double modulation_frequency_hz(const BearingFrequencies& f, FaultKind kind) {
   switch (kind) {
-    case FaultKind::OuterRace: return f.outer_ring_hz;
-    case FaultKind::InnerRace: return f.inner_ring_hz;
-    case FaultKind::Ball: return std::abs(f.cage_hz);
-    case FaultKind::Cage: return 0.0;
+    case FaultKind::OuterRace:
+      return f.outer_ring_hz;
+    case FaultKind::InnerRace:
+      return f.inner_ring_hz;
+    case FaultKind::Ball:
+      return std::abs(f.cage_hz);
+    case FaultKind::Cage:
+      return 0.0;
   }
   return 0.0;
 }
@@ -96,8 +121,8 @@ Diagnosis diagnose(const ConditionIndicators& c, const DiagnosisThresholds& t) {
     std::string text;
   };
   std::vector<Finding> findings;
-  const std::string velocity = "vibration velocity " + detail::fixed_decimals(c.velocity_rms_mm_s, 2) + " mm/s RMS (zone " +
-                               velocity_zone_name(c.zone) + ")";
+  const std::string velocity = "vibration velocity " + detail::fixed_decimals(c.velocity_rms_mm_s, 2) +
+                               " mm/s RMS (zone " + velocity_zone_name(c.zone) + ")";
   if (c.zone >= t.error_zone)
     findings.push_back({HealthLevel::Error, 1e9, velocity + ": damaging vibration, stop and inspect"});
   else if (c.zone >= t.warn_zone)
@@ -108,9 +133,9 @@ Diagnosis diagnose(const ConditionIndicators& c, const DiagnosisThresholds& t) {
     const std::string what = f.kind == FaultKind::Cage ? "cage defect (or a ball defect's cage-rate modulation)"
                                                        : std::string(fault_kind_name(f.kind)) + " defect";
     findings.push_back({HealthLevel::Warn, p.snr_db,
-                        what + " suspected: envelope peak at " +
-                            detail::fixed_decimals(p.frequency_hz, 1) + " Hz (" + fault_frequency_label(f.kind) + " " +
-                            detail::fixed_decimals(p.expected_hz, 1) + " Hz), " + detail::fixed_decimals(p.snr_db, 0) + " dB over noise, " +
+                        what + " suspected: envelope peak at " + detail::fixed_decimals(p.frequency_hz, 1) + " Hz (" +
+                            fault_frequency_label(f.kind) + " " + detail::fixed_decimals(p.expected_hz, 1) + " Hz), " +
+                            detail::fixed_decimals(p.snr_db, 0) + " dB over noise, " +
                             std::to_string(f.harmonics_found) + " harmonics" +
                             (f.sidebands_required ? ", " + std::to_string(f.sidebands_found) + "/2 sidebands at -+" +
                                                         detail::fixed_decimals(f.modulation_hz, 1) + " Hz"
@@ -118,8 +143,9 @@ Diagnosis diagnose(const ConditionIndicators& c, const DiagnosisThresholds& t) {
   }
   if (t.kurtosis_warn > 0.0 && c.acceleration.kurtosis >= t.kurtosis_warn)
     findings.push_back({HealthLevel::Warn, 0.0,
-                        "impulsive vibration: kurtosis " + detail::fixed_decimals(c.acceleration.kurtosis, 1) + " (Gaussian noise 3), "
-                        "typical of a localised defect"});
+                        "impulsive vibration: kurtosis " + detail::fixed_decimals(c.acceleration.kurtosis, 1) +
+                            " (Gaussian noise 3), "
+                            "typical of a localised defect"});
   Diagnosis d;
   d.verdict = fault_verdict(c.faults);
   // Series the analysis cannot see (too slow for the window, too fast for the band): said,
@@ -141,8 +167,10 @@ Diagnosis diagnose(const ConditionIndicators& c, const DiagnosisThresholds& t) {
                               unseen + "; the series' notes say why)"});
   }
   if (findings.empty()) {
-    d.reason = "no defect indication: " + velocity + ", kurtosis " + detail::fixed_decimals(c.acceleration.kurtosis, 1) +
-               ", no fault series in the envelope spectrum (fundamental " + detail::fixed_decimals(c.fault_snr_db_used, 1) + " dB over noise with its supporting lines)";
+    d.reason = "no defect indication: " + velocity + ", kurtosis " +
+               detail::fixed_decimals(c.acceleration.kurtosis, 1) +
+               ", no fault series in the envelope spectrum (fundamental " +
+               detail::fixed_decimals(c.fault_snr_db_used, 1) + " dB over noise with its supporting lines)";
     return d;
   }
   std::stable_sort(findings.begin(), findings.end(), [](const Finding& a, const Finding& b) {
@@ -199,8 +227,7 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
   // band by options.envelope_band) and the pre-whitened window, whose lines are the
   // cyclostationary impacts of rolling elements, not the machine's discrete lines. The
   // verdict is the recorded path's where it names a defect, else the whitened path's.
-  static constexpr FaultKind kKinds[] = {FaultKind::OuterRace, FaultKind::InnerRace, FaultKind::Ball,
-                                         FaultKind::Cage};
+  static constexpr FaultKind kKinds[] = {FaultKind::OuterRace, FaultKind::InnerRace, FaultKind::Ball, FaultKind::Cage};
   double lowest_fault_hz = 0.0;
   for (FaultKind k : kKinds) {
     const double f = fault_frequency_hz(freq, k);
@@ -208,8 +235,8 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
   }
   constexpr double kPeriodsPerSegment = 10.0;  // rule 11: the slowest line resolved in each segment
   const double segment_s =
-      std::min(c.window_s, o.segment_s > 0.0 ? o.segment_s
-                                             : std::max(1.0, kPeriodsPerSegment / std::max(lowest_fault_hz, 1e-9)));
+      std::min(c.window_s,
+               o.segment_s > 0.0 ? o.segment_s : std::max(1.0, kPeriodsPerSegment / std::max(lowest_fault_hz, 1e-9)));
   EnvelopePathSettings recorded_path;
   recorded_path.segment_samples = fft_friendly_length(static_cast<std::size_t>(std::llround(segment_s * fs)));
   recorded_path.absolute_floor = o.envelope_floor_m_s2;

@@ -121,15 +121,14 @@ HWY_INLINE ContactSums Sums(const ContactKernelInput& in) {
     // The tail as the last N balls, the lanes already summed masked off (no copy, no read
     // past the arrays; a masked lane adds exact zeros).
     const std::size_t last = n - N;
-    balls(hn::LoadU(d, in.cos_base + last), hn::LoadU(d, in.sin_base + last),
-          hn::LoadU(d, in.groove_centre_z + last), hn::LoadU(d, in.normal_z + last), hn::LoadU(d, in.offset + last),
-          hn::Not(hn::FirstN(d, b - last)));
+    balls(hn::LoadU(d, in.cos_base + last), hn::LoadU(d, in.sin_base + last), hn::LoadU(d, in.groove_centre_z + last),
+          hn::LoadU(d, in.normal_z + last), hn::LoadU(d, in.offset + last), hn::Not(hn::FirstN(d, b - last)));
   } else if (b < n) {
     // Fewer balls than lanes: through a padded copy (its padding adds exact zeros).
     static_assert(HWY_MAX_BYTES / sizeof(double) <= PaddedBalls::kMaxLanes);
     const PaddedBalls p(in.cos_base, in.sin_base, in.groove_centre_z, in.normal_z, in.offset, b, n, N);
-    balls(hn::LoadU(d, p.cos_base), hn::LoadU(d, p.sin_base), hn::LoadU(d, p.groove_centre_z),
-          hn::LoadU(d, p.normal_z), hn::LoadU(d, p.offset), all);
+    balls(hn::LoadU(d, p.cos_base), hn::LoadU(d, p.sin_base), hn::LoadU(d, p.groove_centre_z), hn::LoadU(d, p.normal_z),
+          hn::LoadU(d, p.offset), all);
   }
   return ContactSums{hn::GetLane(hn::SumOfLanes(d, sx)),  hn::GetLane(hn::SumOfLanes(d, sy)),
                      hn::GetLane(hn::SumOfLanes(d, sz)),  hn::GetLane(hn::SumOfLanes(d, szc)),

@@ -26,7 +26,7 @@ struct ContactKernelInput {
   const double* sin_base;
   const double* groove_centre_z;  // per ball (of its row); groove centre of the moving ring
   const double* normal_z;         // per ball (of its row)
-  const double* offset;  // deflection offsets (without the race spalls given as windows)
+  const double* offset;           // deflection offsets (without the race spalls given as windows)
   int n;
   // The race spalls (in the kernel, so that a bearing whose offsets vary only under them
   // needs no per-call offsets: docs/model.md 10.7).

@@ -56,12 +56,14 @@ EnvelopeBandChoice choose_envelope_band(const std::vector<double>& x, double fs,
                             detail::fixed_decimals(nyquist, 0) + " Hz (raise the sample rate or give resonance_hz)");
   // The band's impulsiveness, whichever way it was chosen (the evidence rule asks it of a
   // series without sidebands); the kurtogram has it already, by the same computation.
-  if (!c.kurtosis.valid) c.kurtosis = band_spectral_kurtosis(x, fs, c.low_hz, c.high_hz, o.sensor_floor_m_s2_per_sqrt_hz);
+  if (!c.kurtosis.valid)
+    c.kurtosis = band_spectral_kurtosis(x, fs, c.low_hz, c.high_hz, o.sensor_floor_m_s2_per_sqrt_hz);
   return c;
 }
 
-EnvelopeEvidence envelope_evidence(const std::vector<double>& demodulated, double fs, const BearingFrequencies& freq, const AnalysisOptions& o,
-                                   const EnvelopeBandChoice& band, const EnvelopePathSettings& settings) {
+EnvelopeEvidence envelope_evidence(const std::vector<double>& demodulated, double fs, const BearingFrequencies& freq,
+                                   const AnalysisOptions& o, const EnvelopeBandChoice& band,
+                                   const EnvelopePathSettings& settings) {
   EnvelopeEvidence e;
   e.band = band;
   e.envelope = averaged_envelope_spectrum(demodulated, fs, band.low_hz, band.high_hz, settings.segment_samples,
@@ -79,7 +81,8 @@ EnvelopeEvidence envelope_evidence(const std::vector<double>& demodulated, doubl
     f.kind = k;
     f.envelope_peak = series_peak(e.envelope, fault_frequency_hz(freq, k), series_lines_hz(freq, k, 5), o, context);
     f.modulation = e.envelope_mean > 0.0 ? f.envelope_peak.amplitude / e.envelope_mean : 0.0;
-    if (k != FaultKind::Cage && line_found(f.envelope_peak, context.fault_snr_db, o.thresholds)) context.present.push_back(k);
+    if (k != FaultKind::Cage && line_found(f.envelope_peak, context.fault_snr_db, o.thresholds))
+      context.present.push_back(k);
     e.faults.push_back(f);
   }
   for (FaultIndicator& f : e.faults) collect_fault_evidence(e.envelope, freq, o, context, band.kurtosis, &f);

@@ -12,7 +12,7 @@ namespace bearing_sim {
 
 struct EnvelopeBandChoice {
   double low_hz = 0.0, high_hz = 0.0;
-  std::string source;  // "resonance", "kurtogram" or "fixed"
+  std::string source;     // "resonance", "kurtogram" or "fixed"
   BandKurtosis kurtosis;  // of the signal as recorded in that band, the sensor floor added
 };
 
@@ -28,7 +28,7 @@ struct EnvelopeEvidence {
   std::size_t segments = 1;
   double segment_s = 0.0;
   double fault_snr_db_used = 0.0, evidence_snr_db_used = 0.0;
-  std::vector<FaultIndicator> faults;  // outer race, inner race, ball, cage
+  std::vector<FaultIndicator> faults;         // outer race, inner race, ball, cage
   std::vector<FaultKind> found_fundamentals;  // race and ball series whose fundamental is found
   Verdict verdict;
 };
@@ -43,7 +43,8 @@ struct EnvelopePathSettings {
 
 // The evidence of every series in the band envelope of `demodulated` (the window as
 // recorded or pre-whitened).
-EnvelopeEvidence envelope_evidence(const std::vector<double>& demodulated, double sample_rate_hz, const BearingFrequencies& freq, const AnalysisOptions& o,
+EnvelopeEvidence envelope_evidence(const std::vector<double>& demodulated, double sample_rate_hz,
+                                   const BearingFrequencies& freq, const AnalysisOptions& o,
                                    const EnvelopeBandChoice& band, const EnvelopePathSettings& settings);
 
 }  // namespace bearing_sim

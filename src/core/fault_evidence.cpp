@@ -64,8 +64,7 @@ bool lines_coincide(const FaultIndicator& a, double a_fmod_hz, const FaultIndica
 // harmonic of the load distribution over the azimuth, which has a (cos psi - cos psi_l)^1.5
 // edge at the load zone's limits: its harmonics fall as n^-2.5, i.e. 68 dB from Z = 9 (the
 // 6205: series up to 31 dB over a quiet sensor) to Z = 207 (the CT bearing: none seen).
-bool compliance_series(const BearingFrequencies& freq, FaultKind kind, double resolution_hz,
-                       const AnalysisOptions& o) {
+bool compliance_series(const BearingFrequencies& freq, FaultKind kind, double resolution_hz, const AnalysisOptions& o) {
   const double vc = freq.varying_compliance_hz, cage = std::abs(freq.cage_hz);
   if (!(vc > 0.0) || !(cage > 0.0) || vc / cage > o.thresholds.compliance_max_balls) return false;
   if (kind == FaultKind::Cage) return true;
@@ -148,10 +147,8 @@ Verdict fault_verdict(const std::vector<FaultIndicator>& faults) {
   bool cage = false;
   for (const FaultIndicator& f : faults) {
     if (!f.suspected) continue;
-    if (f.kind == FaultKind::Cage)
-      cage = true;
-    else
-      v.kinds.push_back(f.kind);
+    if (f.kind == FaultKind::Cage) cage = true;
+    else v.kinds.push_back(f.kind);
   }
   if (v.kinds.empty() && cage) v.kinds = {FaultKind::Ball, FaultKind::Cage};  // cage-rate lines alone
   if (v.kinds.empty()) {
@@ -239,9 +236,9 @@ void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& 
   // of 12 |f_c| with cage slip): impacts must then show as an impulsive band (docs/health.md,
   // "Evidence", rule 5).
   const bool on_comb = lines && lines_on_compliance_comb(*f, freq, envelope.resolution_hz, o);
-  f->impulsiveness_required = t.impulsive_band_kurtosis > 0.0 &&
-                              ((!f->sidebands_required && compliance_series(freq, f->kind, envelope.resolution_hz, o)) ||
-                               on_comb);
+  f->impulsiveness_required =
+      t.impulsive_band_kurtosis > 0.0 &&
+      ((!f->sidebands_required && compliance_series(freq, f->kind, envelope.resolution_hz, o)) || on_comb);
   f->band_kurtosis = band.kurtosis;
   f->impulsive = !f->impulsiveness_required || band.kurtosis >= t.impulsive_band_kurtosis;
   f->suspected = lines && f->impulsive;
@@ -250,15 +247,18 @@ void collect_fault_evidence(const Spectrum& envelope, const BearingFrequencies& 
               " Hz lies above what the envelope can show (band " + detail::fixed_decimals(context.band_width_hz, 0) +
               " Hz wide, spectrum to " + detail::fixed_decimals(last_hz, 0) + " Hz): the analysis cannot see it";
   else if (!f->resolvable)
-    f->note = std::string(fault_frequency_label(f->kind)) + " " + detail::fixed_decimals(f->envelope_peak.expected_hz, 2) +
-              " Hz is not resolvable in a " + detail::fixed_decimals(1.0 / envelope.resolution_hz, 2) + " s window (" +
+    f->note = std::string(fault_frequency_label(f->kind)) + " " +
+              detail::fixed_decimals(f->envelope_peak.expected_hz, 2) + " Hz is not resolvable in a " +
+              detail::fixed_decimals(1.0 / envelope.resolution_hz, 2) + " s window (" +
               detail::fixed_decimals(envelope.resolution_hz, 2) + " Hz bins); a window of at least " +
               detail::fixed_decimals(resolvable_hz_for(1.0, o) / f->envelope_peak.expected_hz, 1) + " s is needed";
   else if (lines && !f->impulsive)
-    f->note = std::string(on_comb ? "lines on the cage-rate comb (m x " + detail::fixed_decimals(std::abs(freq.cage_hz), 2) + " Hz)"
-                                                : "lines without sidebands") +
-              " in a band that is not impulsive (spectral kurtosis " + detail::fixed_decimals(band.kurtosis, 2) + " < " +
-              detail::fixed_decimals(t.impulsive_band_kurtosis, 1) + "): the varying compliance of a healthy bearing";
+    f->note = std::string(on_comb ? "lines on the cage-rate comb (m x " +
+                                        detail::fixed_decimals(std::abs(freq.cage_hz), 2) + " Hz)"
+                                  : "lines without sidebands") +
+              " in a band that is not impulsive (spectral kurtosis " + detail::fixed_decimals(band.kurtosis, 2) +
+              " < " + detail::fixed_decimals(t.impulsive_band_kurtosis, 1) +
+              "): the varying compliance of a healthy bearing";
 }
 
 void arbitrate_fault_series(const Spectrum& envelope, const BearingFrequencies& freq, const AnalysisOptions& o,
@@ -282,8 +282,8 @@ void arbitrate_fault_series(const Spectrum& envelope, const BearingFrequencies& 
         continue;
       b->suspected = false;
       b->note = std::string("its fundamental is a line of the stronger ") + fault_frequency_label(ka) + " series (" +
-                detail::fixed_decimals(a->envelope_peak.snr_db, 0) + " dB, -+" + detail::fixed_decimals(modulation_frequency_hz(freq, ka), 2) +
-                " Hz sidebands)";
+                detail::fixed_decimals(a->envelope_peak.snr_db, 0) + " dB, -+" +
+                detail::fixed_decimals(modulation_frequency_hz(freq, ka), 2) + " Hz sidebands)";
     }
   }
   // A series on the cage-rate comb of a stronger one (rule 8): a stationary-race or ball

@@ -10,12 +10,12 @@ namespace bearing_sim {
 
 // What the evidence of one series is judged against.
 struct EvidenceContext {
-  double fault_snr_db = 12.0;     // the fundamental's threshold for this spectrum's averaging
-  double evidence_snr_db = 10.0;  // the supporting lines'
-  double absolute_floor = 0.0;    // SNRs are taken against at least this per bin
+  double fault_snr_db = 12.0;      // the fundamental's threshold for this spectrum's averaging
+  double evidence_snr_db = 10.0;   // the supporting lines'
+  double absolute_floor = 0.0;     // SNRs are taken against at least this per bin
   std::vector<FaultKind> present;  // race and ball series whose fundamental is found
-  std::size_t segments = 1;  // averaged into the envelope spectrum (rule 12 needs >= 2)
-  double band_width_hz = 0.0;  // of the demodulated band: the highest envelope frequency it carries
+  std::size_t segments = 1;        // averaged into the envelope spectrum (rule 12 needs >= 2)
+  double band_width_hz = 0.0;      // of the demodulated band: the highest envelope frequency it carries
 };
 
 // The lines a series' hypothesis predicts: n f_fault + j f_mod, n = 1 .. harmonics,

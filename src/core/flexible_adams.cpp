@@ -48,8 +48,8 @@ FlexibleAdams::FlexibleAdams(const Acceleration& accel, const Eigen::VectorXd& z
   yc_.resize(2 * n);
 }
 
-void FlexibleAdams::linearize(const Acceleration& accel, const Eigen::VectorXd& z_scale,
-                              const Eigen::VectorXd& v_scale, double t0) {
+void FlexibleAdams::linearize(const Acceleration& accel, const Eigen::VectorXd& z_scale, const Eigen::VectorXd& v_scale,
+                              double t0) {
   const int n = n_;
   const Eigen::VectorXd& z_lin = z_lin_;
   // The linear part: the Jacobian of the acceleration at the equilibrium at rest, by central
@@ -101,8 +101,8 @@ void FlexibleAdams::linearize(const Acceleration& accel, const Eigen::VectorXd& 
   }
 }
 
-void FlexibleAdams::relinearize(const Acceleration& accel, const Eigen::VectorXd& z_lin,
-                                const Eigen::VectorXd& z_scale, const Eigen::VectorXd& v_scale) {
+void FlexibleAdams::relinearize(const Acceleration& accel, const Eigen::VectorXd& z_lin, const Eigen::VectorXd& z_scale,
+                                const Eigen::VectorXd& v_scale) {
   z_lin_ = z_lin;
   linearize(accel, z_scale, v_scale, t_);
   refresh(accel);

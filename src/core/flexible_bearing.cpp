@@ -79,8 +79,8 @@ double FlexibleBearing::axial_displacement_m(const Eigen::VectorXd& x, double th
 // displacement added to each groove centre's, u = G x with G = [rigid map | e_r cos n theta,
 // e_r sin n theta (radial modes) | e_z cos n theta, e_z sin n theta (axial modes)].
 template <bool kDamped, bool kStiffness>
-void FlexibleBearing::contact_loop(const Eigen::VectorXd& x, const Eigen::VectorXd* x_dot,
-                                   const RollingPhase& phase, Eigen::VectorXd* force, Eigen::MatrixXd* stiffness,
+void FlexibleBearing::contact_loop(const Eigen::VectorXd& x, const Eigen::VectorXd* x_dot, const RollingPhase& phase,
+                                   Eigen::VectorXd* force, Eigen::MatrixXd* stiffness,
                                    std::vector<BallState>* states) const {
   const int n = size();
   if (x.size() != n || (x_dot && x_dot->size() != n))
@@ -148,7 +148,8 @@ void FlexibleBearing::contact_loop(const Eigen::VectorXd& x, const Eigen::Vector
       s.load_N = load;
       s.contact_angle_rad = std::atan2(std::abs(vz), vx * cphi + vy * sphi);
       s.normal = Eigen::Vector3d(vx, vy, vz) / norm;
-      s.pressure_Pa = std::max(model_.inner_contact().max_pressure_Pa(load), model_.outer_contact().max_pressure_Pa(load));
+      s.pressure_Pa =
+          std::max(model_.inner_contact().max_pressure_Pa(load), model_.outer_contact().max_pressure_Pa(load));
     }
     if (!(deflection > 0.0) || !force) continue;
     if (kDamped) {
@@ -296,8 +297,7 @@ FlexibleStaticSolution solve_flexible_static(const FlexibleBearing& bearing, con
   const double tolerance = 1e-9 + 1e-11 * scaled_norm(external, rp);
 
   const auto residual = [&](const Eigen::VectorXd& at, Eigen::MatrixXd* k) {
-    return Eigen::VectorXd(external + bearing.contact_force_and_stiffness(at, phase, k) -
-                           k_ring.cwiseProduct(at));
+    return Eigen::VectorXd(external + bearing.contact_force_and_stiffness(at, phase, k) - k_ring.cwiseProduct(at));
   };
   Eigen::MatrixXd k_contact;
   Eigen::VectorXd r = residual(x, &k_contact);
@@ -355,7 +355,7 @@ FlexibleStaticSolution solve_flexible_static(const FlexibleBearing& bearing, con
 }
 
 Eigen::VectorXd flexible_natural_frequencies_rad_s(const FlexibleBearing& bearing,
-                                                  const FlexibleStaticSolution& solution) {
+                                                   const FlexibleStaticSolution& solution) {
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(
       0.5 * (solution.stiffness + solution.stiffness.transpose()), bearing.mass_matrix());
   if (eig.info() != Eigen::Success) throw InvalidInputError("flexible ring: the modal problem did not solve");

@@ -29,10 +29,11 @@ FlexibleDynamics::FlexibleDynamics(FlexibleBearing bearing, const Vector5& load,
   highest_frequency_rad_s_ = natural.maxCoeff();
   const bool adams = method == IntegrationMethod::ExponentialAdamsPec;
   automatic_substeps_ = substeps == 0;
-  substeps_ = substeps > 0 ? substeps
-              : adams    ? automatic_adams_steps()
-                         : std::max(1, static_cast<int>(std::ceil(highest_frequency_rad_s_ /
-                                                                  (kStepTimesOmegaMax * sample_rate_hz))));
+  substeps_ =
+      substeps > 0 ? substeps
+      : adams
+          ? automatic_adams_steps()
+          : std::max(1, static_cast<int>(std::ceil(highest_frequency_rad_s_ / (kStepTimesOmegaMax * sample_rate_hz))));
   current_.coordinates = equilibrium_.coordinates;
   // Starting with the shape's turning rate instead of at rest spares the run a start-up
   // transient of the ring's modes.
@@ -325,8 +326,8 @@ RollingPhase FlexibleDynamics::advanced(const RollingPhase& p, double dt) const 
 
 Eigen::VectorXd FlexibleDynamics::acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                                                const RollingPhase& phase) const {
-  const Eigen::VectorXd f = external_at(phase.time_s) + bearing_.contact_force(x, v, phase) -
-                            k_ring_.cwiseProduct(x) - c_ring_.cwiseProduct(v);
+  const Eigen::VectorXd f = external_at(phase.time_s) + bearing_.contact_force(x, v, phase) - k_ring_.cwiseProduct(x) -
+                            c_ring_.cwiseProduct(v);
   return mass_.solve(f);
 }
 
@@ -387,8 +388,8 @@ void FlexibleDynamics::step_rk4() {
     a = acceleration(x, v, phase);
   }
   if (!x.allFinite() || !v.allFinite())
-    throw DivergenceError(bearing_.model().config().name + ": the flexible ring's state is not finite at t = " +
-                          std::to_string(phase.time_s) + " s");
+    throw DivergenceError(bearing_.model().config().name +
+                          ": the flexible ring's state is not finite at t = " + std::to_string(phase.time_s) + " s");
   ++sample_index_;
   // The time from the sample count, so that it does not drift with the summed steps.
   phase.time_s = static_cast<double>(sample_index_) / sample_rate_hz_;

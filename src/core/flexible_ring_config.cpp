@@ -22,8 +22,8 @@ int read_order(const Reader& r, const std::string& key, int fallback, bool allow
   const bool ok = (n >= 2 && n <= kMaxOrder) || (allow_zero && n == 0);
   r.require(ok, key,
             std::string("must be ") + (allow_zero ? "0 (none) or " : "") + "between 2 and " +
-                std::to_string(kMaxOrder) + " (the highest mode order n; n = 0 and 1 are the rigid ring's motion), got " +
-                std::to_string(n));
+                std::to_string(kMaxOrder) +
+                " (the highest mode order n; n = 0 and 1 are the rigid ring's motion), got " + std::to_string(n));
   return n;
 }
 
@@ -70,8 +70,8 @@ void read_flexible_ring(const Reader& r, BearingConfig* c) {
   r.require(s.centroid_radius_m > 0.0 && s.centroid_radius_m < 100.0 * c->pitch_diameter_m, "centroid_radius_mm",
             "must be > 0 and within 100 pitch diameters");
   // Thin ring: the section small against the radius (Soedel's curved-beam theory).
-  const double depth = std::sqrt(12.0 * std::max(s.in_plane_second_moment_m4, s.out_of_plane_second_moment_m4) /
-                                 s.area_m2);
+  const double depth =
+      std::sqrt(12.0 * std::max(s.in_plane_second_moment_m4, s.out_of_plane_second_moment_m4) / s.area_m2);
   r.require(depth < 0.5 * s.centroid_radius_m, "centroid_radius_mm",
             "the section is too deep for a thin ring (its depth must be below half the radius)");
 

@@ -18,8 +18,8 @@ std::string ring_speed_refusal(double speed_rad_s, double pitch_diameter_m) {
   std::ostringstream why;
   why.precision(4);
   why << speed_rad_s << " rad/s (" << speed_rad_s * kRadSToRpm << " rpm) is beyond +-" << limit << " rad/s ("
-      << limit * kRadSToRpm << " rpm), a pitch-line speed of " << kMaxPitchLineSpeedMPerS
-      << " m/s on this bearing's " << pitch_diameter_m * 1e3 << " mm pitch circle, above any bearing's limiting speed";
+      << limit * kRadSToRpm << " rpm), a pitch-line speed of " << kMaxPitchLineSpeedMPerS << " m/s on this bearing's "
+      << pitch_diameter_m * 1e3 << " mm pitch circle, above any bearing's limiting speed";
   return why.str();
 }
 

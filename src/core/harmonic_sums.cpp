@@ -74,10 +74,18 @@ void AddHarmonicSums(const double* c, int harmonics, const double* terms, int n,
     const double* group_terms = terms + 2 * static_cast<long>(first) * n;
     const double* group_base = first == 0 ? base : out;  // later groups add to the first's sums
     switch (harmonics - first) {
-      case 1: AddGroup<1>(group_c, group_terms, n, group_base, out); break;
-      case 2: AddGroup<2>(group_c, group_terms, n, group_base, out); break;
-      case 3: AddGroup<3>(group_c, group_terms, n, group_base, out); break;
-      default: AddGroup<4>(group_c, group_terms, n, group_base, out); break;
+      case 1:
+        AddGroup<1>(group_c, group_terms, n, group_base, out);
+        break;
+      case 2:
+        AddGroup<2>(group_c, group_terms, n, group_base, out);
+        break;
+      case 3:
+        AddGroup<3>(group_c, group_terms, n, group_base, out);
+        break;
+      default:
+        AddGroup<4>(group_c, group_terms, n, group_base, out);
+        break;
     }
   }
 }
@@ -131,10 +139,8 @@ void harmonic_coefficients(const double* amplitude, const double* angle, int har
 void add_harmonic_sums(const double* coefficients, int harmonics, const double* terms, int n, const double* base,
                        double* out) {
   if (n <= 0) return;
-  if (harmonics > 0)
-    BEARING_SIM_DISPATCH(AddHarmonicSums)(coefficients, harmonics, terms, n, base, out);
-  else if (base != out)
-    std::copy(base, base + n, out);
+  if (harmonics > 0) BEARING_SIM_DISPATCH(AddHarmonicSums)(coefficients, harmonics, terms, n, base, out);
+  else if (base != out) std::copy(base, base + n, out);
 }
 
 void add_harmonic_sums_scalar(const double* c, int harmonics, const double* terms, int n, const double* base,

@@ -11,8 +11,8 @@ namespace bearing_sim::detail {
 // may be out. A separate base spares the caller a copy of the constant offsets into out.
 void add_harmonic_sums(const double* coefficients, int harmonics, const double* terms, int n, const double* base,
                        double* out);
-void add_harmonic_sums_scalar(const double* coefficients, int harmonics, const double* terms, int n,
-                              const double* base, double* out);
+void add_harmonic_sums_scalar(const double* coefficients, int harmonics, const double* terms, int n, const double* base,
+                              double* out);
 
 // The per-call coefficients: coefficients[2h] = amplitude[h] cos(angle[h]) and
 // coefficients[2h + 1] = amplitude[h] sin(angle[h]), h < harmonics (a few ulp of std::cos and

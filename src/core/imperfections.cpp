@@ -53,9 +53,12 @@ inline double spall_dip(double x, double angular_width, double depth) {
 
 const char* surface_name(Surface s) {
   switch (s) {
-    case Surface::OuterRace: return "outer_race";
-    case Surface::InnerRace: return "inner_race";
-    case Surface::Ball: return "ball";
+    case Surface::OuterRace:
+      return "outer_race";
+    case Surface::InnerRace:
+      return "inner_race";
+    case Surface::Ball:
+      return "ball";
   }
   return "?";
 }
@@ -143,7 +146,8 @@ ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML
   }
   if (defects) {
     if (!defects.IsSequence())
-      throw ConfigError(source + ": key 'defects': expected a list of {surface, position_deg, width_mm, depth_um, ...}");
+      throw ConfigError(source +
+                        ": key 'defects': expected a list of {surface, position_deg, width_mm, depth_um, ...}");
     for (std::size_t i = 0; i < defects.size(); ++i) {
       const std::string prefix = "defects[" + std::to_string(i) + "].";
       if (!defects[i].IsMap()) throw ConfigError(source + ": key '" + prefix + "': expected a mapping");
@@ -189,10 +193,10 @@ Imperfections::Imperfections(const ImperfectionSpec& spec, const Geometry& g) : 
   const double pitch = kTwoPi / g.balls_per_row;
   for (int row = 0; row < g.rows; ++row)
     for (int j = 0; j < g.balls_per_row; ++j)
-      max_spacing_error_ = std::max(max_spacing_error_,
-                                    std::abs(std::remainder(g.base_azimuth[row * g.balls_per_row + j] -
-                                                                g.base_azimuth[row * g.balls_per_row] - j * pitch,
-                                                            kTwoPi)));
+      max_spacing_error_ = std::max(
+          max_spacing_error_,
+          std::abs(std::remainder(
+              g.base_azimuth[row * g.balls_per_row + j] - g.base_azimuth[row * g.balls_per_row] - j * pitch, kTwoPi)));
   ball_phase_.resize(n_balls);
   std::uniform_real_distribution<double> uniform_angle(0.0, kTwoPi);
   for (double& p : ball_phase_) p = uniform_angle(rng);
@@ -284,8 +288,8 @@ void Imperfections::validate(const Spall& s) const {
   if (!std::isfinite(s.position_rad) || !std::isfinite(s.width_m) || !std::isfinite(s.depth_m))
     throw InvalidInputError("defect: position, width and depth must be finite");
   if (std::abs(s.position_rad) > kMaxAngleRad)
-    throw InvalidInputError("defect: position " + number(s.position_rad) + " rad is beyond +-" +
-                            number(kMaxAngleRad) + " rad (give it within a turn)");
+    throw InvalidInputError("defect: position " + number(s.position_rad) + " rad is beyond +-" + number(kMaxAngleRad) +
+                            " rad (give it within a turn)");
   if (s.width_m < kMinSpallSizeM || s.depth_m < kMinSpallSizeM)
     throw InvalidInputError("defect: " + number(s.width_m * 1e6) + " um wide and " + number(s.depth_m * 1e6) +
                             " um deep: a spall is at least " + number(kMinSpallSizeM * 1e6) +
@@ -299,8 +303,10 @@ void Imperfections::validate(const Spall& s) const {
       throw InvalidInputError("defect: ball index " + std::to_string(s.ball) + " is not in [0, " +
                               std::to_string(g.rows * g.balls_per_row) + ")");
     if (!(s.width_m > 0.0) || s.width_m > limit.max_width_m)
-      throw InvalidInputError("defect: a ball spall must be wider than 0 and at most a quarter of the ball "
-                              "circumference (" + std::to_string(limit.max_width_m * 1e3) + " mm)");
+      throw InvalidInputError(
+          "defect: a ball spall must be wider than 0 and at most a quarter of the ball "
+          "circumference (" +
+          std::to_string(limit.max_width_m * 1e3) + " mm)");
   } else {
     if (s.row < 0 || s.row >= g.rows)
       throw InvalidInputError("defect: row " + std::to_string(s.row) + " is not a row of the bearing (" +
@@ -392,7 +398,8 @@ double Imperfections::place_shift_rad(std::size_t index, const Spall& s, double 
   const double nearest = -(start + geometry_.base_azimuth[s.row * z]) / pitch;
   long j = std::lround(nearest) % z;
   if (j < 0) j += z;
-  const std::uint64_t key = detail::mix64(spec_.seed ^ 0x9a1b3c5d7e9f1a3bull) ^ detail::mix64(index * 4096 + s.row * z + j);
+  const std::uint64_t key =
+      detail::mix64(spec_.seed ^ 0x9a1b3c5d7e9f1a3bull) ^ detail::mix64(index * 4096 + s.row * z + j);
   const double pitch_radius = 0.5 * (geometry_.outer_race_radius_m + geometry_.inner_race_radius_m);
   const double shift = spec_.ball_place_wander_m / pitch_radius *
                        detail::smooth_normal(key, time_s / spec_.ball_place_wander_correlation_s);
@@ -405,8 +412,8 @@ double Imperfections::place_shift_rad(std::size_t index, const Spall& s, double 
 void Imperfections::struck_chord(std::size_t index, double time_s, double* angular_width, double* depth) const {
   if (spec_.ball_spin_axis_wander_rad <= 0.0) return;
   const std::uint64_t key = detail::mix64(spec_.seed ^ 0x3c6ef372fe94f82bull) ^ detail::mix64(index);
-  const double latitude = spec_.ball_spin_axis_wander_rad *
-                          detail::smooth_normal(key, time_s / spec_.ball_spin_axis_wander_correlation_s);
+  const double latitude =
+      spec_.ball_spin_axis_wander_rad * detail::smooth_normal(key, time_s / spec_.ball_spin_axis_wander_correlation_s);
   // The spall as a disc of the given width: the chord at this latitude, and the depth a ball
   // reaches in it (w^2 / (4 D), the spall's depth at most).
   const double half_width = 0.5 * *angular_width;

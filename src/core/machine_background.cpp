@@ -68,8 +68,7 @@ std::size_t terms_below(double limit, std::size_t size) {
   return static_cast<std::size_t>(std::ceil(limit)) - 1;
 }
 
-std::vector<double> number_list(const detail::Reader& r, const YAML::Node& map, const std::string& key,
-                                double scale) {
+std::vector<double> number_list(const detail::Reader& r, const YAML::Node& map, const std::string& key, double scale) {
   std::vector<double> values;
   const YAML::Node node = map[key];
   if (!node) return values;
@@ -98,7 +97,8 @@ InstallationProblem installation_problem(const InstallationConfig& c) {
   if (c.speed_locked_orders.size() > kMaxOrders) return {"speed_locked_orders", "at most 64 orders"};
   for (std::size_t i = 0; i < c.speed_locked_orders.size(); ++i) {
     const SpeedLockedOrder& o = c.speed_locked_orders[i];
-    if (!(o.order > 0.0 && o.order <= kMaxOrder)) return {at("speed_locked_orders", i) + ".order", "must be in (0, 10000]"};
+    if (!(o.order > 0.0 && o.order <= kMaxOrder))
+      return {at("speed_locked_orders", i) + ".order", "must be in (0, 10000]"};
     if (!(o.amplitude_m_s2 >= 0.0 && o.amplitude_m_s2 <= kMaxAmplitude_m_s2))
       return {at("speed_locked_orders", i) + ".amplitude_mg", "must be in [0, 1e5] mg"};
   }
@@ -110,8 +110,7 @@ InstallationProblem installation_problem(const InstallationConfig& c) {
     return {"shaft_modulation_phase_deg", "must be in [-360, 360]"};
   const std::vector<double>& f = c.floor_frequencies_hz;
   const std::vector<double>& d = c.floor_density_m_s2_per_sqrt_hz;
-  if (f.size() != d.size())
-    return {"floor", "frequencies_Hz and density_ug_per_sqrt_Hz must have the same length"};
+  if (f.size() != d.size()) return {"floor", "frequencies_Hz and density_ug_per_sqrt_Hz must have the same length"};
   if (f.size() > kMaxFloorPoints) return {"floor.frequencies_Hz", "at most 64 points"};
   for (std::size_t i = 0; i < f.size(); ++i) {
     if (!(f[i] > 0.0 && std::isfinite(f[i])) || (i > 0 && !(f[i] > f[i - 1])))
@@ -126,8 +125,8 @@ InstallationProblem installation_problem(const InstallationConfig& c) {
 InstallationConfig parse_installation_config(const YAML::Node& node, const std::string& source,
                                              const std::string& prefix) {
   detail::Reader r(node, source, prefix);
-  r.check_keys({"shaft_harmonics_mg", "half_orders_mg", "speed_locked_orders", "line_frequency_Hz",
-                "line_harmonics_mg", "shaft_modulation_depth", "shaft_modulation_phase_deg", "floor"});
+  r.check_keys({"shaft_harmonics_mg", "half_orders_mg", "speed_locked_orders", "line_frequency_Hz", "line_harmonics_mg",
+                "shaft_modulation_depth", "shaft_modulation_phase_deg", "floor"});
   InstallationConfig c;
   c.shaft_harmonics_m_s2 = number_list(r, node, "shaft_harmonics_mg", kMg_m_s2);
   c.half_orders_m_s2 = number_list(r, node, "half_orders_mg", kMg_m_s2);
@@ -160,8 +159,7 @@ InstallationConfig parse_installation_config(const YAML::Node& node, const std::
 }
 
 MachineBackground::MachineBackground(const InstallationConfig& c, double input_rate_hz, std::uint64_t seed)
-    : modulation_depth_(c.shaft_modulation_depth),
-      modulation_phase_(c.shaft_modulation_phase_rad) {
+    : modulation_depth_(c.shaft_modulation_depth), modulation_phase_(c.shaft_modulation_phase_rad) {
   SeededGaussian shaft(seed, kShaftStream), half(seed, kHalfOrderStream), other(seed, kOtherOrderStream),
       line(seed, kLineStream);
   for (double a : c.shaft_harmonics_m_s2) shaft_series_.push_back(std::polar(a, 2.0 * kPi * shaft.uniform()));
@@ -183,7 +181,8 @@ MachineBackground::MachineBackground(const InstallationConfig& c, double input_r
   // out (the sampled dynamics cannot carry them).
   for (std::size_t h = 0; h < c.line_harmonics_m_s2.size(); ++h) {
     const double phase = 2.0 * kPi * line.uniform();
-    if ((h + 1) * c.line_frequency_hz < 0.5 * input_rate_hz) line_series_.push_back(std::polar(c.line_harmonics_m_s2[h], phase));
+    if ((h + 1) * c.line_frequency_hz < 0.5 * input_rate_hz)
+      line_series_.push_back(std::polar(c.line_harmonics_m_s2[h], phase));
   }
   line_step_rad_ = 2.0 * kPi * c.line_frequency_hz / input_rate_hz;
   reset();
@@ -234,7 +233,7 @@ MachineBackground::Sample MachineBackground::step(double angle) {
   const double step = std::abs(increment);
   Sample s;
   const std::complex<double> half_turn = std::polar(1.0, 0.5 * shaft_phase_);  // e^{i theta / 2}
-  const std::complex<double> turn = half_turn * half_turn;                      // e^{i theta}
+  const std::complex<double> turn = half_turn * half_turn;                     // e^{i theta}
   // A line at x f_r moves by x step per sample: at or above the input Nyquist (x step >= pi)
   // it cannot be sampled and is left out.
   const double nyquist_order = step > 0.0 ? kPi / step : HUGE_VAL;
@@ -251,8 +250,8 @@ MachineBackground::Sample MachineBackground::step(double angle) {
     s.lines_m_s2 += series(line_series_, line_series_.size(), line_turn, line_turn);
   }
   if (modulation_depth_ > 0.0) {
-    s.bearing_gain = 1.0 + modulation_depth_ * (turn.real() * std::cos(modulation_phase_) -
-                                                turn.imag() * std::sin(modulation_phase_));
+    s.bearing_gain = 1.0 + modulation_depth_ *
+                               (turn.real() * std::cos(modulation_phase_) - turn.imag() * std::sin(modulation_phase_));
   }
   return s;
 }

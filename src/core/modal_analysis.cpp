@@ -52,8 +52,8 @@ ModalResult solve_modes(const RigidBody& body, const std::vector<BushingSupport>
                      "support " + std::to_string(i + 1) + " position " + "xyz"[a], "m");
 
   ModalResult result;
-  result.mass.diagonal() << body.mass_kg, body.mass_kg, body.mass_kg, body.inertia_kg_m2.x(),
-      body.inertia_kg_m2.y(), body.inertia_kg_m2.z();
+  result.mass.diagonal() << body.mass_kg, body.mass_kg, body.mass_kg, body.inertia_kg_m2.x(), body.inertia_kg_m2.y(),
+      body.inertia_kg_m2.z();
   for (std::size_t i = 0; i < supports.size(); ++i) {
     Matrix6 k = supports[i].stiffness;
     if (!k.allFinite() || !supports[i].position_m.allFinite())
@@ -72,8 +72,9 @@ ModalResult solve_modes(const RigidBody& body, const std::vector<BushingSupport>
 
   Eigen::GeneralizedSelfAdjointEigenSolver<Matrix6> solver(result.stiffness, result.mass);
   if (solver.info() != Eigen::Success || !solver.eigenvalues().allFinite())
-    throw InvalidInputError("modal analysis: the eigenvalues K/M are not finite numbers (a stiffness overflows "
-                            "against the mass and inertia given)");
+    throw InvalidInputError(
+        "modal analysis: the eigenvalues K/M are not finite numbers (a stiffness overflows "
+        "against the mass and inertia given)");
   const Vector6 lambda = solver.eigenvalues();
   const double lambda_max = std::max(lambda.cwiseAbs().maxCoeff(), 1e-300);
   for (int i = 0; i < 6; ++i) {

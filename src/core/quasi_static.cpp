@@ -61,7 +61,9 @@ StaticSolution solve_static(const BearingModel& model, const Vector5& load, cons
   }
 
   Matrix5 k;
-  auto residual = [&](const Vector5& qq, Matrix5* kk) { return Vector5(load + model.contact_force_and_stiffness(qq, phase, kk)); };
+  auto residual = [&](const Vector5& qq, Matrix5* kk) {
+    return Vector5(load + model.contact_force_and_stiffness(qq, phase, kk));
+  };
   auto scaled_norm = [&](const Vector5& r) { return (r.array() / s.array()).matrix().norm(); };
 
   Vector5 r = residual(q, &k);
@@ -77,8 +79,8 @@ StaticSolution solve_static(const BearingModel& model, const Vector5& load, cons
     for (int attempt = 0; attempt < 30 && !accepted; ++attempt) {
       const Matrix5 a = ks + mu * k_scale * Matrix5::Identity();
       Eigen::LDLT<Matrix5> ldlt(a);
-      Vector5 step = (ldlt.info() == Eigen::Success && ldlt.isPositive()) ? Vector5(ldlt.solve(rs))
-                                                                          : Vector5(rs / k_scale);
+      Vector5 step =
+          (ldlt.info() == Eigen::Success && ldlt.isPositive()) ? Vector5(ldlt.solve(rs)) : Vector5(rs / k_scale);
       if (!step.allFinite()) step = rs / k_scale;
       // Never move more than a tenth of a ball diameter in one iteration.
       const double step_norm = step.norm();

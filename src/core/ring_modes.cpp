@@ -16,8 +16,8 @@ RingMode in_plane_mode(const FlexibleRingSpec& s, int n) {
   m.order = n;
   m.direction = RingModeDirection::Radial;
   m.modal_mass_kg = s.density_kg_m3 * s.area_m2 * R * kPi * (1.0 + 1.0 / nn);
-  m.bending_stiffness_N_per_m = kPi * s.youngs_modulus_Pa * s.in_plane_second_moment_m4 * (nn - 1.0) * (nn - 1.0) /
-                                (R * R * R);
+  m.bending_stiffness_N_per_m =
+      kPi * s.youngs_modulus_Pa * s.in_plane_second_moment_m4 * (nn - 1.0) * (nn - 1.0) / (R * R * R);
   m.mounting_stiffness_N_per_m = kPi * R * s.mounting_radial_stiffness_N_per_m2;
   return m;
 }
@@ -35,8 +35,7 @@ RingMode out_of_plane_mode(const FlexibleRingSpec& s, int n) {
   m.order = n;
   m.direction = RingModeDirection::Axial;
   m.modal_mass_kg = s.density_kg_m3 * s.area_m2 * R * kPi;
-  m.bending_stiffness_N_per_m =
-      kPi / (R * R * R) * (ei * (nn - x) * (nn - x) + gj * nn * (x - 1.0) * (x - 1.0));
+  m.bending_stiffness_N_per_m = kPi / (R * R * R) * (ei * (nn - x) * (nn - x) + gj * nn * (x - 1.0) * (x - 1.0));
   m.mounting_stiffness_N_per_m = kPi * R * s.mounting_axial_stiffness_N_per_m2;
   return m;
 }

@@ -33,8 +33,7 @@ std::string format_number(double v) {
 // A speed given either in rpm or in rad/s under `<stem>_rpm` / `<stem>_rad_s`, within the
 // bearing's physical limit (max_ring_speed_rad_s of its pitch diameter). Returns the key
 // given (without the reader's prefix), "" if neither.
-std::string read_speed(const detail::Reader& r, const std::string& stem, double pitch_diameter_m,
-                       double* speed_rad_s) {
+std::string read_speed(const detail::Reader& r, const std::string& stem, double pitch_diameter_m, double* speed_rad_s) {
   const bool rpm = r.has(stem + "_rpm"), rad = r.has(stem + "_rad_s");
   if (rpm && rad) r.fail(stem + "_rpm", "give either " + stem + "_rpm or " + stem + "_rad_s, not both");
   if (rpm) *speed_rad_s = r.number(stem + "_rpm", 0.0) * kRpmToRadS;
@@ -100,8 +99,7 @@ void read_interval(const detail::Reader& r, bool has_end, double duration_s, dou
 std::string resolve_file(const detail::Reader& r, const std::string& key, const std::string& file,
                          const fs::path& base_dir, const std::string& sibling) {
   std::vector<fs::path> candidates;
-  if (fs::path(file).is_absolute())
-    candidates.push_back(file);
+  if (fs::path(file).is_absolute()) candidates.push_back(file);
   else {
     candidates.push_back(base_dir / file);
     candidates.push_back(base_dir / ".." / sibling / file);
@@ -138,7 +136,8 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
   r.require(seed >= 0, "seed", "must be >= 0");
   sc.seed_ = static_cast<std::uint64_t>(seed);
   sc.sample_rate_hz_ = r.number("sample_rate_hz", 10000.0);
-  r.require(sc.sample_rate_hz_ >= 100.0 && sc.sample_rate_hz_ <= kMaxSampleRateHz, "sample_rate_hz", "must be in [100, 1e6] Hz");
+  r.require(sc.sample_rate_hz_ >= 100.0 && sc.sample_rate_hz_ <= kMaxSampleRateHz, "sample_rate_hz",
+            "must be in [100, 1e6] Hz");
 
   const fs::path base_dir = fs::path(source).has_parent_path() ? fs::path(source).parent_path() : fs::path(".");
   const std::string bearing = r.text("bearing_file", "");
@@ -286,12 +285,9 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
         if (!segments[k].IsMap()) r.fail(key, "expected a mapping");
         detail::Reader g(segments[k], source, key + ".");
         const std::string type = g.text("type", "");
-        if (type == "step")
-          g.check_keys({"type", "start_s", "force_N", "moment_Nm"});
-        else if (type == "ramp")
-          g.check_keys({"type", "start_s", "end_s", "force_N", "moment_Nm"});
-        else
-          g.fail("type", "must be step or ramp, got '" + type + "'");
+        if (type == "step") g.check_keys({"type", "start_s", "force_N", "moment_Nm"});
+        else if (type == "ramp") g.check_keys({"type", "start_s", "end_s", "force_N", "moment_Nm"});
+        else g.fail("type", "must be step or ramp, got '" + type + "'");
         LoadPiece p;
         read_interval(g, type == "ramp", sc.duration_s_, previous_end, &p.start_s, &p.end_s);
         p.from = current;
@@ -633,10 +629,8 @@ std::vector<Spall> Scenario::spalls_at(double t) const {
   std::vector<Spall> present;
   for (const ScenarioDefectEvent& e : defect_events_) {
     if (e.time_s > t) break;
-    if (e.kind == ScenarioDefectEvent::Kind::Clear)
-      present.clear();
-    else
-      present.push_back(e.spall);
+    if (e.kind == ScenarioDefectEvent::Kind::Clear) present.clear();
+    else present.push_back(e.spall);
   }
   return present;
 }

@@ -45,7 +45,8 @@ SignalStatistics signal_statistics(const std::vector<double>& x, std::size_t beg
   // the kurtosis of a small signal on a large offset).
   long double sum = 0.0L;
   for (std::size_t i = begin; i < end; ++i) {
-    if (!std::isfinite(x[i])) throw InvalidInputError("signal statistics: sample " + std::to_string(i) + " is not finite");
+    if (!std::isfinite(x[i]))
+      throw InvalidInputError("signal statistics: sample " + std::to_string(i) + " is not finite");
     sum += x[i];
   }
   s.mean = static_cast<double>(sum / static_cast<long double>(s.samples));

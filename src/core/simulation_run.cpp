@@ -23,9 +23,9 @@ SimulationSummary run_simulation(const BearingModel& model, const SimulationRequ
 
   // The rigid ring's BearingDynamics, or a flexible ring's FlexibleDynamics (its rigid-body
   // coordinates' samples).
-  const std::unique_ptr<RingDynamics> ring = make_ring_dynamics(
-      model, request.load, request.ring_speed_rad_s,
-      DynamicsOptions{request.sample_rate_hz, request.substeps, true, request.method});
+  const std::unique_ptr<RingDynamics> ring =
+      make_ring_dynamics(model, request.load, request.ring_speed_rad_s,
+                         DynamicsOptions{request.sample_rate_hz, request.substeps, true, request.method});
   RingDynamics& dynamics = *ring;
   const std::size_t half = n / 2;
   // Mean and RMS about it streamed: a buffer of the accelerations took 12 bytes per sample,

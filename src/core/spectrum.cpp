@@ -120,8 +120,7 @@ std::vector<double> hilbert_envelope(const std::vector<double>& x) {
   return e;
 }
 
-std::vector<double> band_envelope(const std::vector<double>& x, double sample_rate_hz, double low_hz,
-                                  double high_hz) {
+std::vector<double> band_envelope(const std::vector<double>& x, double sample_rate_hz, double low_hz, double high_hz) {
   check_signal(x, sample_rate_hz, "band envelope");
   check_band(low_hz, high_hz, "band envelope");
   const std::vector<Complex> z = analytic_band(x, sample_rate_hz, low_hz, high_hz);
@@ -200,8 +199,10 @@ std::vector<Complex> tapered_spectrum(const std::vector<double>& x) {
   std::vector<double> tapered(samples);
   for (std::size_t i = 0; i < samples; ++i) {
     const std::size_t from_end = std::min(i, samples - 1 - i);
-    const double w = from_end >= ramp ? 1.0 : 0.5 * (1.0 - std::cos(kPi * (static_cast<double>(from_end) + 0.5) /
-                                                                    static_cast<double>(ramp)));
+    const double w =
+        from_end >= ramp
+            ? 1.0
+            : 0.5 * (1.0 - std::cos(kPi * (static_cast<double>(from_end) + 0.5) / static_cast<double>(ramp)));
     tapered[i] = (x[i] - mean) * w;
   }
   return forward(tapered);
@@ -214,8 +215,8 @@ std::vector<Complex> tapered_spectrum(const std::vector<double>& x) {
 // With a floor density d > 0 (units/sqrt(Hz)) the kurtosis is the one the band would show
 // with white noise of that density added: independent circular Gaussian noise of power
 // P_n beside a band power P_c scales it by (P_c / (P_c + P_n))^2 (Antoni, MSSP 20, 2006).
-bool band_kurtosis(const std::vector<Complex>& spectrum, double fs, double low_hz, double high_hz,
-                   double floor_density, double* kurtosis, std::size_t* bins) {
+bool band_kurtosis(const std::vector<Complex>& spectrum, double fs, double low_hz, double high_hz, double floor_density,
+                   double* kurtosis, std::size_t* bins) {
   const std::size_t n = spectrum.size();
   const double df = fs / static_cast<double>(n);
   // Bins in [low, high) (the last band up to, not including, Nyquist; never DC).
@@ -243,8 +244,8 @@ bool band_kurtosis(const std::vector<Complex>& spectrum, double fs, double low_h
   m4 /= static_cast<long double>(m - 2 * skip);
   // The floor's envelope power: each of the count bins has E|X|^2 = n (fs / 2) d^2 in the
   // untapered middle of the window, and the inverse transform divides by m.
-  const long double noise = static_cast<long double>(count) * 0.5L * static_cast<long double>(n) * fs *
-                            floor_density * floor_density / (static_cast<long double>(m) * m);
+  const long double noise = static_cast<long double>(count) * 0.5L * static_cast<long double>(n) * fs * floor_density *
+                            floor_density / (static_cast<long double>(m) * m);
   const long double share = m2 > 0.0L ? m2 / (m2 + noise) : 0.0L;
   *kurtosis = m2 > 0.0L ? static_cast<double>((m4 / (m2 * m2) - 2.0L) * share * share) : 0.0;
   *bins = count;
@@ -266,8 +267,8 @@ BandKurtosis band_spectral_kurtosis(const std::vector<double>& x, double fs, dou
   return b;
 }
 
-Kurtogram fast_kurtogram(const std::vector<double>& x, double fs, double min_width_hz, double min_low_hz,
-                         int max_bands, double floor_density) {
+Kurtogram fast_kurtogram(const std::vector<double>& x, double fs, double min_width_hz, double min_low_hz, int max_bands,
+                         double floor_density) {
   check_signal(x, fs, "kurtogram");
   const std::vector<Complex> spectrum = tapered_spectrum(x);
   const double nyquist = 0.5 * fs;
@@ -421,8 +422,9 @@ Spectrum averaged_envelope_spectrum(const std::vector<double>& x, double fs, dou
 
 double equivalent_averages(std::size_t segments) {
   constexpr double kHannHalfOverlapCorrelation = 0.167;
-  return segments > 1 ? static_cast<double>(segments) / (1.0 + 2.0 * kHannHalfOverlapCorrelation * kHannHalfOverlapCorrelation)
-                      : static_cast<double>(segments);
+  return segments > 1
+             ? static_cast<double>(segments) / (1.0 + 2.0 * kHannHalfOverlapCorrelation * kHannHalfOverlapCorrelation)
+             : static_cast<double>(segments);
 }
 
 namespace {

@@ -36,25 +36,46 @@ struct ParameterDef {
 
 const std::vector<ParameterDef>& parameter_table() {
   static const std::vector<ParameterDef> table = {
-      {"inner_groove_curvature", Target::BearingKey, {"inner_groove_curvature"}, false, "fi = r_groove / d, inner race"},
-      {"outer_groove_curvature", Target::BearingKey, {"outer_groove_curvature"}, false, "fo = r_groove / d, outer race"},
-      {"groove_curvature", Target::BearingKey, {"inner_groove_curvature", "outer_groove_curvature"}, false,
+      {"inner_groove_curvature",
+       Target::BearingKey,
+       {"inner_groove_curvature"},
+       false,
+       "fi = r_groove / d, inner race"},
+      {"outer_groove_curvature",
+       Target::BearingKey,
+       {"outer_groove_curvature"},
+       false,
+       "fo = r_groove / d, outer race"},
+      {"groove_curvature",
+       Target::BearingKey,
+       {"inner_groove_curvature", "outer_groove_curvature"},
+       false,
        "fi = fo together"},
       {"balls_per_row", Target::BearingKey, {"balls_per_row"}, true, "Z (waviness orders written with Z follow it)"},
-      {"clearance_um", Target::BearingKey, {"clearance_um"}, false, "g0 per ball along the contact line, um (< 0: preload)"},
+      {"clearance_um",
+       Target::BearingKey,
+       {"clearance_um"},
+       false,
+       "g0 per ball along the contact line, um (< 0: preload)"},
       {"contact_angle_deg", Target::BearingKey, {"contact_angle_deg"}, false, "nominal contact angle a0, deg"},
       {"ball_diameter_mm", Target::BearingKey, {"ball_diameter_mm"}, false, "d, mm"},
       {"pitch_diameter_mm", Target::BearingKey, {"pitch_diameter_mm"}, false, "dm, mm"},
       {"row_spacing_mm", Target::BearingKey, {"row_spacing_mm"}, false, "axial distance between the rows, mm"},
       {"rotating_mass_kg", Target::BearingKey, {"rotating_mass_kg"}, false, "moving mass, kg"},
-      {"contact_damping_Ns_per_m", Target::BearingKey, {"damping.contact_damping_Ns_per_m"}, false,
+      {"contact_damping_Ns_per_m",
+       Target::BearingKey,
+       {"damping.contact_damping_Ns_per_m"},
+       false,
        "c_n per loaded contact, N*s/m"},
       {"radial_load_N", Target::RadialLoad, {}, false, "Fx (Fy = 0), N"},
       {"axial_load_N", Target::AxialLoad, {}, false, "Fz, N"},
       {"axial_load_ratio", Target::AxialLoadRatio, {}, false, "Fz = ratio * |(Fx, Fy)| (the CT paper's Ca = Fa/Fr)"},
       {"moment_Nm", Target::Moment, {}, false, "My, N*m"},
       {"speed_rpm", Target::Speed, {}, false, "speed of the rotating ring, rpm"},
-      {"imperfection_scale", Target::ImperfectionScale, {}, false,
+      {"imperfection_scale",
+       Target::ImperfectionScale,
+       {},
+       false,
        "factor on every waviness amplitude, the roughness and the ball diameter variation"},
   };
   return table;
@@ -244,8 +265,7 @@ SweepDefinition load_sweep_definition(const std::string& path) {
   }
 }
 
-SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string& source,
-                                       const std::string& base_dir) {
+SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string& source, const std::string& base_dir) {
   if (!root || !root.IsMap()) fail(source, "", "expected a YAML mapping");
   check_keys(root, source, "",
              {"name", "bearing", "analysis", "operating_point", "imperfections", "imperfection_sets", "studies",
@@ -277,8 +297,7 @@ SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string
   const YAML::Node op = root["operating_point"];
   if (op) {
     if (!op.IsMap()) fail(source, "operating_point", "expected a mapping");
-    check_keys(op, source, "operating_point.",
-               {"force_N", "moment_Nm", "speed_rpm", "duration_s", "sample_rate_hz"});
+    check_keys(op, source, "operating_point.", {"force_N", "moment_Nm", "speed_rpm", "duration_s", "sample_rate_hz"});
     if (op["force_N"]) {
       const auto f = read_vector(op["force_N"], 3, source, "operating_point.force_N");
       d.operating_point.load.head<3>() << f[0], f[1], f[2];
@@ -287,8 +306,10 @@ SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string
       const auto m = read_vector(op["moment_Nm"], 2, source, "operating_point.moment_Nm");
       d.operating_point.load.tail<2>() << m[0], m[1];
     }
-    if (op["speed_rpm"]) d.operating_point.speed_rpm = read_number(op["speed_rpm"], source, "operating_point.speed_rpm");
-    if (op["duration_s"]) d.operating_point.duration_s = read_number(op["duration_s"], source, "operating_point.duration_s");
+    if (op["speed_rpm"])
+      d.operating_point.speed_rpm = read_number(op["speed_rpm"], source, "operating_point.speed_rpm");
+    if (op["duration_s"])
+      d.operating_point.duration_s = read_number(op["duration_s"], source, "operating_point.duration_s");
     if (op["sample_rate_hz"])
       d.operating_point.sample_rate_hz = read_number(op["sample_rate_hz"], source, "operating_point.sample_rate_hz");
   }
@@ -367,8 +388,7 @@ std::vector<SweepCase> sweep_cases(const SweepDefinition& d) {
       const SweepImperfectionSet& set = d.imperfection_sets[ii];
       for (double value : study.values) {
         const std::string where = "sweep definition " + d.source + ": study " + std::to_string(si + 1) + " (" +
-                                  study.parameter + " = " + format_value(value) + ", imperfections '" +
-                                  set.name + "')";
+                                  study.parameter + " = " + format_value(value) + ", imperfections '" + set.name + "')";
         SweepCase c;
         c.study = static_cast<int>(si);
         c.parameter = study.parameter;

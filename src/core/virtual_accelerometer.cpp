@@ -110,9 +110,9 @@ AccelerometerConfig parse_accelerometer_config(const YAML::Node& sensor, const s
   if (!sensor || !sensor.IsMap()) throw ConfigError(source + ": key 'sensor': expected a YAML mapping of sensor keys");
   detail::Reader r(sensor, source, "sensor.");
   r.check_keys({"name", "mount", "mount_point_mm", "axis", "path_resonance_Hz", "path_damping_ratio", "path_modes",
-                "mount_resonance_Hz", "mount_damping_ratio",
-                "sensitivity_mV_per_g", "noise_density_ug_per_sqrt_Hz", "range_g", "adc_bits", "output_rate_Hz",
-                "anti_alias_cutoff_fraction", "anti_alias_order", "seed", "output_unit", "installation"});
+                "mount_resonance_Hz", "mount_damping_ratio", "sensitivity_mV_per_g", "noise_density_ug_per_sqrt_Hz",
+                "range_g", "adc_bits", "output_rate_Hz", "anti_alias_cutoff_fraction", "anti_alias_order", "seed",
+                "output_unit", "installation"});
   AccelerometerConfig c;
   c.name = r.text("name", c.name);
   const std::string mount = r.text("mount", "housing");
@@ -132,12 +132,11 @@ AccelerometerConfig parse_accelerometer_config(const YAML::Node& sensor, const s
   c.mount_damping_ratio = r.number("mount_damping_ratio", c.mount_damping_ratio);
   if (const YAML::Node installation = r.map("installation"))
     c.installation = parse_installation_config(installation, source, "sensor.installation.");
-  c.sensitivity_V_per_m_s2 =
-      r.number("sensitivity_mV_per_g", c.sensitivity_V_per_m_s2 * 1e3 * kStandardGravity_m_s2) * 1e-3 /
-      kStandardGravity_m_s2;
+  c.sensitivity_V_per_m_s2 = r.number("sensitivity_mV_per_g", c.sensitivity_V_per_m_s2 * 1e3 * kStandardGravity_m_s2) *
+                             1e-3 / kStandardGravity_m_s2;
   c.noise_density_m_s2_per_sqrt_hz =
-      r.number("noise_density_ug_per_sqrt_Hz", c.noise_density_m_s2_per_sqrt_hz / kStandardGravity_m_s2 * 1e6) *
-      1e-6 * kStandardGravity_m_s2;
+      r.number("noise_density_ug_per_sqrt_Hz", c.noise_density_m_s2_per_sqrt_hz / kStandardGravity_m_s2 * 1e6) * 1e-6 *
+      kStandardGravity_m_s2;
   c.range_m_s2 = r.number("range_g", c.range_m_s2 / kStandardGravity_m_s2) * kStandardGravity_m_s2;
   c.adc_bits = r.integer("adc_bits", c.adc_bits);
   c.output_rate_hz = r.number("output_rate_Hz", c.output_rate_hz);
@@ -160,9 +159,9 @@ AccelerometerConfig parse_accelerometer_config(const YAML::Node& sensor, const s
   }
   // A mounted resonance (participation 1) whose peak stands higher is the band's centre.
   if (c.mount_resonance_hz > 0.0 &&
-      (c.path_resonance_hz <= 0.0 || 1.0 / c.mount_damping_ratio >
-                                         (c.path_modes.empty() ? 1.0 : dominant_mode(c.path_modes).participation) /
-                                             c.path_damping_ratio)) {
+      (c.path_resonance_hz <= 0.0 ||
+       1.0 / c.mount_damping_ratio >
+           (c.path_modes.empty() ? 1.0 : dominant_mode(c.path_modes).participation) / c.path_damping_ratio)) {
     c.path_resonance_hz = c.mount_resonance_hz;
     c.path_damping_ratio = c.mount_damping_ratio;
   }
@@ -203,10 +202,12 @@ VirtualAccelerometer::VirtualAccelerometer(AccelerometerConfig config, double in
     modes.push_back({config_.path_resonance_hz, config_.path_damping_ratio, 1.0});
   for (std::size_t i = 0; i < modes.size(); ++i)
     if (modes[i].frequency_hz > kMaxPathResonanceFraction * input_rate_hz)
-      throw InvalidInputError(who + (config_.path_modes.empty() ? std::string("path_resonance_Hz ")
-                                                                 : "path_modes[" + std::to_string(i) + "].frequency_Hz ") +
+      throw InvalidInputError(who +
+                              (config_.path_modes.empty() ? std::string("path_resonance_Hz ")
+                                                          : "path_modes[" + std::to_string(i) + "].frequency_Hz ") +
                               std::to_string(modes[i].frequency_hz) + " must be below 0.45 x the input rate (" +
-                              std::to_string(input_rate_hz) + " Hz): raise the dynamics' sample rate, or 0 for no path");
+                              std::to_string(input_rate_hz) +
+                              " Hz): raise the dynamics' sample rate, or 0 for no path");
 
   if (config_.mount_resonance_hz > kMaxPathResonanceFraction * input_rate_hz)
     throw InvalidInputError(who + "mount_resonance_Hz " + std::to_string(config_.mount_resonance_hz) +
@@ -219,8 +220,8 @@ VirtualAccelerometer::VirtualAccelerometer(AccelerometerConfig config, double in
   if (has_path_) path_ = TransmissionPath(modes, input_rate_hz);
   has_mount_ = config_.mount_resonance_hz > 0.0;
   if (has_mount_) mount_ = design_seismic_path(config_.mount_resonance_hz, config_.mount_damping_ratio, input_rate_hz);
-  const std::vector<Biquad> aa = design_butterworth_lowpass(
-      config_.anti_alias_order, config_.anti_alias_cutoff_fraction * f_out, input_rate_hz);
+  const std::vector<Biquad> aa =
+      design_butterworth_lowpass(config_.anti_alias_order, config_.anti_alias_cutoff_fraction * f_out, input_rate_hz);
   anti_alias_sections_ = static_cast<int>(aa.size());
   std::copy(aa.begin(), aa.end(), anti_alias_);
   const InstallationConfig& installation = config_.installation;

@@ -30,8 +30,7 @@ inline std::string read_config_file(const std::string& path, const std::string& 
     throw ConfigError(path + ": cannot open " + what + (exists ? " (not a regular file)" : " (no such file)"));
   }
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec || size > kMaxBytes)
-    throw ConfigError(path + ": " + what + " larger than 1 MiB (or unreadable), refused");
+  if (ec || size > kMaxBytes) throw ConfigError(path + ": " + what + " larger than 1 MiB (or unreadable), refused");
   std::ifstream in(path);
   if (!in) throw ConfigError(path + ": cannot open " + what);
   std::stringstream buffer;
@@ -65,11 +64,11 @@ class DuplicateKeyFinder : public YAML::EventHandler {
  private:
   struct Level {
     bool is_map = false;
-    bool at_key = true;                  // map: the next node is a key
-    bool is_key = false;                 // this collection is itself a mapping key
-    std::string key;                     // map: the current key; sequence: the current index
-    std::size_t index = 0;               // sequence: entries so far
-    std::map<std::string, int> lines;    // map: key -> line (1-based) of its first occurrence
+    bool at_key = true;                // map: the next node is a key
+    bool is_key = false;               // this collection is itself a mapping key
+    std::string key;                   // map: the current key; sequence: the current index
+    std::size_t index = 0;             // sequence: entries so far
+    std::map<std::string, int> lines;  // map: key -> line (1-based) of its first occurrence
   };
 
   std::string path() const {

@@ -2,17 +2,17 @@
 // and the rigid-body modes on bearing stiffness (solve_modes, as `bearing_tool modes`).
 #include <pybind11/stl.h>
 
-#include "binding_common.hpp"
 #include "bearing_sim/core/condition_indicators.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/modal_analysis.hpp"
+#include "binding_common.hpp"
 
 namespace bearing_sim::python {
 namespace {
 
 py::dict analyze(const PyBearing& b, py::array_t<double, py::array::c_style | py::array::forcecast> signal,
-                 double sample_rate_hz, double inner_rad_s, double outer_rad_s, double window_s,
-                 double resonance_hz, double band_width_hz) {
+                 double sample_rate_hz, double inner_rad_s, double outer_rad_s, double window_s, double resonance_hz,
+                 double band_width_hz) {
   if (signal.ndim() != 1)
     throw InvalidInputError("signal: expected a 1-D array of accelerations (m/s^2), got " +
                             std::to_string(signal.ndim()) + " dimensions");
@@ -51,8 +51,8 @@ py::dict analyze(const PyBearing& b, py::array_t<double, py::array::c_style | py
   d["envelope_segment_s"] = c.envelope_segment_s;
   d["fault_snr_db_used"] = c.fault_snr_db_used;
   d["evidence_snr_db_used"] = c.evidence_snr_db_used;
-  d["envelope_m_s2"] = py::array_t<double>(static_cast<py::ssize_t>(c.envelope.amplitude.size()),
-                                           c.envelope.amplitude.data());
+  d["envelope_m_s2"] =
+      py::array_t<double>(static_cast<py::ssize_t>(c.envelope.amplitude.size()), c.envelope.amplitude.data());
   py::list faults;
   for (const FaultIndicator& fi : c.faults) {
     py::dict e;
@@ -68,7 +68,8 @@ py::dict analyze(const PyBearing& b, py::array_t<double, py::array::c_style | py
     py::list harmonics, sidebands;
     for (const EvidenceLine& h : fi.harmonics)
       harmonics.append(py::make_tuple(h.peak.frequency_hz, h.peak.snr_db, h.found, h.shared, h.peak.chance));
-    for (const EvidenceLine& s : fi.sidebands) sidebands.append(py::make_tuple(s.peak.frequency_hz, s.peak.snr_db, s.found));
+    for (const EvidenceLine& s : fi.sidebands)
+      sidebands.append(py::make_tuple(s.peak.frequency_hz, s.peak.snr_db, s.found));
     e["harmonics"] = harmonics;  // (frequency_hz, snr_db, found, shared, chance) of harmonics 1..4
     e["harmonics_found"] = fi.harmonics_found;
     e["sidebands_required"] = fi.sidebands_required;
@@ -136,8 +137,8 @@ py::list modes(double mass_kg, const std::vector<double>& inertia, const py::seq
 }  // namespace
 
 void bind_analysis(py::module_& m) {
-  m.def("analyze", &analyze, py::arg("bearing"), py::arg("signal"), py::arg("sample_rate_hz"),
-        py::arg("inner_rad_s"), py::arg("outer_rad_s"), py::arg("window_s") = 0.0, py::arg("resonance_hz") = 0.0,
+  m.def("analyze", &analyze, py::arg("bearing"), py::arg("signal"), py::arg("sample_rate_hz"), py::arg("inner_rad_s"),
+        py::arg("outer_rad_s"), py::arg("window_s") = 0.0, py::arg("resonance_hz") = 0.0,
         py::arg("band_width_hz") = 2000.0,
         "Condition indicators, envelope spectrum and diagnosis of an acceleration signal (m/s^2) recorded "
         "at the given ring speeds (docs/health.md); the GIL is released");

@@ -6,13 +6,13 @@
 #include <memory>
 #include <sstream>
 
-#include "binding_common.hpp"
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "bearing_sim/core/ring_dynamics.hpp"
 #include "bearing_sim/core/simulation_run.hpp"
+#include "binding_common.hpp"
 
 namespace bearing_sim::python {
 namespace {
@@ -130,14 +130,12 @@ void bind_bearing(py::module_& m) {
       .def_property_readonly("rows", [](const PyBearing& b) { return b.model->rows(); })
       .def_property_readonly("balls_per_row", [](const PyBearing& b) { return b.model->balls_per_row(); })
       .def_property_readonly("ball_diameter_m", [](const PyBearing& b) { return b.model->config().ball_diameter_m; })
-      .def_property_readonly("pitch_diameter_m",
-                             [](const PyBearing& b) { return b.model->config().pitch_diameter_m; })
+      .def_property_readonly("pitch_diameter_m", [](const PyBearing& b) { return b.model->config().pitch_diameter_m; })
       .def_property_readonly("contact_angle_rad",
                              [](const PyBearing& b) { return b.model->config().contact_angle_rad; })
-      .def_property_readonly("rotating_ring",
-                             [](const PyBearing& b) {
-                               return b.model->config().rotating_ring == RotatingRing::Outer ? "outer" : "inner";
-                             })
+      .def_property_readonly(
+          "rotating_ring",
+          [](const PyBearing& b) { return b.model->config().rotating_ring == RotatingRing::Outer ? "outer" : "inner"; })
       .def_property_readonly("has_dynamics", [](const PyBearing& b) { return b.model->config().has_dynamics(); })
       .def_property_readonly("mass_matrix", [](const PyBearing& b) { return to_numpy(b.model->mass_matrix()); })
       .def(
@@ -152,8 +150,8 @@ void bind_bearing(py::module_& m) {
             }
             return static_dict(s);
           },
-          py::arg("force_N") = std::vector<double>{0.0, 0.0, 0.0},
-          py::arg("moment_Nm") = std::vector<double>{0.0, 0.0}, py::arg("cage_angle_rad") = 0.0,
+          py::arg("force_N") = std::vector<double>{0.0, 0.0, 0.0}, py::arg("moment_Nm") = std::vector<double>{0.0, 0.0},
+          py::arg("cage_angle_rad") = 0.0,
           "Static equilibrium of the moving ring under (Fx, Fy, Fz) N and (Mx, My) N*m: displacement "
           "(x, y, z, theta_x, theta_y), the 5x5 stiffness and every ball's load")
       .def(

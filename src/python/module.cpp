@@ -1,8 +1,8 @@
 // bearing_sim._core: the ROS-free core for Python (docs/python.md). The package
 // bearing_sim re-exports it next to the generated messages (bearing_sim.msg).
-#include "binding_common.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/simd_info.hpp"
+#include "binding_common.hpp"
 
 namespace bearing_sim::python {
 

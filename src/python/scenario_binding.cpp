@@ -4,10 +4,10 @@
 
 #include <optional>
 
-#include "binding_common.hpp"
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/scenario.hpp"
+#include "binding_common.hpp"
 #include "scenario_simulation.hpp"
 
 namespace bearing_sim::python {

@@ -9,12 +9,12 @@
 
 #include <cerrno>
 #include <cmath>
-#include <filesystem>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 
-#include <boost/make_shared.hpp>
 #include <rosgraph_msgs/Clock.h>
+#include <boost/make_shared.hpp>
 
 #include "bearing_sim/BallLoads.h"
 #include "bearing_sim/BearingHealth.h"
@@ -175,9 +175,10 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
   health.analysis.envelope_band_width_hz = params.envelope_band_width_hz;
   health.analysis.thresholds.fault_snr_db = params.fault_snr_db;
   const double health_rate_hz = params.health_rate_hz;
-  health_ = std::make_unique<HealthMonitor>(model, load, speed, health,
-                                            [this](const HealthReport& r) { publish_health(r); });
-  pipeline_ = std::make_unique<SamplePipeline>(std::move(dynamics), std::move(sensor), OutputSettings{}, health_rate_hz);
+  health_ =
+      std::make_unique<HealthMonitor>(model, load, speed, health, [this](const HealthReport& r) { publish_health(r); });
+  pipeline_ =
+      std::make_unique<SamplePipeline>(std::move(dynamics), std::move(sensor), OutputSettings{}, health_rate_hz);
   publish_model_state();
   diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(diagnostic_period_s),
                                            [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
@@ -185,8 +186,7 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
   // dynamic_reconfigure: clearance and damping start from the bearing file unless the
   // parameters were set explicitly (the server would otherwise impose the cfg defaults);
   // the other settings from the parameters, else the cfg defaults.
-  reconfigure_server_ =
-      std::make_unique<dynamic_reconfigure::Server<BearingSimConfig>>(reconfigure_mutex_, pnh_);
+  reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<BearingSimConfig>>(reconfigure_mutex_, pnh_);
   BearingSimConfig initial = BearingSimConfig::__getDefault__();
   initial.clearance_um = params.clearance_um.value_or(model.config().clearance_m * 1e6);
   initial.contact_damping_Ns_per_m = params.contact_damping_Ns_per_m.value_or(model.config().contact_damping_Ns_per_m);
@@ -202,13 +202,12 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
   inject_srv_ = nh_.advertiseService("inject_defect", &BearingSimRos::on_inject_defect, this);
   clear_srv_ = nh_.advertiseService("clear_defects", &BearingSimRos::on_clear_defects, this);
   speed_sub_ = nh_.subscribe("speed", 10, &BearingSimRos::on_speed, this);
-  ring_temperature_sub_ =
-      nh_.subscribe("ring_temperature_difference_K", 10, &BearingSimRos::on_ring_temperature, this);
-  ROS_INFO("bearing_sim_node: '%s', %d balls, %.0f Hz dynamics, %g %s steps per sample, %s; "
-           "vibration: %s at %.0f Hz",
-           model.config().name.c_str(), model.ball_count(), sample_rate_hz_, substeps_,
-           integration_method_name(method),
-           real_time_ ? "real time" : "as fast as possible", sensor_description_.c_str(), measured_rate_hz_);
+  ring_temperature_sub_ = nh_.subscribe("ring_temperature_difference_K", 10, &BearingSimRos::on_ring_temperature, this);
+  ROS_INFO(
+      "bearing_sim_node: '%s', %d balls, %.0f Hz dynamics, %g %s steps per sample, %s; "
+      "vibration: %s at %.0f Hz",
+      model.config().name.c_str(), model.ball_count(), sample_rate_hz_, substeps_, integration_method_name(method),
+      real_time_ ? "real time" : "as fast as possible", sensor_description_.c_str(), measured_rate_hz_);
 }
 
 BearingSimRos::~BearingSimRos() { stop(); }
@@ -384,9 +383,9 @@ void BearingSimRos::on_reconfigure(BearingSimConfig& config, std::uint32_t /*lev
     BearingConfig changed = old;
     changed.clearance_m = clearance_m;
     changed.contact_damping_Ns_per_m = config.contact_damping_Ns_per_m;
-    new_model = validated_model(changed, "dynamic_reconfigure", "clearance " + std::to_string(config.clearance_um) +
-                                             " um, contact damping " +
-                                             std::to_string(config.contact_damping_Ns_per_m) + " N*s/m");
+    new_model = validated_model(changed, "dynamic_reconfigure",
+                                "clearance " + std::to_string(config.clearance_um) + " um, contact damping " +
+                                    std::to_string(config.contact_damping_Ns_per_m) + " N*s/m");
     if (!new_model) {
       config.clearance_um = old.clearance_m * 1e6;
       config.contact_damping_Ns_per_m = old.contact_damping_Ns_per_m;
@@ -409,7 +408,7 @@ void BearingSimRos::on_reconfigure(BearingSimConfig& config, std::uint32_t /*lev
 }
 
 std::optional<BearingModel> BearingSimRos::validated_model(const BearingConfig& changed, const std::string& input,
-                                                          const std::string& what) {
+                                                           const std::string& what) {
   try {
     BearingModel model(changed);  // throws for a clearance the ring temperatures take out of range
     model.set_deflection_offsets(validation_model_->deflection_offsets());
@@ -567,7 +566,7 @@ void BearingSimRos::ideal_chunk(SampleChunk&& chunk) {
   fill_vibration_chunk(std::move(chunk), first_stamp, frame_id_, sample_rate_hz_, msg.get());
   const bool ideal_is_vibration = pipeline_->sensor() == nullptr;
   bundle_->actions.emplace_back([this, msg, ideal_is_vibration] {
-    msg->header.seq = ideal_seq_++;  // both topics publish every ideal chunk then: the same count
+    msg->header.seq = ideal_seq_++;                       // both topics publish every ideal chunk then: the same count
     if (ideal_is_vibration) vibration_pub_.publish(msg);  // without a sensor `vibration` is the ideal acceleration
     ideal_pub_.publish(msg);
   });
@@ -625,8 +624,8 @@ void BearingSimRos::publish_health(const HealthReport& report) {
     add("envelope band (Hz)", fmt(msg.envelope_low_hz, 0) + "-" + fmt(msg.envelope_high_hz, 0));
     for (const EnvelopeLine& l : msg.faults)
       add("envelope " + l.label + " " + fmt(l.expected_hz, 2) + " Hz",
-          "peak " + fmt(l.peak_hz, 2) + " Hz, " + fmt(l.snr_db, 1) + " dB over noise" +
-              ", " + std::to_string(l.harmonics_found) + " harmonics" +
+          "peak " + fmt(l.peak_hz, 2) + " Hz, " + fmt(l.snr_db, 1) + " dB over noise" + ", " +
+              std::to_string(l.harmonics_found) + " harmonics" +
               (l.sidebands_required ? ", " + std::to_string(l.sidebands_found) + "/2 sidebands" : std::string()) +
               (l.suspected ? " (suspected)" : "") + (l.note.empty() ? std::string() : "; " + l.note));
   }

@@ -29,8 +29,7 @@ void ChunkAssembler::start_chunk() {
   }
 }
 
-bool ChunkAssembler::add(std::uint64_t sample_index, const Eigen::Vector3d& acceleration,
-                         const Vector5& displacement) {
+bool ChunkAssembler::add(std::uint64_t sample_index, const Eigen::Vector3d& acceleration, const Vector5& displacement) {
   if (sample_index != next_sample_)
     throw std::logic_error("chunk assembler: sample " + std::to_string(sample_index) + " is not the next one (" +
                            std::to_string(next_sample_) + ")");

@@ -30,12 +30,9 @@ DefectNow defect_now(const Spall& s, double time_s) {
 
 }  // namespace
 
-HealthMonitor::HealthMonitor(BearingModel model, const Vector5& load, double ring_speed_rad_s,
-                             HealthSettings settings, Callback callback)
-    : settings_(std::move(settings)),
-      callback_(std::move(callback)),
-      load_(load),
-      ring_speed_rad_s_(ring_speed_rad_s) {
+HealthMonitor::HealthMonitor(BearingModel model, const Vector5& load, double ring_speed_rad_s, HealthSettings settings,
+                             Callback callback)
+    : settings_(std::move(settings)), callback_(std::move(callback)), load_(load), ring_speed_rad_s_(ring_speed_rad_s) {
   if (!(settings_.sample_rate_hz > 0.0) || !std::isfinite(settings_.sample_rate_hz))
     throw InvalidInputError("health: the sample rate must be > 0 Hz");
   if (!(settings_.window_s > 0.0) || !std::isfinite(settings_.window_s))

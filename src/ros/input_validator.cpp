@@ -44,8 +44,7 @@ InputCheck check_load(const Vector5& load, const InputLimits& limits, const Bear
 InputCheck check_speed(double ring_speed_rad_s, const InputLimits& limits, const BearingModel* model) {
   InputCheck c;
   std::ostringstream why;
-  if (!std::isfinite(ring_speed_rad_s))
-    why << "speed is not finite";
+  if (!std::isfinite(ring_speed_rad_s)) why << "speed is not finite";
   else if (model && !ring_speed_refusal(ring_speed_rad_s, model->config().pitch_diameter_m).empty())
     why << "speed " << ring_speed_refusal(ring_speed_rad_s, model->config().pitch_diameter_m);
   else if (std::abs(ring_speed_rad_s) > limits.max_speed_rad_s)
@@ -78,14 +77,13 @@ InputCheck check_integrator_work(const BearingModel& model, const Vector5& load,
   Matrix5 damping;
   model.contact_force_and_stiffness(s.displacement, RollingPhase{}, nullptr, &damping);
   // M = L L^T: L^-1 K L^-T and L^-1 C L^-T (M^-1/2 K M^-1/2 for a diagonal M).
-  const Matrix5 l_inv =
-      Eigen::LLT<Matrix5>(model.mass_matrix()).matrixL().solve(Matrix5::Identity());
+  const Matrix5 l_inv = Eigen::LLT<Matrix5>(model.mass_matrix()).matrixL().solve(Matrix5::Identity());
   const Matrix5 a = l_inv * s.stiffness * l_inv.transpose();
   const Matrix5 d = l_inv * damping * l_inv.transpose();
   const Eigen::SelfAdjointEigenSolver<Matrix5> eigen(0.5 * (a + a.transpose()));
   const double omega_max = std::sqrt(std::max(0.0, eigen.eigenvalues()[4]));
-  const double damping_rate = Eigen::SelfAdjointEigenSolver<Matrix5>(0.5 * (d + d.transpose()), Eigen::EigenvaluesOnly)
-                                  .eigenvalues()[4];
+  const double damping_rate =
+      Eigen::SelfAdjointEigenSolver<Matrix5>(0.5 * (d + d.transpose()), Eigen::EigenvaluesOnly).eigenvalues()[4];
   const BearingConfig& b = model.config();
   std::ostringstream why;
   constexpr double kHighestPlausibleModeHz = 1.0e5;
@@ -106,8 +104,7 @@ InputCheck check_integrator_work(const BearingModel& model, const Vector5& load,
       why << "tilt_inertia_kg_m2 (" << b.tilt_inertia_kg_m2
           << (b.tilt_inertia_given ? "" : ", derived from rotating_mass_kg and the envelope")
           << ") is implausibly small for this bearing";
-    else
-      why << "rotating_mass_kg (" << b.rotating_mass_kg << ") is implausibly small for this bearing";
+    else why << "rotating_mass_kg (" << b.rotating_mass_kg << ") is implausibly small for this bearing";
   }
   c.reason = why.str();
   c.accepted = false;
@@ -118,8 +115,7 @@ InputCheck check_setting(double value, const SettingRange& range) {
   InputCheck c;
   if (!std::isfinite(value) || value < range.min || value > range.max) {
     std::ostringstream why;
-    why << range.name << " = " << value << " refused: must be finite and in [" << range.min << ", " << range.max
-        << "]";
+    why << range.name << " = " << value << " refused: must be finite and in [" << range.min << ", " << range.max << "]";
     c.reason = why.str();
   }
   c.accepted = c.reason.empty();

@@ -81,8 +81,8 @@ void LcmBridge::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   std::uint64_t rejected = 0;
   for (const Route& r : routes_) {
     rejected += r.rejected;
-    status.add(r.subscriber.getTopic() + " -> " + r.channel, std::to_string(r.forwarded) + " forwarded, " +
-                                                                  std::to_string(r.rejected) + " rejected");
+    status.add(r.subscriber.getTopic() + " -> " + r.channel,
+               std::to_string(r.forwarded) + " forwarded, " + std::to_string(r.rejected) + " rejected");
   }
   status.add("LCM URL", queue_->url());
   status.add("published", s.published);

@@ -48,10 +48,14 @@ bearing_sim_lcm::header_t to_lcm(const std_msgs::Header& header) {
 bearing_sim_lcm::vibration_chunk_t to_lcm(const VibrationChunk& msg) {
   using Array = std::vector<float>;
   bearing_sim_lcm::vibration_chunk_t out;
-  out.num_samples = common_length<Array>(
-      "VibrationChunk", {{"accel_x", &msg.accel_x}, {"accel_y", &msg.accel_y}, {"accel_z", &msg.accel_z},
-                         {"displacement_x", &msg.displacement_x}, {"displacement_y", &msg.displacement_y},
-                         {"displacement_z", &msg.displacement_z}, {"tilt_x", &msg.tilt_x}, {"tilt_y", &msg.tilt_y}});
+  out.num_samples = common_length<Array>("VibrationChunk", {{"accel_x", &msg.accel_x},
+                                                            {"accel_y", &msg.accel_y},
+                                                            {"accel_z", &msg.accel_z},
+                                                            {"displacement_x", &msg.displacement_x},
+                                                            {"displacement_y", &msg.displacement_y},
+                                                            {"displacement_z", &msg.displacement_z},
+                                                            {"tilt_x", &msg.tilt_x},
+                                                            {"tilt_y", &msg.tilt_y}});
   if (msg.first_sample > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
     throw std::invalid_argument("VibrationChunk.first_sample " + std::to_string(msg.first_sample) +
                                 " does not fit the LCM int64");
@@ -82,9 +86,9 @@ bearing_sim_lcm::ball_loads_t to_lcm(const BallLoads& msg) {
   using Array = std::vector<float>;
   bearing_sim_lcm::ball_loads_t out;
   out.num_balls = common_length<Array>("BallLoads", {{"azimuth", &msg.azimuth},
-                                                    {"load", &msg.load},
-                                                    {"contact_angle", &msg.contact_angle},
-                                                    {"deflection", &msg.deflection}});
+                                                     {"load", &msg.load},
+                                                     {"contact_angle", &msg.contact_angle},
+                                                     {"deflection", &msg.deflection}});
   out.header = to_lcm(msg.header);
   out.rows = msg.rows;
   out.balls_per_row = msg.balls_per_row;

@@ -29,8 +29,7 @@ void fill_vibration_chunk(SampleChunk&& chunk, const ros::Time& first_sample_sta
   msg->tilt_y = std::move(chunk.tilt_y);
 }
 
-void fill_bearing_health(const HealthReport& r, const std::string& signal, double sample_rate_hz,
-                         BearingHealth* msg) {
+void fill_bearing_health(const HealthReport& r, const std::string& signal, double sample_rate_hz, BearingHealth* msg) {
   const ConditionIndicators& c = r.indicators;
   msg->signal = signal;
   msg->sample_rate = sample_rate_hz;

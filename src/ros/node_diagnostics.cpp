@@ -22,8 +22,8 @@ NodeDiagnostics::NodeDiagnostics(ros::NodeHandle nh, ros::NodeHandle pnh, const 
   updater_.add("Health", this, &NodeDiagnostics::health_task);
 }
 
-void NodeDiagnostics::record_chunk(double lateness_s, bool overrun, std::uint64_t samples_published,
-                                   double simulated_s, double wall_elapsed_s) {
+void NodeDiagnostics::record_chunk(double lateness_s, bool overrun, std::uint64_t samples_published, double simulated_s,
+                                   double wall_elapsed_s) {
   // Called by the real-time publisher thread: it must never wait for the diagnostics
   // publisher (a normal-priority thread that a busy machine can deschedule while it holds
   // the lock: priority inversion). If the lock is taken, the record waits here, touched
@@ -131,8 +131,7 @@ void NodeDiagnostics::inputs_task(diagnostic_updater::DiagnosticStatusWrapper& s
   status.add("last rejection", last_rejection_);
   if (within_hold(last_rejection_time_, rejected_inputs_ > 0))
     status.summary(DiagnosticStatus::WARN, "input rejected: " + last_rejection_);
-  else
-    status.summary(DiagnosticStatus::OK, "inputs accepted");
+  else status.summary(DiagnosticStatus::OK, "inputs accepted");
 }
 
 void NodeDiagnostics::model_task(diagnostic_updater::DiagnosticStatusWrapper& status) {
@@ -151,8 +150,7 @@ void NodeDiagnostics::model_task(diagnostic_updater::DiagnosticStatusWrapper& st
     status.summary(DiagnosticStatus::ERROR, "state diverged, reset to the static equilibrium: " + last_divergence_);
   else if (model_.static_max_contact_pressure_Pa > kPermissibleContactPressurePa)
     status.summary(DiagnosticStatus::WARN, "static contact pressure beyond the ISO 76 permissible 4200 MPa");
-  else
-    status.summary(DiagnosticStatus::OK, "state finite");
+  else status.summary(DiagnosticStatus::OK, "state finite");
 }
 
 }  // namespace ros_node

@@ -27,13 +27,20 @@ std::string range_text(double min, double max, const std::string& unit) {
 std::string describe_parameter_value(const XmlRpcValue& value) {
   XmlRpcValue v = value;  // the conversions of XmlRpcValue are not all const
   switch (v.getType()) {
-    case XmlRpcValue::TypeBoolean: return static_cast<bool>(v) ? "true" : "false";
-    case XmlRpcValue::TypeInt: return std::to_string(static_cast<int>(v));
-    case XmlRpcValue::TypeDouble: return number_text(static_cast<double>(v));
-    case XmlRpcValue::TypeString: return "\"" + static_cast<std::string>(v) + "\"";
-    case XmlRpcValue::TypeArray: return "a list";
-    case XmlRpcValue::TypeStruct: return "a mapping";
-    default: return "a value of another type";
+    case XmlRpcValue::TypeBoolean:
+      return static_cast<bool>(v) ? "true" : "false";
+    case XmlRpcValue::TypeInt:
+      return std::to_string(static_cast<int>(v));
+    case XmlRpcValue::TypeDouble:
+      return number_text(static_cast<double>(v));
+    case XmlRpcValue::TypeString:
+      return "\"" + static_cast<std::string>(v) + "\"";
+    case XmlRpcValue::TypeArray:
+      return "a list";
+    case XmlRpcValue::TypeStruct:
+      return "a mapping";
+    default:
+      return "a value of another type";
   }
 }
 

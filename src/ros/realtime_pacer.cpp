@@ -43,7 +43,9 @@ LeadScheduler::LeadScheduler(const RealtimePacer& pacer, Clock::duration lead) :
 
 std::size_t LeadScheduler::max_queued(std::size_t chunk_samples) const {
   const double lead_samples = std::chrono::duration<double>(lead_).count() * pacer_.sample_rate_hz();
-  return static_cast<std::size_t>(std::floor(lead_samples / static_cast<double>(std::max<std::size_t>(1, chunk_samples)))) + 1;
+  return static_cast<std::size_t>(
+             std::floor(lead_samples / static_cast<double>(std::max<std::size_t>(1, chunk_samples)))) +
+         1;
 }
 
 }  // namespace ros_node

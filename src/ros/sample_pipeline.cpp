@@ -108,7 +108,8 @@ void SamplePipeline::flush(PipelineSink& sink) {
 void SamplePipeline::apply_settings(const OutputSettings& s) {
   if (s.chunk_samples != settings_.chunk_samples) {
     assembler_.set_chunk_samples(s.chunk_samples);
-    if (sensor_) sensor_assembler_->set_chunk_samples(sensor_chunk_samples(s.chunk_samples, sensor_->decimation_ratio()));
+    if (sensor_)
+      sensor_assembler_->set_chunk_samples(sensor_chunk_samples(s.chunk_samples, sensor_->decimation_ratio()));
   }
   if (s.level_window_s != settings_.level_window_s)
     level_rms_.resize(window_samples(s.level_window_s, measured_rate_hz_));

@@ -92,10 +92,10 @@ bool ScenarioPlayer::wait_for_node() {
   pnh_.param<std::string>("node_process", node_process, node_process);
   node_process = nh_.resolveName(node_process);
   const std::string state_topic = nh_.resolveName("scenario_state");
-  const std::string listeners_wanted =
-      wait_for_subscribers_ > 0 ? " and " + std::to_string(wait_for_subscribers_) + " subscriber(s) of " + state_topic +
-                                      " (~wait_for_subscribers: the recorder)"
-                                : "";
+  const std::string listeners_wanted = wait_for_subscribers_ > 0
+                                           ? " and " + std::to_string(wait_for_subscribers_) + " subscriber(s) of " +
+                                                 state_topic + " (~wait_for_subscribers: the recorder)"
+                                           : "";
   ROS_INFO("scenario_player: waiting up to %.0f s (~wait_timeout_s) for %s%s", wait_timeout_s_, node.c_str(),
            listeners_wanted.c_str());
   for (const char* service : {"inject_defect", "clear_defects"}) {
@@ -119,9 +119,10 @@ bool ScenarioPlayer::wait_for_node() {
   nh_.getParam(node_name_ + "/max_speed_rad_s", limits.max_speed_rad_s);
   const std::string refusal = scenario_limit_refusal(scenario_, limits);
   if (!refusal.empty()) {
-    ROS_FATAL("scenario_player: scenario %s refused: %s (parameters of %s): the node would refuse that input and run "
-              "on at its last good one while scenario_state said the scenario's; the scenario does not start",
-              scenario_file_.c_str(), refusal.c_str(), node.c_str());
+    ROS_FATAL(
+        "scenario_player: scenario %s refused: %s (parameters of %s): the node would refuse that input and run "
+        "on at its last good one while scenario_state said the scenario's; the scenario does not start",
+        scenario_file_.c_str(), refusal.c_str(), node.c_str());
     return false;
   }
   // The scenario runs on the node's clock: with the node as fast as possible that is its
@@ -129,9 +130,10 @@ bool ScenarioPlayer::wait_for_node() {
   bool node_real_time = true;
   nh_.getParam(node_name_ + "/real_time", node_real_time);
   if (!node_real_time && !ros::Time::isSimTime()) {
-    ROS_FATAL("scenario_player: %s runs as fast as possible (~real_time false) but /use_sim_time is not set: "
-              "the scenario would play on wall time. Set /use_sim_time true (ct_gantry.launch does with a scenario)",
-              node.c_str());
+    ROS_FATAL(
+        "scenario_player: %s runs as fast as possible (~real_time false) but /use_sim_time is not set: "
+        "the scenario would play on wall time. Set /use_sim_time true (ct_gantry.launch does with a scenario)",
+        node.c_str());
     return false;
   }
   if (!ros::Time::waitForValid(ros::WallDuration(remaining()))) {
@@ -165,8 +167,8 @@ bool ScenarioPlayer::wait_for_node() {
                    std::to_string(wait_for_subscribers_) +
                    " subscriber(s) asked for (~wait_for_subscribers; with record:=true the recorder, which "
                    "did not start or died: see its log)";
-      ROS_FATAL("scenario_player: after %.0f s (~wait_timeout_s), %s; the scenario does not start",
-                wait_timeout_s_, missing.c_str());
+      ROS_FATAL("scenario_player: after %.0f s (~wait_timeout_s), %s; the scenario does not start", wait_timeout_s_,
+                missing.c_str());
       return false;
     }
     ros::WallDuration(0.02).sleep();
@@ -180,8 +182,8 @@ void ScenarioPlayer::start() {
   ros::getGlobalCallbackQueue()->callAvailable();
   timeline_ = std::make_unique<ScenarioTimeline>(scenario_, settings_);
   start_ = ros::Time::now();
-  ROS_INFO("scenario_player: '%s' starts at %.3f s on the node's clock (%s)", scenario_.name().c_str(),
-           start_.toSec(), ros::Time::isSimTime() ? "/clock" : "wall time");
+  ROS_INFO("scenario_player: '%s' starts at %.3f s on the node's clock (%s)", scenario_.name().c_str(), start_.toSec(),
+           ros::Time::isSimTime() ? "/clock" : "wall time");
   inject_client_ = nh_.serviceClient<InjectDefect>("inject_defect", true);
   clear_client_ = nh_.serviceClient<std_srvs::Trigger>("clear_defects", true);
   tick(start_);
@@ -189,8 +191,8 @@ void ScenarioPlayer::start() {
     // Follow each /clock message as it comes (the node publishes one per chunk), not
     // roscpp's timer, which polls simulated time every millisecond of wall time.
     clock_sub_ = nh_.subscribe<rosgraph_msgs::Clock>(
-        "/clock", 1, [this](const rosgraph_msgs::Clock::ConstPtr& m) { tick(m->clock); },
-        ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
+        "/clock", 1, [this](const rosgraph_msgs::Clock::ConstPtr& m) { tick(m->clock); }, ros::VoidConstPtr(),
+        ros::TransportHints().tcpNoDelay());
   } else {
     const double rate = std::max({settings_.speed_rate_hz, settings_.load_rate_hz, settings_.state_rate_hz});
     timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / rate),
@@ -313,8 +315,7 @@ void ScenarioPlayer::clear(const TimelineCommand& c) {
     std::snprintf(when, sizeof when, "t = %.3f s", c.scenario_time_s);
     stop(std::string(when) + ": clear_defects failed (node gone?); the labels would leave out spalls the " +
          "simulation may still have");
-  } else
-    ROS_INFO("scenario_player: t = %.3f s: %s", c.scenario_time_s, srv.response.message.c_str());
+  } else ROS_INFO("scenario_player: t = %.3f s: %s", c.scenario_time_s, srv.response.message.c_str());
 }
 
 void ScenarioPlayer::publish_state(const TimelineCommand& c) {

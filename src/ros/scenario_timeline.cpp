@@ -132,8 +132,8 @@ std::string scenario_limit_refusal(const Scenario& scenario, const InputLimits& 
           << " s exceeds the node's max_moment_Nm = " << limits.max_moment_Nm << " N*m";
     } else if (e.speed_rad_s > limits.max_speed_rad_s) {
       why << (e.speed_key.empty() ? "speed" : e.speed_key) << ": |speed| = " << e.speed_rad_s << " rad/s ("
-          << e.speed_rad_s * kRadSToRpm << " rpm) at t = " << e.time_s << " s exceeds the node's max_speed_rad_s = "
-          << limits.max_speed_rad_s << " rad/s";
+          << e.speed_rad_s * kRadSToRpm << " rpm) at t = " << e.time_s
+          << " s exceeds the node's max_speed_rad_s = " << limits.max_speed_rad_s << " rad/s";
     }
     if (!why.str().empty()) return why.str();
   }

@@ -54,7 +54,8 @@ SimNodeParameters read_sim_node_parameters(const XmlRpc::XmlRpcValue& private_pa
   for (int i = 0; i < 5; ++i) {
     const bool force = i < 3;
     const double limit = force ? p.limits.max_force_N : p.limits.max_moment_Nm;
-    p.initial_load(i) = r.number(load_keys[i], 0.0, -limit, limit, force ? "N (+-max_force_N)" : "N*m (+-max_moment_Nm)");
+    p.initial_load(i) =
+        r.number(load_keys[i], 0.0, -limit, limit, force ? "N (+-max_force_N)" : "N*m (+-max_moment_Nm)");
   }
   if (p.initial_load.head<3>().norm() > p.limits.max_force_N)
     r.fail("initial_force_x_N", "the initial force's magnitude exceeds max_force_N");
@@ -79,8 +80,8 @@ SimNodeParameters read_sim_node_parameters(const XmlRpc::XmlRpcValue& private_pa
   p.contact_damping_Ns_per_m =
       r.optional_number(kContactDampingNsPerM.name, kContactDampingNsPerM.min, kContactDampingNsPerM.max, "N*s/m");
   if (r.has(kChunkSamples.name))
-    p.chunk_samples = r.integer(kChunkSamples.name, 0, static_cast<int>(kChunkSamples.min),
-                                static_cast<int>(kChunkSamples.max));
+    p.chunk_samples =
+        r.integer(kChunkSamples.name, 0, static_cast<int>(kChunkSamples.min), static_cast<int>(kChunkSamples.max));
   p.level_window_s = r.optional_number(kLevelWindowS.name, kLevelWindowS.min, kLevelWindowS.max, "s");
   p.level_rate_hz = r.optional_number(kLevelRateHz.name, kLevelRateHz.min, kLevelRateHz.max, "Hz");
   p.ball_loads_rate_hz = r.optional_number(kBallLoadsRateHz.name, kBallLoadsRateHz.min, kBallLoadsRateHz.max, "Hz");

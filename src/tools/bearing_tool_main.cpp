@@ -16,12 +16,9 @@ namespace {
 
 using Register = void (*)(CLI::App&);
 constexpr Register kCommands[] = {
-    bearing_sim::tool::register_static_command,
-    bearing_sim::tool::register_frequencies_command,
-    bearing_sim::tool::register_simulate_command,
-    bearing_sim::tool::register_analyze_command,
-    bearing_sim::tool::register_sweep_command,
-    bearing_sim::tool::register_modes_command,
+    bearing_sim::tool::register_static_command,   bearing_sim::tool::register_frequencies_command,
+    bearing_sim::tool::register_simulate_command, bearing_sim::tool::register_analyze_command,
+    bearing_sim::tool::register_sweep_command,    bearing_sim::tool::register_modes_command,
     bearing_sim::tool::register_generate_command,
 };
 
@@ -43,8 +40,7 @@ int main(int argc, char** argv) {
   app.failure_message([](const CLI::App* failed, const CLI::Error& e) {
     std::string where = "bearing_tool";
     for (const CLI::App* sub : failed->get_subcommands()) where += " " + sub->get_name();
-    return "bearing_tool: invalid input: " + std::string(e.what()) + "\nRun '" + where +
-           " --help' for the options.\n";
+    return "bearing_tool: invalid input: " + std::string(e.what()) + "\nRun '" + where + " --help' for the options.\n";
   });
   // Before the command: the kernels' SIMD target, for datasets that must be byte-identical
   // across machines (samples differ by rounding between targets) or a narrower target that

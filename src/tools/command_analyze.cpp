@@ -85,8 +85,8 @@ CsvSignal read_csv(const std::string& path, const std::string& wanted, bool use_
   // A directory opens but reads as empty; /dev/zero or a FIFO would be read forever.
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError("--csv '" + path + "': " +
-                     (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file"));
+    throw InputError("--csv '" + path +
+                     "': " + (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file"));
   std::ifstream in(path);
   if (!in) throw InputError("--csv: cannot open '" + path + "': " + std::strerror(errno));
   std::string line;
@@ -149,11 +149,10 @@ CsvSignal read_csv(const std::string& path, const std::string& wanted, bool use_
     for (std::size_t i = 0; i < steps.size(); ++i)
       if (std::abs(steps[i] - median) > kTimeStepTolerance * median)
         throw InputError("--csv '" + path + "' line " + std::to_string(time_line[i + 1]) + ", column '" +
-                         header[time_col] + "': time " + general(time[i + 1], 12) + " is " +
-                         general(steps[i], 6) + " s after the previous sample (line " +
-                         std::to_string(time_line[i]) + "), the median step is " + general(median, 6) + " s (" +
-                         general(1.0 / median, 6) + " Hz): the time steps must agree within " +
-                         fixed(kTimeStepTolerance * 100.0, 0) +
+                         header[time_col] + "': time " + general(time[i + 1], 12) + " is " + general(steps[i], 6) +
+                         " s after the previous sample (line " + std::to_string(time_line[i]) +
+                         "), the median step is " + general(median, 6) + " s (" + general(1.0 / median, 6) +
+                         " Hz): the time steps must agree within " + fixed(kTimeStepTolerance * 100.0, 0) +
                          " % (a gap or jump in the record); if the samples are consecutive and only the time "
                          "stamps are off, give --rate (the time column is then not read)");
     s.rate_hz = static_cast<double>(time.size() - 1) / (time.back() - time.front());
@@ -162,9 +161,10 @@ CsvSignal read_csv(const std::string& path, const std::string& wanted, bool use_
 }
 
 nlohmann::json peak_json(const SpectralPeak& p) {
-  return {{"expected_hz", p.expected_hz},  {"searched", p.searched},       {"frequency_hz", p.frequency_hz},
-          {"amplitude_m_s2", p.amplitude}, {"noise_floor_m_s2", p.noise_floor}, {"snr_db", p.snr_db},
-          {"local_maximum", p.local_maximum}, {"chance", p.chance}};
+  return {{"expected_hz", p.expected_hz},      {"searched", p.searched},
+          {"frequency_hz", p.frequency_hz},    {"amplitude_m_s2", p.amplitude},
+          {"noise_floor_m_s2", p.noise_floor}, {"snr_db", p.snr_db},
+          {"local_maximum", p.local_maximum},  {"chance", p.chance}};
 }
 
 // "24/13*/-" : the SNR of each line (from `first`), * when found, - when not searched.
@@ -180,7 +180,10 @@ std::string evidence_cell(const std::vector<EvidenceLine>& lines, std::size_t fi
 nlohmann::json evidence_json(const std::vector<EvidenceLine>& lines) {
   nlohmann::json a = nlohmann::json::array();
   for (const EvidenceLine& l : lines)
-    a.push_back({{"order", l.order}, {"offset_hz", l.offset_hz}, {"found", l.found}, {"shared", l.shared},
+    a.push_back({{"order", l.order},
+                 {"offset_hz", l.offset_hz},
+                 {"found", l.found},
+                 {"shared", l.shared},
                  {"peak", peak_json(l.peak)}});
   return a;
 }
@@ -200,8 +203,9 @@ void run(const AnalyzeCliOptions& o) {
                      general(kMinKurtosisWarn, 3) + " (Gaussian noise) to " + general(kMaxKurtosisWarn, 4));
   const BearingModel model = load_model(o.bearing);
   if (o.inner_rpm == 0.0 && o.outer_rpm == 0.0)
-    throw InputError("give the ring speeds of the recording (--inner-rpm and/or --outer-rpm): the fault "
-                     "frequencies depend on them");
+    throw InputError(
+        "give the ring speeds of the recording (--inner-rpm and/or --outer-rpm): the fault "
+        "frequencies depend on them");
   // --rate: the samples are consecutive at that rate, whatever a time column says.
   const CsvSignal signal = read_csv(o.csv, o.column, !(o.rate_hz > 0.0));
   const double rate = o.rate_hz > 0.0 ? o.rate_hz : signal.rate_hz;
@@ -279,8 +283,8 @@ void run(const AnalyzeCliOptions& o) {
   std::ostream& out = std::cout;
   out << "Bearing: " << model.config().name << " (" << o.bearing << "), inner ring " << general(o.inner_rpm, 6)
       << " rpm, outer ring " << general(o.outer_rpm, 6) << " rpm\n"
-      << "Signal: " << o.csv << ", column " << signal.column << ", " << c.samples << " samples at "
-      << general(rate, 6) << " Hz (last " << fixed(c.window_s, 3) << " s)\n\n";
+      << "Signal: " << o.csv << ", column " << signal.column << ", " << c.samples << " samples at " << general(rate, 6)
+      << " Hz (last " << fixed(c.window_s, 3) << " s)\n\n";
   Table t({"indicator", "value", "unit"}, {true, false, true});
   t.add_row({"RMS", scientific(c.acceleration.rms, 4), "m/s^2"});
   t.add_row({"peak", scientific(c.acceleration.peak, 4), "m/s^2"});
@@ -294,11 +298,10 @@ void run(const AnalyzeCliOptions& o) {
              velocity_zone_name(c.zone), ""});
   t.print(out);
   out << "\nEnvelope spectrum (band " << fixed(c.envelope_low_hz, 0) << "-" << fixed(c.envelope_high_hz, 0)
-      << " Hz from the " << c.envelope_band_source
-      << ", spectral kurtosis " << fixed(c.envelope_band_kurtosis, 2)
+      << " Hz from the " << c.envelope_band_source << ", spectral kurtosis " << fixed(c.envelope_band_kurtosis, 2)
       << ", resolution " << fixed(c.envelope.resolution_hz, 3) << " Hz; noise = median of the neighbouring bins)\n";
-  Table e({"fault", "frequency", "expected Hz", "peak Hz", "amplitude m/s^2", "SNR dB", "harmonics dB",
-           "sidebands dB", "suspected"},
+  Table e({"fault", "frequency", "expected Hz", "peak Hz", "amplitude m/s^2", "SNR dB", "harmonics dB", "sidebands dB",
+           "suspected"},
           {true, true, false, false, false, false, false, false, true});
   for (const FaultIndicator& fi : c.faults) {
     const SpectralPeak& p = fi.envelope_peak;
@@ -343,7 +346,8 @@ void register_analyze_command(CLI::App& app) {
       ->check(positive_number());
   add_vector_option(cmd, "--zones", &o->zones, {"AB", "BC", "CD"},
                     "Velocity zone boundaries, mm/s (default ISO 20816-3 group 2, rigid foundation)");
-  add_number_option(cmd, "--snr-db", &o->snr_db, "DB", "Envelope SNR at a fault frequency for a suspected defect, 0-60 dB");
+  add_number_option(cmd, "--snr-db", &o->snr_db, "DB",
+                    "Envelope SNR at a fault frequency for a suspected defect, 0-60 dB");
   add_number_option(cmd, "--kurtosis-warn", &o->kurtosis_warn, "K", "Kurtosis for a WARN, 3-1000 (0: off)");
   add_json_flag(cmd, &o->json);
   cmd->callback([o] { run(*o); });

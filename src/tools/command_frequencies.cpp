@@ -40,9 +40,7 @@ void run(const FrequenciesOptions& o) {
       << " rpm\n\n";
   const double fr = f.relative_ring_hz;
   Table t({"frequency", "Hz", "x relative ring speed"}, {true});
-  auto row = [&](const char* name, double hz) {
-    t.add_row({name, fixed(hz, 4), fr > 0.0 ? fixed(hz / fr, 5) : "-"});
-  };
+  auto row = [&](const char* name, double hz) { t.add_row({name, fixed(hz, 4), fr > 0.0 ? fixed(hz / fr, 5) : "-"}); };
   row("relative ring speed f_r", f.relative_ring_hz);
   row("cage (FTF)", f.cage_hz);
   row("ball pass, outer race (BPFO)", f.ball_pass_outer_race_hz);

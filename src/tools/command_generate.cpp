@@ -4,8 +4,8 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cctype>
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -37,7 +37,7 @@ struct GenerateOptions {
   double duration_s = 0.0;  // 0: each scenario's own
   double ring_temperature_difference_K = 0.0;
   bool ring_temperature_given = false;  // else each scenario's time line
-  unsigned threads = 0;     // 0: hardware concurrency
+  unsigned threads = 0;                 // 0: hardware concurrency
   double label_rate_hz = 10.0;
   double ball_loads_rate_hz = 10.0;
   double health_rate_hz = 1.0;
@@ -156,8 +156,8 @@ void run(const GenerateOptions& o) {
         check_integrator_work(model, sc.load_at(t), info.sample_rate_hz, sc.bearing_file());
       if (samples > 1000.0) {
         const double t = 0.5 * info.duration_s;
-        total_estimate_s += samples * measure_seconds_per_sample(model, sc.load_at(t), sc.ring_speed_at(t),
-                                                                 info.sample_rate_hz, 0);
+        total_estimate_s +=
+            samples * measure_seconds_per_sample(model, sc.load_at(t), sc.ring_speed_at(t), info.sample_rate_hz, 0);
       }
     } catch (const ConfigError& e) {
       throw InputError("scenario " + job.file + ": " + e.what());

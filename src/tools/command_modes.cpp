@@ -47,8 +47,9 @@ void run(const ModesOptions& o) {
                                  : solve_static(model, load);
   const Matrix6 bushing = bushing_matrix(sol.stiffness);
   if (bushing(0, 0) <= 0.0 || bushing(2, 2) <= 0.0)
-    warn("the bearing has no radial or axial stiffness at this load (zero load on a bearing with clearance?): "
-         "give a load or a preload");
+    warn(
+        "the bearing has no radial or axial stiffness at this load (zero load on a bearing with clearance?): "
+        "give a load or a preload");
 
   RigidBody body;
   body.mass_kg = o.mass_kg;
@@ -93,15 +94,14 @@ void run(const ModesOptions& o) {
     return;
   }
   std::ostream& out = std::cout;
-  out << "Bearing: " << model.config().name << " (" << o.bearing << "), " << o.positions_mm.size()
-      << " at z =";
+  out << "Bearing: " << model.config().name << " (" << o.bearing << "), " << o.positions_mm.size() << " at z =";
   for (double z : o.positions_mm) out << ' ' << general(z, 5);
   out << " mm from the centre of mass\n";
   KeyValueList k;
   k.add("Kr (K_xx)", general(bushing(0, 0) * 1e-6, 5) + " N/um");
   k.add("Ka (K_zz)", general(bushing(2, 2) * 1e-6, 5) + " N/um");
-  k.add("Ktheta (K_theta_y)", general(bushing(4, 4), 5) + " N*m/rad" +
-                                  (o.no_angular ? " (zeroed: --no-angular-stiffness)" : ""));
+  k.add("Ktheta (K_theta_y)",
+        general(bushing(4, 4), 5) + " N*m/rad" + (o.no_angular ? " (zeroed: --no-angular-stiffness)" : ""));
   k.add("body", general(o.mass_kg, 5) + " kg, I = " + general(o.inertia[0], 4) + ", " + general(o.inertia[1], 4) +
                     ", " + general(o.inertia[2], 4) + " kg*m^2");
   k.print(out);

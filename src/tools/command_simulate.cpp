@@ -146,8 +146,8 @@ void run(const SimulateOptions& o) {
   std::unique_ptr<SimulatedSensor> sensor;
   // The sensor's statistics over the summary's window: the second half of the samples.
   if (!o.sensor.empty())
-    sensor = std::make_unique<SimulatedSensor>(o.sensor, o.rate_hz, static_cast<std::size_t>(samples) / 2,
-                                               o.sensor_csv);
+    sensor =
+        std::make_unique<SimulatedSensor>(o.sensor, o.rate_hz, static_cast<std::size_t>(samples) / 2, o.sensor_csv);
   std::unique_ptr<CsvWriter> csv;
   if (!o.csv.empty()) csv = std::make_unique<CsvWriter>(o.csv);
   std::function<void(const DynamicSample&)> on_sample;
@@ -161,30 +161,31 @@ void run(const SimulateOptions& o) {
   if (sensor) sensor->finish();
 
   const BearingFrequencies f = bearing_frequencies(model, request.ring_speed_rad_s);
-  const nlohmann::json result = {{"bearing", bearing_json(model, o.bearing)},
-                                 {"load", to_json(load)},
-                                 {"ring_speed_rpm", model.config().rotating_ring == RotatingRing::Outer ? o.outer_rpm : o.inner_rpm},
-                                 {"duration_s", o.duration_s},
-                                 {"rate_hz", o.rate_hz},
-                                 {"samples", s.samples},
-                                 {"integrator", o.integrator},
-                                 {"substeps", s.substeps},
-                                 {"internal_step_s", s.internal_step_s},
-                                 {"window", "second half of the run, mean removed"},
-                                 {"a_rms_x", s.a_rms_x},
-                                 {"a_rms_y", s.a_rms_y},
-                                 {"a_rms_z", s.a_rms_z},
-                                 {"L_dB", s.level_db},  // -infinity (a perfectly still ring) is written as null
-                                 {"mean_displacement", to_json(s.mean_displacement)},
-                                 {"static_displacement", to_json(equilibrium.displacement)},
-                                 {"varying_compliance_hz", f.varying_compliance_hz},
-                                 {"realtime_factor", s.realtime_factor},
-          // The realtime factor depends on these: the CPU and the kernel's SIMD target.
-                                 {"cpu", cpu_model_name()},
-                                 {"simd_target", simd_target_name()},
-                                 {"csv", o.csv.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.csv)},
-                                 // null: the ideal ring acceleration only, which no real sensor measures.
-                                 {"sensor", sensor ? sensor->to_json() : nlohmann::json(nullptr)}};
+  const nlohmann::json result = {
+      {"bearing", bearing_json(model, o.bearing)},
+      {"load", to_json(load)},
+      {"ring_speed_rpm", model.config().rotating_ring == RotatingRing::Outer ? o.outer_rpm : o.inner_rpm},
+      {"duration_s", o.duration_s},
+      {"rate_hz", o.rate_hz},
+      {"samples", s.samples},
+      {"integrator", o.integrator},
+      {"substeps", s.substeps},
+      {"internal_step_s", s.internal_step_s},
+      {"window", "second half of the run, mean removed"},
+      {"a_rms_x", s.a_rms_x},
+      {"a_rms_y", s.a_rms_y},
+      {"a_rms_z", s.a_rms_z},
+      {"L_dB", s.level_db},  // -infinity (a perfectly still ring) is written as null
+      {"mean_displacement", to_json(s.mean_displacement)},
+      {"static_displacement", to_json(equilibrium.displacement)},
+      {"varying_compliance_hz", f.varying_compliance_hz},
+      {"realtime_factor", s.realtime_factor},
+      // The realtime factor depends on these: the CPU and the kernel's SIMD target.
+      {"cpu", cpu_model_name()},
+      {"simd_target", simd_target_name()},
+      {"csv", o.csv.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.csv)},
+      // null: the ideal ring acceleration only, which no real sensor measures.
+      {"sensor", sensor ? sensor->to_json() : nlohmann::json(nullptr)}};
   // L is -inf for a ring at rest (written as null); the realtime factor of a tiny run may be inf.
   require_finite_result(result, "simulate", {"L_dB", "realtime_factor"});
   if (o.json) {
@@ -199,12 +200,12 @@ void run(const SimulateOptions& o) {
       << "Load: Fx=" << general(load[0], 6) << " N, Fy=" << general(load[1], 6) << " N, Fz=" << general(load[2], 6)
       << " N, Mx=" << general(load[3], 6) << " N*m, My=" << general(load[4], 6) << " N*m\n\n";
   KeyValueList run_info;
-  run_info.add("samples", std::to_string(s.samples) + " at " + general(o.rate_hz, 6) + " Hz (" +
-                              general(o.duration_s, 6) + " s)");
+  run_info.add("samples",
+               std::to_string(s.samples) + " at " + general(o.rate_hz, 6) + " Hz (" + general(o.duration_s, 6) + " s)");
   run_info.add("integration", general(s.substeps, 4) + " " + o.integrator + " steps per sample, step " +
                                   general(s.internal_step_s * 1e6, 4) + " us");
   run_info.add("realtime factor", general(s.realtime_factor, 4) + " (simulated s per wall s, " + cpu_model_name() +
-                                       ", SIMD " + simd_target_name() + ")");
+                                      ", SIMD " + simd_target_name() + ")");
   run_info.add("varying compliance", fixed(f.varying_compliance_hz, 3) + " Hz");
   if (csv) run_info.add("CSV", o.csv);
   run_info.print(out);
@@ -245,10 +246,10 @@ void run(const SimulateOptions& o) {
 
 void register_simulate_command(CLI::App& app) {
   auto o = std::make_shared<SimulateOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "simulate",
-      "Dynamic run from the static equilibrium at a fixed load and ring speed: RMS acceleration, "
-      "vibration level L, mean displacement; optional CSV of every sample");
+  CLI::App* cmd =
+      app.add_subcommand("simulate",
+                         "Dynamic run from the static equilibrium at a fixed load and ring speed: RMS acceleration, "
+                         "vibration level L, mean displacement; optional CSV of every sample");
   add_bearing_option(cmd, &o->bearing);
   add_load_options(cmd, &o->force, &o->moment);
   add_ring_temperature_option(cmd, &o->ring_temperature_difference_K,

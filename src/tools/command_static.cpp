@@ -32,9 +32,8 @@ double azimuth_deg_0_360(double azimuth_rad) {
 
 std::string pressure_warning(const StaticSolution& sol) {
   std::ostringstream os;
-  os << "maximum contact pressure " << fixed(sol.max_contact_pressure_Pa / 1e6, 0)
-     << " MPa exceeds the permissible " << fixed(kPermissibleContactPressurePa / 1e6, 0)
-     << " MPa (ISO 76): the static load is beyond the usual limit";
+  os << "maximum contact pressure " << fixed(sol.max_contact_pressure_Pa / 1e6, 0) << " MPa exceeds the permissible "
+     << fixed(kPermissibleContactPressurePa / 1e6, 0) << " MPa (ISO 76): the static load is beyond the usual limit";
   return os.str();
 }
 
@@ -68,8 +67,7 @@ nlohmann::json solution_json(const StaticOptions& o, const BearingModel& model, 
           {"warnings", warnings}};
 }
 
-void print_tables(const StaticOptions& o, const BearingModel& model, const Vector5& load,
-                  const StaticSolution& sol) {
+void print_tables(const StaticOptions& o, const BearingModel& model, const Vector5& load, const StaticSolution& sol) {
   std::ostream& out = std::cout;
   const auto& c = model.config();
   out << "Bearing: " << c.name << " (" << o.bearing << ")\n"
@@ -106,8 +104,8 @@ void print_tables(const StaticOptions& o, const BearingModel& model, const Vecto
   int loaded = 0;
   for (const auto& b : sol.balls) loaded += b.load_N > 0.0;
   summary.add("loaded balls", std::to_string(loaded) + " of " + std::to_string(sol.balls.size()));
-  summary.add("Newton iterations", std::to_string(sol.iterations) + " (residual " + general(sol.residual_norm, 3) +
-                                       " N)");
+  summary.add("Newton iterations",
+              std::to_string(sol.iterations) + " (residual " + general(sol.residual_norm, 3) + " N)");
   summary.print(out);
 
   out << "\nLoaded balls\n";
@@ -150,10 +148,10 @@ void run(const StaticOptions& o) {
 
 void register_static_command(CLI::App& app) {
   auto o = std::make_shared<StaticOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "static",
-      "Quasi-static equilibrium of the moving ring under a load: displacement, 5x5 stiffness "
-      "(and the 6x6 Bushing matrix), ball loads, contact angles and Hertz pressures");
+  CLI::App* cmd =
+      app.add_subcommand("static",
+                         "Quasi-static equilibrium of the moving ring under a load: displacement, 5x5 stiffness "
+                         "(and the 6x6 Bushing matrix), ball loads, contact angles and Hertz pressures");
   add_bearing_option(cmd, &o->bearing);
   add_load_options(cmd, &o->force, &o->moment);
   add_ring_temperature_option(cmd, &o->ring_temperature_difference_K,

@@ -110,8 +110,9 @@ void run(const SweepOptions& o) {
 
   int failed = 0;
   for (const auto& r : results) failed += !r.ok;
-  if (failed > 0) warn(std::to_string(failed) + " of " + std::to_string(results.size()) +
-                       " cases failed (status 'error' in the CSV, with the reason)");
+  if (failed > 0)
+    warn(std::to_string(failed) + " of " + std::to_string(results.size()) +
+         " cases failed (status 'error' in the CSV, with the reason)");
   if (o.json) {
     nlohmann::json rows = nlohmann::json::array();
     for (const auto& r : results) rows.push_back(result_json(r));

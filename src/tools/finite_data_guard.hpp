@@ -28,10 +28,14 @@ class FiniteDataGuard : public DatasetSink {
 
  private:
   void check(const ros_node::SampleChunk& c, const char* stream) const {
-    const std::pair<const char*, const std::vector<float>*> channels[] = {
-        {"accel_x", &c.accel_x},        {"accel_y", &c.accel_y},        {"accel_z", &c.accel_z},
-        {"displacement_x", &c.displacement_x}, {"displacement_y", &c.displacement_y},
-        {"displacement_z", &c.displacement_z}, {"tilt_x", &c.tilt_x},   {"tilt_y", &c.tilt_y}};
+    const std::pair<const char*, const std::vector<float>*> channels[] = {{"accel_x", &c.accel_x},
+                                                                          {"accel_y", &c.accel_y},
+                                                                          {"accel_z", &c.accel_z},
+                                                                          {"displacement_x", &c.displacement_x},
+                                                                          {"displacement_y", &c.displacement_y},
+                                                                          {"displacement_z", &c.displacement_z},
+                                                                          {"tilt_x", &c.tilt_x},
+                                                                          {"tilt_y", &c.tilt_y}};
     for (const auto& [name, values] : channels)
       for (std::size_t i = 0; i < values->size(); ++i)
         if (!std::isfinite((*values)[i]))
@@ -39,7 +43,8 @@ class FiniteDataGuard : public DatasetSink {
                " is not a finite number (as float: beyond 3.4e38?)");
   }
   [[noreturn]] void fail(const std::string& what) const {
-    throw std::runtime_error("scenario '" + scenario_ + "': " + what + "; the run was stopped, its files are incomplete");
+    throw std::runtime_error("scenario '" + scenario_ + "': " + what +
+                             "; the run was stopped, its files are incomplete");
   }
 
   std::string scenario_;

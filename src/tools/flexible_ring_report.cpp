@@ -93,7 +93,8 @@ void run_flexible_simulation(const BearingModel& model, const FlexibleSimulation
   if (!r.csv.empty()) {
     csv = std::fopen(r.csv.c_str(), "w");
     if (!csv) throw InputError("--csv: cannot open '" + r.csv + "' for writing: " + std::strerror(errno));
-    std::fprintf(csv, "time_s,x_m,y_m,z_m,theta_x_rad,theta_y_rad,ax_m_s2,ay_m_s2,az_m_s2,alpha_x_rad_s2,alpha_y_rad_s2");
+    std::fprintf(csv,
+                 "time_s,x_m,y_m,z_m,theta_x_rad,theta_y_rad,ax_m_s2,ay_m_s2,az_m_s2,alpha_x_rad_s2,alpha_y_rad_s2");
     for (int c = 0; c < n - 5; ++c) std::fprintf(csv, ",%s", coordinate_name(modes, c).c_str());
     std::fputc('\n', csv);
   }
@@ -122,18 +123,21 @@ void run_flexible_simulation(const BearingModel& model, const FlexibleSimulation
     if (std::fclose(csv) != 0 || failed) throw std::runtime_error("--csv: error writing '" + r.csv + "'");
   }
   const double count = static_cast<double>(samples - first);
-  const auto rms_about_mean = [count](double s, double sq) { return std::sqrt(std::max(0.0, sq / count - s * s / count / count)); };
+  const auto rms_about_mean = [count](double s, double sq) {
+    return std::sqrt(std::max(0.0, sq / count - s * s / count / count));
+  };
   const double ax = rms_about_mean(acc_sum[0], acc_sq[0]), ay = rms_about_mean(acc_sum[1], acc_sq[1]);
   const double az = rms_about_mean(acc_sum[2], acc_sq[2]);
   nlohmann::json ring = nlohmann::json::array();
   for (std::size_t i = 0; i < modes.size(); ++i) {
     const int c = 5 + 2 * static_cast<int>(i);
-    ring.push_back({{"direction", direction_name(modes[i])},
-                    {"order", modes[i].order},
-                    {"frequency_hz", modes[i].frequency_rad_s() / kTwoPi},
-                    {"static_amplitude_m", std::hypot(dynamics.equilibrium().coordinates[c],
-                                                      dynamics.equilibrium().coordinates[c + 1])},
-                    {"rms_m", std::hypot(rms_about_mean(sum[c], sum_sq[c]), rms_about_mean(sum[c + 1], sum_sq[c + 1]))}});
+    ring.push_back(
+        {{"direction", direction_name(modes[i])},
+         {"order", modes[i].order},
+         {"frequency_hz", modes[i].frequency_rad_s() / kTwoPi},
+         {"static_amplitude_m",
+          std::hypot(dynamics.equilibrium().coordinates[c], dynamics.equilibrium().coordinates[c + 1])},
+         {"rms_m", std::hypot(rms_about_mean(sum[c], sum_sq[c]), rms_about_mean(sum[c + 1], sum_sq[c + 1]))}});
   }
   const nlohmann::json result = {{"bearing", bearing_json(model, r.bearing_path)},
                                  {"load", to_json(r.load)},
@@ -162,10 +166,9 @@ void run_flexible_simulation(const BearingModel& model, const FlexibleSimulation
   KeyValueList info;
   info.add("samples", std::to_string(samples) + " at " + general(r.rate_hz, 6) + " Hz");
   info.add("integration", std::to_string(dynamics.substeps()) + " " + integration_method_name(r.method) +
-                              " steps per sample, step " +
-                              general(dynamics.internal_step_s() * 1e6, 4) + " us");
-  info.add("a_rms x, y, z (rigid-body coordinates)", scientific(ax, 4) + ", " + scientific(ay, 4) + ", " +
-                                                      scientific(az, 4) + " m/s^2");
+                              " steps per sample, step " + general(dynamics.internal_step_s() * 1e6, 4) + " us");
+  info.add("a_rms x, y, z (rigid-body coordinates)",
+           scientific(ax, 4) + ", " + scientific(ay, 4) + ", " + scientific(az, 4) + " m/s^2");
   info.add("L (x, JB/T 5314)", fixed(vibration_level_db(ax), 2) + " dB");
   if (!r.csv.empty()) info.add("CSV", r.csv);
   info.print(out);

@@ -26,7 +26,7 @@ struct FlexibleSimulationRequest {
   double rate_hz = 10000.0;
   int substeps = 0;  // 0: automatic (FlexibleDynamics)
   IntegrationMethod method = IntegrationMethod::ExponentialAdamsPec;
-  std::string csv;   // empty: none
+  std::string csv;  // empty: none
   bool json = false;
   bool allow_long_run = false;  // start a run estimated over an hour (--allow-long-run)
 };

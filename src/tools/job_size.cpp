@@ -6,9 +6,9 @@
 #include <sstream>
 
 #include "bearing_sim/core/bearing_dynamics.hpp"
-#include "bearing_sim/core/ring_dynamics.hpp"
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/ring_dynamics.hpp"
 #include "bearing_sim/ros/input_validator.hpp"
 #include "tool_common.hpp"
 
@@ -32,8 +32,7 @@ int check_integrator_work(const BearingModel& model, const Vector5& load, double
   double rate = 0.0;
   const ros_node::InputCheck check = ros_node::check_integrator_work(model, load, &rate);
   // As BearingDynamics::choose_substeps, in double: an absurd mode overflows an int.
-  const double needed =
-      std::max(1.0, std::ceil(rate / sample_rate_hz / BearingDynamics::step_times_omega_max(method)));
+  const double needed = std::max(1.0, std::ceil(rate / sample_rate_hz / BearingDynamics::step_times_omega_max(method)));
   if (check.accepted) return static_cast<int>(std::min(needed, 1e9));
   throw ConfigError(bearing_file + ": " + check.reason + "; the integrator would need " + general(needed, 3) +
                     " steps per sample at " + general(sample_rate_hz, 6) + " Hz; no bearing has a mode above " +

@@ -19,8 +19,7 @@ namespace bearing_sim::tool {
 // contacts), its frequency and the key behind it, e.g. "tilt mode at 35 MHz:
 // tilt_inertia_kg_m2 (7.9e-06) is implausibly small for this bearing".
 int check_integrator_work(const BearingModel& model, const Vector5& load, double sample_rate_hz,
-                          const std::string& bearing_file,
-                          IntegrationMethod method = kDefaultIntegrationMethod);
+                          const std::string& bearing_file, IntegrationMethod method = kDefaultIntegrationMethod);
 
 // Wall time per call of `step`, measured on a short probe: 200 calls, or 0.2 s of wall time
 // when the calls are slow.

@@ -7,8 +7,8 @@
 #include <cstdio>
 
 #include "bearing_sim/core/bearing_config.hpp"
-#include "bearing_sim/core/ring_dynamics.hpp"
 #include "bearing_sim/core/errors.hpp"
+#include "bearing_sim/core/ring_dynamics.hpp"
 #include "bearing_sim/core/simd_info.hpp"
 #include "bearing_sim/core/thermal_clearance.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
@@ -34,7 +34,6 @@ class SinkTimer {
   double* total_;
   double start_;
 };
-
 
 }  // namespace
 
@@ -108,8 +107,14 @@ class DatasetPipelineSink : public ros_node::PipelineSink {
   DatasetPipelineSink(const std::vector<DatasetSink*>& sinks, RunStats* stats, ros_node::HealthMonitor* health,
                       const Scenario& scenario, std::uint64_t label_period, double rate, bool want_balls,
                       const std::function<void(double)>& progress)
-      : sinks_(sinks), stats_(stats), health_(health), scenario_(scenario), label_period_(label_period),
-        rate_(rate), want_balls_(want_balls), progress_(progress) {}
+      : sinks_(sinks),
+        stats_(stats),
+        health_(health),
+        scenario_(scenario),
+        label_period_(label_period),
+        rate_(rate),
+        want_balls_(want_balls),
+        progress_(progress) {}
 
   void ideal_chunk(ros_node::SampleChunk&& chunk) override {
     SinkTimer t(&stats_->sink_cpu_s);
@@ -150,8 +155,7 @@ class DatasetPipelineSink : public ros_node::PipelineSink {
     SinkTimer t(&stats_->sink_cpu_s);
     for (DatasetSink* s : sinks_) s->health(report);
   }
-  void chunk_end(std::uint64_t last_index, std::size_t samples, const Vector5& load,
-                 double ring_speed_rad_s) override {
+  void chunk_end(std::uint64_t last_index, std::size_t samples, const Vector5& load, double ring_speed_rad_s) override {
     if (health_) health_->add_operation(load, ring_speed_rad_s, static_cast<double>(samples) / rate_);
     if (progress_) progress_(static_cast<double>(last_index + 1) / rate_);
   }
@@ -212,10 +216,8 @@ RunStats ScenarioSimulation::run(const std::vector<DatasetSink*>& sinks, const s
   auto apply_events = [&](double time_s) {
     bool changed = false;
     for (; next_event < events.size() && events[next_event].time_s <= time_s; ++next_event) {
-      if (events[next_event].kind == ScenarioDefectEvent::Kind::Clear)
-        dynamics.clear_spalls();
-      else
-        dynamics.add_spall(events[next_event].spall);  // checked against the bearing when loaded
+      if (events[next_event].kind == ScenarioDefectEvent::Kind::Clear) dynamics.clear_spalls();
+      else dynamics.add_spall(events[next_event].spall);  // checked against the bearing when loaded
       changed = true;
     }
     if (changed && health) health->set_defects(dynamics.model().imperfections().spalls());

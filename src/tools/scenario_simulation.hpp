@@ -18,10 +18,10 @@
 namespace bearing_sim::tool {
 
 struct GenerateSettings {
-  std::optional<std::uint64_t> seed;  // overrides the scenario's
-  std::optional<double> duration_s;   // overrides the scenario's
+  std::optional<std::uint64_t> seed;                    // overrides the scenario's
+  std::optional<double> duration_s;                     // overrides the scenario's
   std::optional<double> ring_temperature_difference_K;  // a constant instead of the scenario's time line
-  std::size_t chunk_samples = 100;    // per vibration_ideal chunk, as the live node
+  std::size_t chunk_samples = 100;                      // per vibration_ideal chunk, as the live node
   double level_rate_hz = 10.0;
   double level_window_s = 1.0;
   double ball_loads_rate_hz = 10.0;

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -29,8 +29,8 @@ std::string format(const char* fmt, int digits, double v) {
 
 namespace {
 // The path of the first number of j that is NaN (or infinite where not allowed), "" if none.
-std::string non_finite_path(const nlohmann::json& j, const std::string& path, const std::set<std::string>& may_be_infinite,
-                            const std::string& key) {
+std::string non_finite_path(const nlohmann::json& j, const std::string& path,
+                            const std::set<std::string>& may_be_infinite, const std::string& key) {
   if (j.is_number_float()) {
     const double v = j.get<double>();
     if (std::isnan(v) || (std::isinf(v) && !may_be_infinite.count(key))) return path.empty() ? "(result)" : path;
@@ -151,8 +151,8 @@ CLI::Option* add_vector_option(CLI::App* command, const std::string& name, std::
       ->type_name(shape);
 }
 
-CLI::Option* add_number_option(CLI::App* command, const std::string& name, double* value,
-                               const std::string& type_name, const std::string& description) {
+CLI::Option* add_number_option(CLI::App* command, const std::string& name, double* value, const std::string& type_name,
+                               const std::string& description) {
   return command->add_option(name, *value, description)
       ->type_name(type_name)
       ->check(finite_number())

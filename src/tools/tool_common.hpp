@@ -61,8 +61,8 @@ void add_load_options(CLI::App* command, std::vector<double>* force, std::vector
 
 // A single finite number, shown in --help as `type_name` (e.g. "RPM") with its default.
 // Chain ->check(...) for a range (e.g. positive_number()).
-CLI::Option* add_number_option(CLI::App* command, const std::string& name, double* value,
-                               const std::string& type_name, const std::string& description);
+CLI::Option* add_number_option(CLI::App* command, const std::string& name, double* value, const std::string& type_name,
+                               const std::string& description);
 
 // Validator: a finite number (rejects nan, inf and non-numbers).
 const CLI::Validator& finite_number();
@@ -105,8 +105,8 @@ nlohmann::json bearing_json(const BearingModel& model, const std::string& path);
 void print_json(const nlohmann::json& j);
 
 // Number formatting for the tables.
-std::string fixed(double v, int decimals);       // 6.612
-std::string general(double v, int digits = 4);   // 1.234e+08, 0.01234
+std::string fixed(double v, int decimals);         // 6.612
+std::string general(double v, int digits = 4);     // 1.234e+08, 0.01234
 std::string scientific(double v, int digits = 4);  // 1.2340e+08
 
 // A text table with a header row, columns right-aligned (left for text columns).

@@ -19,8 +19,8 @@ std::string check_ball_loads(const BearingModel& model, const BallLoadArrays& lo
   std::ostringstream why;
   const std::size_t n = static_cast<std::size_t>(model.ball_count());
   if (loads.rows != model.rows() || loads.balls_per_row != model.balls_per_row()) {
-    why << "BallLoads has " << loads.rows << " x " << loads.balls_per_row << " balls, the bearing file "
-        << model.rows() << " x " << model.balls_per_row();
+    why << "BallLoads has " << loads.rows << " x " << loads.balls_per_row << " balls, the bearing file " << model.rows()
+        << " x " << model.balls_per_row();
   } else if (loads.azimuth_rad.size() != n || loads.load_N.size() != n || loads.contact_angle_rad.size() != n) {
     why << "BallLoads arrays have " << loads.azimuth_rad.size() << "/" << loads.load_N.size() << "/"
         << loads.contact_angle_rad.size() << " entries (azimuth/load/contact_angle), expected " << n;
@@ -36,8 +36,8 @@ std::string check_ball_loads(const BearingModel& model, const BallLoadArrays& lo
   return why.str();
 }
 
-double load_zone_centre_rad(const std::vector<float>& azimuth_rad, const std::vector<float>& load_N,
-                            std::size_t begin, std::size_t end) {
+double load_zone_centre_rad(const std::vector<float>& azimuth_rad, const std::vector<float>& load_N, std::size_t begin,
+                            std::size_t end) {
   double s = 0.0, c = 0.0, total = 0.0;
   for (std::size_t i = begin; i < end; ++i) {
     const double q = std::max(0.0f, load_N[i]);
@@ -109,9 +109,8 @@ BearingScene build_scene(const BearingModel& model, const BallLoadArrays& loads,
     // Close the curve. Azimuths increase with the index within a row (base azimuth
     // 2 pi j / Z plus the common cage angle), so the strip goes once round.
     if (!scene.polar_curves[r].empty()) scene.polar_curves[r].push_back(scene.polar_curves[r].front());
-    scene.load_zone_centre_rad.push_back(load_zone_centre_rad(loads.azimuth_rad, loads.load_N,
-                                                              static_cast<std::size_t>(r) * z,
-                                                              static_cast<std::size_t>(r + 1) * z));
+    scene.load_zone_centre_rad.push_back(load_zone_centre_rad(
+        loads.azimuth_rad, loads.load_N, static_cast<std::size_t>(r) * z, static_cast<std::size_t>(r + 1) * z));
   }
   return scene;
 }

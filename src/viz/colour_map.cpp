@@ -44,9 +44,7 @@ Rgba load_colour(double load_N, double full_scale_N) {
 
 double luma(const Rgba& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
-bool is_grey(const Rgba& c) {
-  return std::abs(c.r - c.g) < 1e-6f && std::abs(c.g - c.b) < 1e-6f;
-}
+bool is_grey(const Rgba& c) { return std::abs(c.r - c.g) < 1e-6f && std::abs(c.g - c.b) < 1e-6f; }
 
 }  // namespace viz
 }  // namespace bearing_sim

@@ -26,8 +26,8 @@ std_msgs::ColorRGBA colour(const Rgba& c) {
   return out;
 }
 
-visualization_msgs::Marker base_marker(const std::string& frame, const ros::Time& stamp, const std::string& ns,
-                                       int id, int type) {
+visualization_msgs::Marker base_marker(const std::string& frame, const ros::Time& stamp, const std::string& ns, int id,
+                                       int type) {
   visualization_msgs::Marker m;
   m.header.frame_id = frame;
   m.header.stamp = stamp;
@@ -63,9 +63,7 @@ std::string format(const char* fmt, double a) {
 }
 }  // namespace
 
-Rgba polar_curve_colour(int row) {
-  return row == 0 ? Rgba{1.0f, 0.55f, 0.1f, 1.0f} : Rgba{0.35f, 0.75f, 1.0f, 1.0f};
-}
+Rgba polar_curve_colour(int row) { return row == 0 ? Rgba{1.0f, 0.55f, 0.1f, 1.0f} : Rgba{0.35f, 0.75f, 1.0f, 1.0f}; }
 
 std::string status_text(const BearingScene& scene, const BearingModel& model, const BallLoadArrays& loads,
                         double level_db, double ring_speed_rad_s) {
@@ -82,9 +80,8 @@ std::string status_text(const BearingScene& scene, const BearingModel& model, co
   text += "\nL = " + (std::isfinite(level_db) ? format("%.1f dB", level_db) : std::string("-- dB"));
   const double rpm = ring_speed_rad_s * 60.0 / (2.0 * kPi);
   const double cage_hz = bearing_frequencies(model, ring_speed_rad_s).cage_hz;
-  text += "\n" + std::string(model.config().rotating_ring == RotatingRing::Outer ? "outer" : "inner") +
-          " ring " + format("%.1f rpm", rpm) + format(" (%.2f rad/s)", ring_speed_rad_s) +
-          format(", cage %.3f Hz", cage_hz);
+  text += "\n" + std::string(model.config().rotating_ring == RotatingRing::Outer ? "outer" : "inner") + " ring " +
+          format("%.1f rpm", rpm) + format(" (%.2f rad/s)", ring_speed_rad_s) + format(", cage %.3f Hz", cage_hz);
   text += "\nball colour: load 0.." + format("%.0f N", scene.full_scale_N) + " (viridis), grey: no contact";
   return text;
 }

@@ -69,8 +69,7 @@ VizNode::VizNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   load_sub_ = nh_.subscribe("load", 1, &VizNode::on_load, this);
 
   // The bearing sits at the origin of the fixed frame, axes aligned: a fixed relation.
-  static_tf_.sendTransform(
-      to_msg(Eigen::Isometry3d::Identity(), fixed_frame_, bearing_frame_, ros::Time::now()));
+  static_tf_.sendTransform(to_msg(Eigen::Isometry3d::Identity(), fixed_frame_, bearing_frame_, ros::Time::now()));
   last_tick_ = ros::Time::now();
   timer_ = nh_.createTimer(ros::Duration(1.0 / rate_hz), &VizNode::on_timer, this);
   ROS_INFO("bearing_viz_node: %s, %d x %d balls, TF %s -> %s -> %s -> %s at %.0f Hz", model_->config().name.c_str(),

@@ -37,8 +37,8 @@ TEST(Iso281, RatingOf6205ByHandAndCatalogue) {
 TEST(Iso281, LifeOfPureRadialLoad) {
   // P = Fr = 2000 N: L10 = (14026/2000)^3 = 344.9 million revolutions; at 1800 rpm
   // 344.9e6 / (1800 * 60) = 3194 h.
-  const BasicRatingLife l = basic_rating_life(bearing_6205(), test::load5(2000.0, 0.0, 0.0, 0.0, 0.0),
-                                              1800.0 * 2.0 * kPi / 60.0);
+  const BasicRatingLife l =
+      basic_rating_life(bearing_6205(), test::load5(2000.0, 0.0, 0.0, 0.0, 0.0), 1800.0 * 2.0 * kPi / 60.0);
   EXPECT_DOUBLE_EQ(l.equivalent.X, 1.0);
   EXPECT_DOUBLE_EQ(l.equivalent.Y, 0.0);
   const double l10 = std::pow(l.dynamic_load_rating_N / 2000.0, 3.0);

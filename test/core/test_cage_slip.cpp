@@ -21,7 +21,6 @@ using test::fault;
 constexpr double kRateHz = 40000.0;
 constexpr double kSpeedRadS = 1800.0 * 2.0 * test::kPi / 60.0;
 
-
 ConditionIndicators analyze(const BearingModel& model) {
   SimulationRequest r;
   r.load = test::load5(1000.0, 0.0, 200.0, 0.0, 0.0);
@@ -31,17 +30,17 @@ ConditionIndicators analyze(const BearingModel& model) {
   std::vector<double> ax;
   run_simulation(model, r, [&ax](const DynamicSample& s) { ax.push_back(s.acceleration[0]); });
   AnalysisOptions o;
-  o.window_s = 0.8;  // start-up transient excluded
+  o.window_s = 0.8;                    // start-up transient excluded
   o.peak_search.tolerance_rel = 0.05;  // let the search see a slipped line
   return analyze_vibration(ax, kRateHz, bearing_frequencies(model, kSpeedRadS), o);
 }
-
 
 TEST(CageSlip, SlipLowersTheOuterRaceBallPassLineByTheSlip) {
   const std::string spall = "defects: [{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 30}]\n";
   const BearingModel model = bearing_6205(spall + "imperfections: {cage_slip_percent: 3.0}\n");
   const double bpfo = bearing_frequencies(model, kSpeedRadS).ball_pass_outer_race_hz;
-  const SpectralPeak peak = fault(analyze(model), FaultKind::OuterRace).envelope_peak;  // a copy: the analysis is a temporary
+  const SpectralPeak peak =
+      fault(analyze(model), FaultKind::OuterRace).envelope_peak;  // a copy: the analysis is a temporary
   // Outer race fixed: BPFO = Z f_c, and the cage turns 3% slower. One bin is 1.25 Hz
   // (0.8 s); the interpolated peak is good to a fraction of it.
   EXPECT_NEAR(peak.frequency_hz, 0.97 * bpfo, 0.6);

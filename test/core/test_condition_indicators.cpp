@@ -2,8 +2,8 @@
 // Gaussian noise, and an outer-race impact train exciting a 3 kHz resonance.
 #include <cmath>
 #include <functional>
-#include <string>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -165,7 +165,8 @@ TEST(ConditionIndicators, KurtogramSeesNoClickAtTheWindowsEnds) {
   std::vector<double> noise(40000), x(40000);
   for (double& v : noise) v = 0.1 * n(rng);
   noise = band_pass(noise, fs, 0.0, 8000.0);  // the sensor's anti-alias band
-  for (std::size_t i = 0; i < x.size(); ++i) x[i] = 10.0 * std::sin(2.0 * kPi * 7.3 * i / fs) + noise[i] + 1e-4 * n(rng);
+  for (std::size_t i = 0; i < x.size(); ++i)
+    x[i] = 10.0 * std::sin(2.0 * kPi * 7.3 * i / fs) + noise[i] + 1e-4 * n(rng);
   const Kurtogram k = fast_kurtogram(x, fs, 100.0);
   EXPECT_LT(k.best.kurtosis, 1.0) << "band " << k.best.low_hz << "-" << k.best.high_hz << " Hz";
 }
@@ -237,9 +238,8 @@ ConditionIndicators analyze_carrier(const std::vector<double>& x, const BearingF
 // 12 / 10 dB thresholds; an absent line is noise (a Rayleigh bin over 10 dB: ~0.1%).
 TEST(ConditionIndicators, FundamentalWithoutHarmonicsIsNotAFault) {
   const double bpfo = frequencies().ball_pass_outer_race_hz;
-  const ConditionIndicators c =
-      analyze_carrier(modulated_carrier([&](double t) { return 0.3 * std::cos(2.0 * kPi * bpfo * t); }, 21),
-                      frequencies());
+  const ConditionIndicators c = analyze_carrier(
+      modulated_carrier([&](double t) { return 0.3 * std::cos(2.0 * kPi * bpfo * t); }, 21), frequencies());
   const FaultIndicator& f = c.faults[0];
   ASSERT_EQ(f.kind, FaultKind::OuterRace);
   ASSERT_EQ(f.harmonics.size(), 4u);  // orders 1-4

@@ -21,10 +21,14 @@ const char* kSource = "unit_test_bearing.yaml";
 // A valid single-row file as (key, value) lines; overrides replace or add, "" removes.
 std::string yaml(const std::map<std::string, std::string>& overrides = {}) {
   std::vector<std::pair<std::string, std::string>> lines = {
-      {"name", "test bearing"},          {"balls_per_row", "9"},
-      {"ball_diameter_mm", "7.94"},      {"pitch_diameter_mm", "39.04"},
-      {"inner_groove_curvature", "0.52"}, {"outer_groove_curvature", "0.52"},
-      {"contact_angle_deg", "15"},        {"rotating_mass_kg", "0.5"},
+      {"name", "test bearing"},
+      {"balls_per_row", "9"},
+      {"ball_diameter_mm", "7.94"},
+      {"pitch_diameter_mm", "39.04"},
+      {"inner_groove_curvature", "0.52"},
+      {"outer_groove_curvature", "0.52"},
+      {"contact_angle_deg", "15"},
+      {"rotating_mass_kg", "0.5"},
       {"material", "{youngs_modulus_GPa: 208, poisson_ratio: 0.3}"},
       {"damping", "{contact_damping_Ns_per_m: 10}"}};
   std::string out;
@@ -70,8 +74,8 @@ TEST(ConfigErrors, BaseFileIsValid) {
 }
 
 TEST(ConfigErrors, MissingRequiredKey) {
-  for (const char* k : {"balls_per_row", "ball_diameter_mm", "pitch_diameter_mm", "inner_groove_curvature",
-                        "outer_groove_curvature"})
+  for (const char* k :
+       {"balls_per_row", "ball_diameter_mm", "pitch_diameter_mm", "inner_groove_curvature", "outer_groove_curvature"})
     expect_error(yaml({{k, ""}}), {k});
   // Two rows need a row spacing.
   expect_error(yaml({{"rows", "2"}}), {"row_spacing_mm"});
@@ -124,8 +128,8 @@ TEST(ConfigErrors, OutOfRange) {
   // A row phase beyond a turn (1e308 lost every digit of the azimuth; 1e20 put all balls at one).
   expect_error(yaml({{"rows", "2"}, {"row_spacing_mm", "10"}, {"row_phase_deg", "1e308"}}), {"row_phase_deg"});
   expect_error(yaml({{"rows", "2"}, {"row_spacing_mm", "10"}, {"row_phase_deg", "-361"}}), {"row_phase_deg"});
-  EXPECT_NO_THROW(bearing_config_from_string(yaml({{"rows", "2"}, {"row_spacing_mm", "10"}, {"row_phase_deg", "-360"}}),
-                                             kSource));
+  EXPECT_NO_THROW(
+      bearing_config_from_string(yaml({{"rows", "2"}, {"row_spacing_mm", "10"}, {"row_phase_deg", "-360"}}), kSource));
   // Balls that do not fit on the pitch circle: 40 x 7.94 mm > pi x 39.04 mm.
   expect_error(yaml({{"balls_per_row", "40"}}), {"balls_per_row"});
   // Limits are open/closed as documented: 0 deg and just under 60 deg are accepted.

@@ -25,13 +25,13 @@
 #include <typeinfo>
 #include <vector>
 
-#include "test_support.hpp"
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/bearing_model.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/scenario.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
+#include "test_support.hpp"
 
 namespace bearing_sim {
 namespace {
@@ -83,7 +83,8 @@ Outcome run_isolated(const std::function<std::string()>& body) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(kCaseTimeLimitMs);
   char buffer[4096];
   for (;;) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) {
       timed_out = true;
       break;
@@ -102,9 +103,9 @@ Outcome run_isolated(const std::function<std::string()>& body) {
   waitpid(pid, &status, 0);
   if (timed_out) return {Outcome::TimedOut, "no result within " + std::to_string(kCaseTimeLimitMs) + " ms"};
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || message.empty())
-    return {Outcome::Crashed, WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status))
-                                                  : "exit status " + std::to_string(WEXITSTATUS(status)) +
-                                                        " (a sanitizer report?)"};
+    return {Outcome::Crashed, WIFSIGNALED(status)
+                                  ? "killed by signal " + std::to_string(WTERMSIG(status))
+                                  : "exit status " + std::to_string(WEXITSTATUS(status)) + " (a sanitizer report?)"};
   const char kind = message[0];
   message.erase(0, 1);
   if (kind == 'L') return {Outcome::Loaded, message};
@@ -115,16 +116,42 @@ Outcome run_isolated(const std::function<std::string()>& body) {
 // ---------------------------------------------------------------------------------------
 // Mutations
 
-const std::vector<std::string> kEdgeNumbers = {
-    "nan",   ".nan",   ".NaN",  "inf",     ".inf",    "-.inf",       "1e308",      "-1e308",       "1.8e308",
-    "5e-324", "-5e-324", "1e-320", "-0",   "-0.0",    "0",           "1e20",       "-1e20",        "2147483648",
-    "-2147483649", "9223372036854775808", "99999999999999999999999", "4294967297", "0x7fffffff", "1_000",
-    "1e", "--1", "+.5", "0.", "1e-400", "~", "''"};
+const std::vector<std::string> kEdgeNumbers = {"nan",
+                                               ".nan",
+                                               ".NaN",
+                                               "inf",
+                                               ".inf",
+                                               "-.inf",
+                                               "1e308",
+                                               "-1e308",
+                                               "1.8e308",
+                                               "5e-324",
+                                               "-5e-324",
+                                               "1e-320",
+                                               "-0",
+                                               "-0.0",
+                                               "0",
+                                               "1e20",
+                                               "-1e20",
+                                               "2147483648",
+                                               "-2147483649",
+                                               "9223372036854775808",
+                                               "99999999999999999999999",
+                                               "4294967297",
+                                               "0x7fffffff",
+                                               "1_000",
+                                               "1e",
+                                               "--1",
+                                               "+.5",
+                                               "0.",
+                                               "1e-400",
+                                               "~",
+                                               "''"};
 
 const std::vector<std::string> kGarbageLines = {
-    "{",          "[",           "- ",         "&a [*a, *a]", "? [1, 2]\n: 3",  "x: *undefined_alias",
-    "!!binary AAAA", "\t- tab",  "%YAML 1.3",  "---",          "...",            "\xff\xfe\x00",
-    "key: [1, 2", "\"unterminated", ": no key", "<<: {a: 1}", "!!map {}", "? complex"};
+    "{",        "[",          "- ",       "&a [*a, *a]", "? [1, 2]\n: 3", "x: *undefined_alias", "!!binary AAAA",
+    "\t- tab",  "%YAML 1.3",  "---",      "...",         "\xff\xfe\x00",  "key: [1, 2",          "\"unterminated",
+    ": no key", "<<: {a: 1}", "!!map {}", "? complex"};
 
 class Mutator {
  public:
@@ -135,13 +162,20 @@ class Mutator {
 
   std::string mutate(const std::string& text, int kind, std::string* what) {
     switch (kind) {
-      case 0: return flip_bytes(text, what);
-      case 1: return truncate(text, what);
-      case 2: return edge_numbers(text, 1, what);
-      case 3: return edge_numbers(text, 3, what);
-      case 4: return duplicate_key_line(text, what);
-      case 5: return structural(text, what);
-      default: return deep_nesting(text, what);
+      case 0:
+        return flip_bytes(text, what);
+      case 1:
+        return truncate(text, what);
+      case 2:
+        return edge_numbers(text, 1, what);
+      case 3:
+        return edge_numbers(text, 3, what);
+      case 4:
+        return duplicate_key_line(text, what);
+      case 5:
+        return structural(text, what);
+      default:
+        return deep_nesting(text, what);
     }
   }
   static constexpr int kKinds = 7;
@@ -248,10 +282,21 @@ class Mutator {
 
 std::string check_bearing(const std::string& text, const std::string& source) {
   const BearingConfig c = bearing_config_from_string(text, source);
-  const double numbers[] = {c.ball_diameter_m,  c.pitch_diameter_m, c.row_spacing_m,          c.row_phase_rad,
-                            c.contact_angle_rad, c.clearance_m,     c.outer_diameter_m,       c.inner_diameter_m,
-                            c.width_m,           c.rotating_mass_kg, c.tilt_inertia_kg_m2,    c.contact_damping_Ns_per_m,
-                            c.material.youngs_modulus_Pa, c.material.poisson_ratio, c.material.density_kg_m3};
+  const double numbers[] = {c.ball_diameter_m,
+                            c.pitch_diameter_m,
+                            c.row_spacing_m,
+                            c.row_phase_rad,
+                            c.contact_angle_rad,
+                            c.clearance_m,
+                            c.outer_diameter_m,
+                            c.inner_diameter_m,
+                            c.width_m,
+                            c.rotating_mass_kg,
+                            c.tilt_inertia_kg_m2,
+                            c.contact_damping_Ns_per_m,
+                            c.material.youngs_modulus_Pa,
+                            c.material.poisson_ratio,
+                            c.material.density_kg_m3};
   for (double v : numbers)
     if (!std::isfinite(v)) return "a non-finite number in the loaded bearing";
   const BearingModel model(c);

@@ -53,8 +53,9 @@ TEST(ContactKernel, SimdAndScalarLoopsAgreeForTheCtBearing) {
 }
 
 TEST(ContactKernel, SimdAndScalarLoopsAgreeForAPreloadedInnerRingBearing) {
-  BearingConfig c = test::single_row(13, 9.0, 46.0, 25.0, 0.52, 0.53, -3.0,
-                                     "rotating_ring: inner\nrotating_mass_kg: 1\ndamping: {contact_damping_Ns_per_m: 300}\n");
+  BearingConfig c =
+      test::single_row(13, 9.0, 46.0, 25.0, 0.52, 0.53, -3.0,
+                       "rotating_ring: inner\nrotating_mass_kg: 1\ndamping: {contact_damping_Ns_per_m: 300}\n");
   const BearingModel model(c);
   test::for_each_simd_target([&] { expect_kernels_agree(model, test::load5(800.0, -300.0, 1500.0, 5.0, -3.0)); });
 }
@@ -98,9 +99,25 @@ TEST(ContactKernel, SimdAndScalarKernelsAgreeOnRandomBallsWithEdgeCases) {
           windows.push_back({std::cos(centre), std::sin(centre), std::sin(0.5 * width), 3.141592653589793 / width,
                              2e-5 * std::abs(u(rng)), k, k == 0 ? row_z : -row_z});
         }
-        const detail::ContactKernelInput in{std::cos(cage), std::sin(cage), rho, std::cos(a0), A, g0, sg, kn, cn,
-                                            q, qd, cb.data(), sb.data(), gz.data(), nz.data(), off.data(), n,
-                                            windows.data(), static_cast<int>(windows.size())};
+        const detail::ContactKernelInput in{std::cos(cage),
+                                            std::sin(cage),
+                                            rho,
+                                            std::cos(a0),
+                                            A,
+                                            g0,
+                                            sg,
+                                            kn,
+                                            cn,
+                                            q,
+                                            qd,
+                                            cb.data(),
+                                            sb.data(),
+                                            gz.data(),
+                                            nz.data(),
+                                            off.data(),
+                                            n,
+                                            windows.data(),
+                                            static_cast<int>(windows.size())};
         // Place each ball's deflection: the bare one (no offset) from a one-ball scalar
         // run's geometry, |v| - A - g0.
         for (int b = 0; b < n; ++b) {
@@ -111,15 +128,26 @@ TEST(ContactKernel, SimdAndScalarKernelsAgreeOnRandomBallsWithEdgeCases) {
           const double vz = A * nz[b] - sg * (q[2] + q[3] * rho * sphi - q[4] * rho * cphi);
           const double bare = std::sqrt(vx * vx + vy * vy + vz * vz) - A - g0;
           switch (b % 5) {
-            case 0: off[b] = 1e-12 - bare; break;   // just touching
-            case 1: off[b] = -1e-12 - bare; break;  // just leaving
-            case 2: off[b] = -1e-3; break;          // inside a spall
-            case 3: off[b] = 1e-9 - bare; break;    // light contact: damping may pull its load negative
-            default: off[b] = 2e-5 * u(rng); break; // random
+            case 0:
+              off[b] = 1e-12 - bare;
+              break;  // just touching
+            case 1:
+              off[b] = -1e-12 - bare;
+              break;  // just leaving
+            case 2:
+              off[b] = -1e-3;
+              break;  // inside a spall
+            case 3:
+              off[b] = 1e-9 - bare;
+              break;  // light contact: damping may pull its load negative
+            default:
+              off[b] = 2e-5 * u(rng);
+              break;  // random
           }
           if (b % 5 == 3) {
-            const detail::ContactKernelInput one{in.cos_cage, in.sin_cage, rho, in.cos_a0, A, g0, sg, kn, cn, q, qd,
-                                                 &cb[b], &sb[b], &gz[b], &nz[b], &off[b], 1, nullptr, 0};
+            const detail::ContactKernelInput one{in.cos_cage, in.sin_cage, rho, in.cos_a0, A,      g0,     sg,
+                                                 kn,          cn,          q,   qd,        &cb[b], &sb[b], &gz[b],
+                                                 &nz[b],      &off[b],     1,   nullptr,   0};
             const detail::ContactSums s = detail::contact_sums_scalar(one);
             if (s.x == 0.0 && s.y == 0.0 && s.z == 0.0) ++pulled_negative;
           }
@@ -165,7 +193,8 @@ void expect_windows_match_dips(const BearingModel& model, const Vector5& load, d
   for (int k = 0; k <= 40; ++k) {
     // The cage from a ball half a width before the spall's centre to half a width past it.
     const RollingPhase phase{(k / 40.0 - 0.5) * (width_rad + 0.1 * pitch), 0.37, 0.0, 0.0, 0.0};
-    const Vector5 kernel = model.contact_force(q, Vector5::Zero(), phase, model.balls(), BearingModel::ContactKernel::Scalar);
+    const Vector5 kernel =
+        model.contact_force(q, Vector5::Zero(), phase, model.balls(), BearingModel::ContactKernel::Scalar);
     const Vector5 fastest = model.contact_force(q, Vector5::Zero(), phase, model.balls());
     const Vector5 dips = model.contact_force_and_stiffness(q, phase, nullptr, nullptr);
     for (const Vector5& f : {kernel, fastest}) {
@@ -255,7 +284,8 @@ TEST(ContactKernel, HarmonicSumsAgreeWithTheScalarLoop) {
         detail::add_harmonic_sums(c.data(), harmonics, terms.data(), n, base.data(), separate.data());
         detail::add_harmonic_sums_scalar(c.data(), harmonics, terms.data(), n, scalar.data(), scalar.data());
         for (int b = 0; b < n; ++b) {
-          ASSERT_NEAR(simd[b], scalar[b], 1e-14 * (bound + 1e-6)) << harmonics << " harmonics, ball " << b << " of " << n;
+          ASSERT_NEAR(simd[b], scalar[b], 1e-14 * (bound + 1e-6))
+              << harmonics << " harmonics, ball " << b << " of " << n;
           ASSERT_EQ(separate[b], simd[b]) << harmonics << " harmonics, ball " << b << " of " << n;
         }
         // A wrong term (a harmonic or a ball missed) would be >= 1e-8 m off somewhere.

@@ -18,7 +18,7 @@ namespace {
 struct Condition {
   std::string file;
   double rpm;
-  double radial_load_N;  // along x
+  double radial_load_N;   // along x
   double sample_rate_hz;  // of the record: the sensor's output rate where a sensor file is given
 };
 

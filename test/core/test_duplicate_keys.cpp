@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "test_support.hpp"
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/scenario.hpp"
 #include "bearing_sim/core/sweep.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
+#include "test_support.hpp"
 
 namespace bearing_sim {
 namespace {
@@ -149,7 +149,9 @@ TEST(DuplicateKeys, ASweepDefinitionWithAKeyTwiceIsRefusedNamingItsLines) {
   {
     std::ofstream out(path);
     out << "name: study\n"
-           "bearing: " << config_path("bearings/deep_groove_6205.yaml") << "\n"
+           "bearing: "
+        << config_path("bearings/deep_groove_6205.yaml")
+        << "\n"
            "analysis: static\n"
            "analysis: dynamic\n";
   }

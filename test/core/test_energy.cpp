@@ -29,8 +29,9 @@ struct ReleaseRun {
 ReleaseRun release(BearingConfig c, const Vector5& from, const Vector5& to, int samples, int substeps = 0,
                    IntegrationMethod method = IntegrationMethod::Rk4) {
   const BearingModel model(c);
-  BearingDynamics dyn(model, from, 0.0, DynamicsOptions{10000.0, substeps, true, method});  // cage at rest: time-invariant potential
-  dyn.set_load(to);                        // released from the old equilibrium: free vibration
+  BearingDynamics dyn(model, from, 0.0,
+                      DynamicsOptions{10000.0, substeps, true, method});  // cage at rest: time-invariant potential
+  dyn.set_load(to);  // released from the old equilibrium: free vibration
   ReleaseRun r{energy(model, dyn.current(), to), 0.0, 0.0, 0.0};
   double kinetic_max = 0.0;
   for (int i = 0; i < samples; ++i) {
@@ -51,7 +52,8 @@ TEST(Energy, ConservedWithoutDamping) {
   // Released from the 6800 N / 2100 N*m equilibrium to 8000 N / 2500 N*m: free vibration of
   // the ~1 kHz ring modes for 50 ms. RK4 is slightly dissipative: per step the energy of a mode
   // changes by ~(omega h)^6 / 72 (dissipation) plus 4th-order phase terms, so halving h must cut
-  // the drift by at least 2^4 = 16 (RK4's order; ~30 is typical) and it must be < 1e-3 of the vibration energy at 8 steps per sample (omega h ~ 0.12).
+  // the drift by at least 2^4 = 16 (RK4's order; ~30 is typical) and it must be < 1e-3 of the vibration energy at 8
+  // steps per sample (omega h ~ 0.12).
   const Vector5 to = load5(8000, 0, 500, 0, 2500);
   const ReleaseRun r8 = release(c, ct_load(), to, 500, 8);
   const ReleaseRun r16 = release(c, ct_load(), to, 500, 16);

@@ -12,8 +12,8 @@
 
 #include <gtest/gtest.h>
 
-#include "bearing_sim/core/condition_indicators.hpp"
 #include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/condition_indicators.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/simulation_run.hpp"
 #include "test_support.hpp"
@@ -27,7 +27,6 @@ using test::fault;
 constexpr double kRateHz = 40000.0;
 constexpr double kInnerRpm = 1800.0;
 constexpr double kSpeedRadS = kInnerRpm * 2.0 * test::kPi / 60.0;
-
 
 const std::string kOuterSpall = "defects: [{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 30}]\n";
 const std::string kInnerSpall = "defects: [{surface: inner_race, position_deg: 0, width_mm: 1.0, depth_um: 30}]\n";
@@ -64,7 +63,6 @@ ConditionIndicators analyze(const std::vector<double>& x, const BearingModel& mo
   o.window_s = 0.8;  // the last 0.8 s of 1 s: the start-up transient (ring modes, ~ms) excluded
   return analyze_vibration(x, kRateHz, bearing_frequencies(model, kSpeedRadS), o);
 }
-
 
 TEST(Kurtosis, GaussianNoiseIsThree) {
   std::mt19937_64 rng(5);
@@ -163,7 +161,7 @@ TEST(Envelope, FrozenRoughnessSeriesWithoutSidebandsIsNotAnInnerRaceDefect) {
   const FaultIndicator& bpfi = fault(c, FaultKind::InnerRace);
   EXPECT_TRUE(bpfi.harmonics[0].found) << bpfi.envelope_peak.snr_db;  // the line is there ...
   EXPECT_TRUE(bpfi.sidebands_required);
-  EXPECT_EQ(bpfi.sidebands_found, 0);                                  // ... its modulation is not
+  EXPECT_EQ(bpfi.sidebands_found, 0);  // ... its modulation is not
   for (const EvidenceLine& s : bpfi.sidebands) EXPECT_LT(s.peak.snr_db, 10.0) << s.offset_hz;
   for (const FaultIndicator& f : c.faults) EXPECT_FALSE(f.suspected) << fault_frequency_label(f.kind);
   EXPECT_EQ(c.diagnosis.reason.find("suspected"), std::string::npos) << c.diagnosis.reason;

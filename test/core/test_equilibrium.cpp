@@ -42,7 +42,8 @@ void check_residual(const BearingModel& model, const Vector5& load) {
     const int side = zr > 0 ? 1 : -1;
     const int cr = c.rows == 1 ? 1 : (c.arrangement == Arrangement::BackToBack ? -side : side);
     const Eigen::Vector3d e0(std::cos(c.contact_angle_rad) * std::cos(b.azimuth_rad),
-                             std::cos(c.contact_angle_rad) * std::sin(b.azimuth_rad), cr * std::sin(c.contact_angle_rad));
+                             std::cos(c.contact_angle_rad) * std::sin(b.azimuth_rad),
+                             cr * std::sin(c.contact_angle_rad));
     const Eigen::Vector3d ball_centre(c.pitch_diameter_m / 2 * std::cos(b.azimuth_rad),
                                       c.pitch_diameter_m / 2 * std::sin(b.azimuth_rad), zr);
     const double beyond = sign > 0 ? -(c.outer_groove_curvature - 0.5) : c.inner_groove_curvature - 0.5;

@@ -1,8 +1,8 @@
 // The exponential integrators around the linearized contacts (the default, exponential
 // Adams PEC, its PECE variant and ETDRK4, each at its automatic step) against classical RK4
-// with 16 steps per sample, a converged reference, on cases where contacts switch: the CT bearing with waviness and an inner-race
-// spall, and a 6205-like bearing with an outer-race spall. Criterion: the RMS acceleration
-// within 1 % and the level L within 0.1 dB.
+// with 16 steps per sample, a converged reference, on cases where contacts switch: the CT bearing with waviness and an
+// inner-race spall, and a 6205-like bearing with an outer-race spall. Criterion: the RMS acceleration within 1 % and
+// the level L within 0.1 dB.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -149,8 +149,8 @@ TEST(ExponentialIntegrator, AdamsMethodsRestartAfterALoadStepAndANewSpallAndSett
     SCOPED_TRACE(method == IntegrationMethod::ExponentialAdams ? "PECE" : "PEC");
     const auto [mean, ay] = run_events(method);
     // A static quantity: both integrators resolve it far better than the 1 % of the RMS.
-    EXPECT_LT((mean - mean_rk).head<3>().norm(), 0.005 * mean_rk.head<3>().norm()) << mean.transpose() << " vs "
-                                                                                    << mean_rk.transpose();
+    EXPECT_LT((mean - mean_rk).head<3>().norm(), 0.005 * mean_rk.head<3>().norm())
+        << mean.transpose() << " vs " << mean_rk.transpose();
     // Each within 1 % of the converged RK4 on such cases (above): within 2 % of each other.
     EXPECT_LT(std::abs(rms(ay) / rms(ay_rk) - 1.0), 0.02) << rms(ay) << " vs " << rms(ay_rk);
   }
@@ -173,8 +173,8 @@ TEST(ExponentialIntegrator, RelinearizesWhenTheLoadMovesAndStaysAccurate) {
     if (i >= 2000) mean += dynamics.current().displacement / 1000.0;
   }
   const Vector5 q_static = solve_static(model, load5(0.0, 6800.0, 0.0, -2100.0, 0.0)).displacement;
-  EXPECT_LT((mean - q_static).head<3>().norm(), 0.02 * q_static.head<3>().norm()) << mean.transpose() << " vs "
-                                                                                  << q_static.transpose();
+  EXPECT_LT((mean - q_static).head<3>().norm(), 0.02 * q_static.head<3>().norm())
+      << mean.transpose() << " vs " << q_static.transpose();
   // A load jumping by 30% every sample: at most one linearization per kSamplesPerLinearization.
   const std::uint64_t jumping = dynamics.linearizations();
   for (int i = 0; i < 160; ++i) {
@@ -193,7 +193,8 @@ TEST(ExponentialIntegrator, SamplesBetweenTheAdamsStepEndsAreAsAccurateAsThoseAt
   // between); weights wrong by a quarter step would show at once (the 1.3 kHz ring mode
   // turns by omega h / 4 ~ 0.17 rad per quarter step).
   const BearingModel model(ct_bearing());
-  BearingDynamics fast(model, ct_load(), kCtSpeedRadS, DynamicsOptions{10000.0, 0, true, IntegrationMethod::ExponentialAdamsPec});
+  BearingDynamics fast(model, ct_load(), kCtSpeedRadS,
+                       DynamicsOptions{10000.0, 0, true, IntegrationMethod::ExponentialAdamsPec});
   BearingDynamics reference(model, ct_load(), kCtSpeedRadS, DynamicsOptions{10000.0, 16, true, IntegrationMethod::Rk4});
   ASSERT_EQ(fast.substeps(), 1.25);
   std::array<double, 4> error_ss{}, reference_ss{};

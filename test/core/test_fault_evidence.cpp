@@ -95,7 +95,8 @@ TEST(FaultEvidence, SmoothBallPassSeriesUnderAQuietSensorIsHealthy) {
 // lowers the peaks (measured 3.6). The lower bound is the rule's threshold, 2.
 TEST(FaultEvidence, ImpactTrainAtBpfoIsImpulsiveAndAnOuterRaceDefect) {
   const double bpfo = stationary_frequencies().ball_pass_outer_race_hz;
-  const auto x = impact_train(bpfo, [](int, double) { return 1.0; }, 0.2, 2.0, 4);
+  const auto x = impact_train(
+      bpfo, [](int, double) { return 1.0; }, 0.2, 2.0, 4);
   const ConditionIndicators c = analyze_vibration(x, kFs, stationary_frequencies(), resonance_band());
   EXPECT_GT(c.envelope_band_kurtosis, 2.0);
   EXPECT_LT(c.envelope_band_kurtosis, 4.9);
@@ -175,7 +176,8 @@ TEST(FaultEvidence, CageLineBesideAStationaryRaceSeriesIsItsModulation) {
   f.ball_pass_outer_race_hz = bpfo;
   f.varying_compliance_hz = bpfo;
   const double size_gain[9] = {1.0, 0.6, 0.9, 0.4, 1.0, 0.7, 0.5, 0.8, 0.6};  // per ball
-  const auto x = impact_train(bpfo, [&](int k, double) { return size_gain[k % 9]; }, 0.05, 2.0, 8);
+  const auto x = impact_train(
+      bpfo, [&](int k, double) { return size_gain[k % 9]; }, 0.05, 2.0, 8);
   const ConditionIndicators c = analyze_vibration(x, kFs, f, resonance_band());
   const FaultIndicator& outer = c.faults[0];
   const FaultIndicator& cage = c.faults[3];
@@ -207,7 +209,8 @@ TEST(FaultEvidence, BallSeriesOnTheCageRateCombOfAStationaryRaceSpallIsNoBallDef
   f.ball_spin_hz = 58.3;  // 2 x = 116.6 Hz
   f.cage_hz = fc;
   const double size_gain[9] = {1.0, 0.4, 0.7, 0.3, 0.9, 0.5, 1.0, 0.2, 0.6};  // per ball
-  const auto x = impact_train(bpfo, [&](int k, double) { return size_gain[k % 9]; }, 0.05, 2.0, 9);
+  const auto x = impact_train(
+      bpfo, [&](int k, double) { return size_gain[k % 9]; }, 0.05, 2.0, 9);
   const ConditionIndicators c = analyze_vibration(x, kFs, f, resonance_band());
   const FaultIndicator& outer = c.faults[0];
   const FaultIndicator& ball = c.faults[2];

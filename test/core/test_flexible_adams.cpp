@@ -10,10 +10,10 @@
 #include <utility>
 #include <vector>
 
+#include "../../src/core/small_products.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/flexible_adams.hpp"
 #include "bearing_sim/core/flexible_dynamics.hpp"
-#include "../../src/core/small_products.hpp"
 #include "simd_targets.hpp"
 #include "test_support.hpp"
 
@@ -46,8 +46,8 @@ TEST(FlexibleAdams, LinearSystemIsExactAtStepsBeyondItsFastestPeriod) {
     return a;
   };
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(2), z0 = Eigen::Vector2d(1e-3, 2e-6);
-  FlexibleAdams adams(accel, zero, Eigen::VectorXd::Constant(2, 1e-9), Eigen::VectorXd::Constant(2, 1e-6), z0,
-                      zero, h, 0.0);
+  FlexibleAdams adams(accel, zero, Eigen::VectorXd::Constant(2, 1e-9), Eigen::VectorXd::Constant(2, 1e-6), z0, zero, h,
+                      0.0);
   EXPECT_NEAR(adams.highest_rate_rad_s(), w2, 1e-6 * w2);
   const int steps = 200;
   for (int i = 0; i < steps; ++i) adams.step(accel);
@@ -71,8 +71,8 @@ TEST(FlexibleAdams, ForcedOscillatorConvergesAtThirdOrderOrBetter) {
   const double exact = forced_oscillator(w, zeta, f, big_w, end_s);
   std::vector<double> errors;
   for (const double h : {1e-3, 5e-4, 2.5e-4}) {
-    FlexibleAdams adams(accel, zero, Eigen::VectorXd::Constant(1, 1e-9), Eigen::VectorXd::Constant(1, 1e-6), zero,
-                        zero, h, 0.0);
+    FlexibleAdams adams(accel, zero, Eigen::VectorXd::Constant(1, 1e-9), Eigen::VectorXd::Constant(1, 1e-6), zero, zero,
+                        h, 0.0);
     const int steps = static_cast<int>(std::lround(end_s / h));
     for (int i = 0; i < steps; ++i) adams.step(accel);
     errors.push_back(std::abs(adams.position()[0] - exact));

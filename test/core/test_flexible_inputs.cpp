@@ -21,8 +21,8 @@ namespace {
 constexpr double kRateHz = 10000.0;
 
 struct Inputs {
-  std::function<double(double)> speed;   // rad/s at t
-  std::function<Vector5(double)> load;   // at t
+  std::function<double(double)> speed;  // rad/s at t
+  std::function<Vector5(double)> load;  // at t
 };
 
 struct Response {
@@ -69,12 +69,13 @@ Response run(IntegrationMethod method, const Inputs& in, double duration_s, doub
 // constant ones (test_flexible_adams: 0.02-0.07 %), and the peak acceleration too. Converged
 // RK4: |omega| h <= 0.5 (4x smaller steps move its a_rms by 0.04 %).
 void expect_same_response(const Response& adams, const Response& rk4) {
-  std::printf("a_rms x y z: adams %.6e %.6e %.6e, rk4 %.6e %.6e %.6e (%+.3f %+.3f %+.3f %%); peak a_x %+.3f %%; "
-              "mean x %+.4f %% of rk4's; %llu linearizations\n",
-              adams.a_rms[0], adams.a_rms[1], adams.a_rms[2], rk4.a_rms[0], rk4.a_rms[1], rk4.a_rms[2],
-              100.0 * (adams.a_rms[0] / rk4.a_rms[0] - 1.0), 100.0 * (adams.a_rms[1] / rk4.a_rms[1] - 1.0),
-              100.0 * (adams.a_rms[2] / rk4.a_rms[2] - 1.0), 100.0 * (adams.peak_ax / rk4.peak_ax - 1.0),
-              100.0 * (adams.mean_x_m / rk4.mean_x_m - 1.0), static_cast<unsigned long long>(adams.linearizations));
+  std::printf(
+      "a_rms x y z: adams %.6e %.6e %.6e, rk4 %.6e %.6e %.6e (%+.3f %+.3f %+.3f %%); peak a_x %+.3f %%; "
+      "mean x %+.4f %% of rk4's; %llu linearizations\n",
+      adams.a_rms[0], adams.a_rms[1], adams.a_rms[2], rk4.a_rms[0], rk4.a_rms[1], rk4.a_rms[2],
+      100.0 * (adams.a_rms[0] / rk4.a_rms[0] - 1.0), 100.0 * (adams.a_rms[1] / rk4.a_rms[1] - 1.0),
+      100.0 * (adams.a_rms[2] / rk4.a_rms[2] - 1.0), 100.0 * (adams.peak_ax / rk4.peak_ax - 1.0),
+      100.0 * (adams.mean_x_m / rk4.mean_x_m - 1.0), static_cast<unsigned long long>(adams.linearizations));
   for (int k = 0; k < 3; ++k) {
     ASSERT_GT(rk4.a_rms[k], 1e-6) << "axis " << k;
     EXPECT_NEAR(adams.a_rms[k], rk4.a_rms[k], 0.01 * rk4.a_rms[k]) << "axis " << k;
@@ -152,7 +153,8 @@ TEST(FlexibleInputs, ASpallAddedWhileRunningFollowsConvergedRk4) {
       EXPECT_EQ(d.substeps(), FlexibleDynamics::kAdamsStepsPerSample);
     }
   }
-  std::printf("spall: a_rms x adams %.6e, rk4 %.6e (%+.3f %%)\n", a_rms[0], a_rms[1], 100.0 * (a_rms[0] / a_rms[1] - 1.0));
+  std::printf("spall: a_rms x adams %.6e, rk4 %.6e (%+.3f %%)\n", a_rms[0], a_rms[1],
+              100.0 * (a_rms[0] / a_rms[1] - 1.0));
   EXPECT_NEAR(a_rms[0], a_rms[1], 0.01 * a_rms[1]);
 }
 

@@ -38,8 +38,8 @@ TEST(FlexibleRingStatics, AnUndeformedRingLoadsTheBallsAsTheRigidRing) {
   x.head<5>() = s.displacement;
   x_dot.head<5>() << 1e-4, -2e-4, 5e-5, 1e-4, -1e-4;  // with the contacts' damping
   const Eigen::VectorXd f = flexible.contact_force(x, x_dot, phase);
-  const Vector5 expected = rigid.contact_force(s.displacement, x_dot.head<5>(), phase, rigid.balls(),
-                                               BearingModel::ContactKernel::Scalar);
+  const Vector5 expected =
+      rigid.contact_force(s.displacement, x_dot.head<5>(), phase, rigid.balls(), BearingModel::ContactKernel::Scalar);
   // Same formulas summed in another order: rounding of a sum of ~200 loads of ~100 N.
   for (int i = 0; i < 5; ++i) EXPECT_NEAR(f[i], expected[i], 1e-9 * expected.norm()) << i;
 }
@@ -90,8 +90,8 @@ TEST(FlexibleRingStatics, TheLoadDistributionTendsToTheRigidRingsAsTheRingStiffe
   const StaticSolution rigid = solve_static(BearingModel(c), paper_load());
   const Distribution real = distribution(1.0, rigid), e3 = distribution(1e3, rigid), e6 = distribution(1e6, rigid);
   std::cout << "peak ball load: rigid " << rigid.max_ball_load_N << " N, flexible " << real.max_load_N
-            << " N (largest per-ball difference " << real.max_difference_N << " N), E x 1e3: "
-            << e3.max_difference_N << " N, E x 1e6: " << e6.max_difference_N << " N\n";
+            << " N (largest per-ball difference " << real.max_difference_N << " N), E x 1e3: " << e3.max_difference_N
+            << " N, E x 1e6: " << e6.max_difference_N << " N\n";
   // The real section changes the distribution visibly: more than 5 % of the peak load.
   EXPECT_GT(real.max_difference_N, 0.05 * rigid.max_ball_load_N);
   // The ring's compliance scales as 1/E, and so does the first-order change of the loads: a
@@ -129,8 +129,8 @@ TEST(FlexibleRingStatics, ASweepsStaticCaseIsTheFlexibleRingsEquilibrium) {
   const std::string yaml =
       "bearing: ct_gantry_flexible.yaml\nanalysis: static\noperating_point: {force_N: [6800, 0, 0], "
       "moment_Nm: [0, 2100]}\nstudies:\n  - parameter: radial_load_N\n    values: [6800]\n";
-  const SweepDefinition d = parse_sweep_definition(YAML::Load(yaml), "flexible_sweep.yaml",
-                                                   test::config_path("bearings"));
+  const SweepDefinition d =
+      parse_sweep_definition(YAML::Load(yaml), "flexible_sweep.yaml", test::config_path("bearings"));
   const std::vector<SweepCase> cases = sweep_cases(d);
   ASSERT_EQ(cases.size(), 1u);
   const SweepResult r = run_sweep_case(cases[0], false);
@@ -140,8 +140,7 @@ TEST(FlexibleRingStatics, ASweepsStaticCaseIsTheFlexibleRingsEquilibrium) {
   const StaticSolution rigid = solve_static(flexible.model(), paper_load());
   EXPECT_NEAR(r.statics.max_ball_load_N, expected.rigid_coordinates.max_ball_load_N,
               1e-9 * expected.rigid_coordinates.max_ball_load_N);
-  ASSERT_GT(std::abs(expected.rigid_coordinates.max_ball_load_N - rigid.max_ball_load_N),
-            0.01 * rigid.max_ball_load_N);
+  ASSERT_GT(std::abs(expected.rigid_coordinates.max_ball_load_N - rigid.max_ball_load_N), 0.01 * rigid.max_ball_load_N);
   // The condensed stiffness is softer than the rigid ring's (the ring gives way): the lowest
   // rigid-body mode lies below the rigid ring's.
   const Matrix5 k = 0.5 * (rigid.stiffness + rigid.stiffness.transpose());

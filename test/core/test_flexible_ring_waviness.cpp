@@ -36,8 +36,8 @@ FlexibleBearing wavy_bearing(int order) {
 }
 
 struct ModeResponse {
-  std::vector<double> rms_m;           // per mode order 2..5: RMS amplitude of (cos, sin)
-  std::vector<double> driven_cos;      // the driven mode's cos coordinate over time
+  std::vector<double> rms_m;       // per mode order 2..5: RMS amplitude of (cos, sin)
+  std::vector<double> driven_cos;  // the driven mode's cos coordinate over time
 };
 
 ModeResponse simulate(int order, int driven_mode, double rate_hz, double duration_s, double settle_s) {

@@ -95,7 +95,8 @@ TEST(Waviness, WithEveryBallLoadedOrdersOtherThanZPlusMinusOneGiveNoRadialForce)
 TEST(Spall, ABallOverARaceSpallLosesTheEffectiveDepth) {
   // Outer race spall 2 mm wide, 5 um deep, centred under ball 0 (azimuth 0, load side).
   BearingConfig healthy = deep_groove("");
-  BearingConfig spalled = deep_groove("defects:\n  - {surface: outer_race, position_deg: 0, width_mm: 2.0, depth_um: 5}\n");
+  BearingConfig spalled =
+      deep_groove("defects:\n  - {surface: outer_race, position_deg: 0, width_mm: 2.0, depth_um: 5}\n");
   const BearingModel a(healthy), b(spalled);
   const Vector5 q = solve_static(a, test::load5(1000.0, 0, 0, 0, 0)).displacement;
   const std::vector<BallState> before = a.ball_states(q, 0.0), after = b.ball_states(q, 0.0);
@@ -108,7 +109,8 @@ TEST(Spall, ABallOverARaceSpallLosesTheEffectiveDepth) {
 TEST(Spall, AShallowWideSpallIsLimitedByHowFarTheBallCanDrop) {
   // A 0.5 mm wide, 50 um deep spall: the ball rests on both edges, w^2 / (4 d) = 7.87 um.
   const BearingModel a(deep_groove(""));
-  const BearingModel b(deep_groove("defects:\n  - {surface: outer_race, position_deg: 0, width_mm: 0.5, depth_um: 50}\n"));
+  const BearingModel b(
+      deep_groove("defects:\n  - {surface: outer_race, position_deg: 0, width_mm: 0.5, depth_um: 50}\n"));
   const Vector5 q = solve_static(a, test::load5(1000.0, 0, 0, 0, 0)).displacement;
   const double drop = a.ball_states(q, 0.0)[0].deflection_m - b.ball_states(q, 0.0)[0].deflection_m;
   EXPECT_NEAR(drop, 0.5e-3 * 0.5e-3 / (4.0 * 7.94e-3), 1e-12);
@@ -120,8 +122,10 @@ TEST(Spall, AGrowingSpallDeepensAtItsRateAndAFixedOneKeepsItsDepth) {
   // w^2/(4d) = 126 um), into the fixed one 5 um at any time. The neighbours, 40 deg away,
   // are not over either.
   const auto offsets_at = [](const std::string& growth, double t) {
-    const BearingModel model(deep_groove("defects:\n  - {surface: outer_race, position_deg: 0, width_mm: 2.0, "
-                                         "depth_um: 5" + growth + "}\n"));
+    const BearingModel model(
+        deep_groove("defects:\n  - {surface: outer_race, position_deg: 0, width_mm: 2.0, "
+                    "depth_um: 5" +
+                    growth + "}\n"));
     std::vector<double> out(kBalls, 0.0);
     model.imperfections().add_offsets(RollingPhase{0.0, 0.0, 0.0, 0.0, t}, out.data());
     return out;
@@ -204,8 +208,8 @@ TEST(Spall, AtMostTheCapOfSpallsArePresentAtOnce) {
   EXPECT_EQ(model.imperfections().spalls().size(), 1u);
   // A bearing file with one spall too many is refused naming the bearing.
   std::string defects = "defects:\n";
-  for (int i = 0; i <= kMaxSpalls; ++i) defects += "  - {surface: outer_race, position_deg: " + std::to_string(i) +
-                                                   ", width_mm: 0.5, depth_um: 10}\n";
+  for (int i = 0; i <= kMaxSpalls; ++i)
+    defects += "  - {surface: outer_race, position_deg: " + std::to_string(i) + ", width_mm: 0.5, depth_um: 10}\n";
   try {
     BearingModel too_many(deep_groove(defects));
     FAIL() << "65 spalls in a bearing file must be refused";
@@ -276,7 +280,8 @@ TEST(Spall, InjectedAndClearedAtRuntime) {
   spalled.reset_to_equilibrium();
   healthy.reset_to_equilibrium();
   double difference = 0.0;
-  for (int i = 0; i < 200; ++i) difference = std::max(difference, std::abs(spalled.step().acceleration[0] - healthy.step().acceleration[0]));
+  for (int i = 0; i < 200; ++i)
+    difference = std::max(difference, std::abs(spalled.step().acceleration[0] - healthy.step().acceleration[0]));
   // Cleared: both at rest at the same equilibrium; only the cage phase differs (same speed, same
   // number of samples), so the two runs coincide.
   EXPECT_LT(difference, 1e-9 * healthy_peak + 1e-12);

@@ -14,7 +14,7 @@ namespace {
 
 constexpr double kKgf = 9.80665;  // N
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kFactor = 2.0;   // docs/validation.md, section 2
+constexpr double kFactor = 2.0;  // docs/validation.md, section 2
 
 const std::string kFile = std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/ins_618_22_db.yaml";
 

@@ -13,7 +13,7 @@ namespace {
 // docs/model.md section 6.4: the Hamrock-Brewe approximations land within about 2% of the ISO values;
 // 2.5% leaves room for that and nothing else.
 constexpr double kIsoTolerance = 0.025;
-}
+}  // namespace
 
 TEST(IsoReference, RadialDeflectionNoClearance) {
   const BearingModel model(iso_reference_bearing(0.0));

@@ -118,9 +118,10 @@ TEST(LeverArms, TiltStiffnessOfTheInnerRingMovingInsPair) {
     const double k_new = solve_static(inner, load).stiffness(4, 4);
     const double k_old = solve_static(outer, -load).stiffness(4, 4);
     const double change = k_new / k_old - 1.0;
-    std::printf("INS pair, inner ring moving, load (%g N, %g N, %g N m): tilt stiffness %.6g N m/rad "
-                "(arms at P_o: %.6g), change %+.3f %%\n",
-                load[0], load[2], load[4], k_new, k_old, 100.0 * change);
+    std::printf(
+        "INS pair, inner ring moving, load (%g N, %g N, %g N m): tilt stiffness %.6g N m/rad "
+        "(arms at P_o: %.6g), change %+.3f %%\n",
+        load[0], load[2], load[4], k_new, k_old, 100.0 * change);
     EXPECT_LT(change, 2.0 * a_over_rho);
     EXPECT_GT(change, 0.0);
   }

@@ -38,8 +38,7 @@ TEST(LoadErrors, AxialForceAgainstSingleRowAngularContact) {
 
 TEST(LoadErrors, HugeRadialLoad) {
   const BearingModel model(iso_reference_bearing());
-  const double t =
-      seconds([&] { EXPECT_THROW(solve_static(model, load5(1e9, 0, 0, 0, 0)), LoadNotCarriedError); });
+  const double t = seconds([&] { EXPECT_THROW(solve_static(model, load5(1e9, 0, 0, 0, 0)), LoadNotCarriedError); });
   EXPECT_LT(t, kPromptS);
   // The message says which bearing and which load.
   try {
@@ -52,8 +51,7 @@ TEST(LoadErrors, HugeRadialLoad) {
 TEST(LoadErrors, MomentOnADeepGrooveSingleRow) {
   // A single row at a0 = 0 has (almost) no tilt stiffness: a large moment is not carried.
   const BearingModel model(iso_reference_bearing());
-  const double t =
-      seconds([&] { EXPECT_THROW(solve_static(model, load5(0, 0, 0, 0, 1e5)), LoadNotCarriedError); });
+  const double t = seconds([&] { EXPECT_THROW(solve_static(model, load5(0, 0, 0, 0, 1e5)), LoadNotCarriedError); });
   EXPECT_LT(t, kPromptS);
 }
 

@@ -65,7 +65,6 @@ double line_amplitude(const std::vector<double>& x, std::size_t first, std::size
   return 2.0 * std::abs(sum) / weights;
 }
 
-
 // The response to the turning load alone: the run with it minus the run without it, sample
 // by sample (the static load's ball-pass lines cancel, and with them their leakage).
 double turning_line(double sample_rate_hz) {

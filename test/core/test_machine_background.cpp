@@ -474,10 +474,12 @@ TEST(MachineBackground, ParsesTheInstallationAndPathModes) {
   EXPECT_NO_THROW(VirtualAccelerometer(c, 10000.0));
 
   // The shipped files: the CT sensor has no installation; the CWRU one loads at 12 kHz.
-  const AccelerometerConfig ct = load_accelerometer_config(test::config_path("sensors/ct_gantry_housing_accelerometer.yaml"));
+  const AccelerometerConfig ct =
+      load_accelerometer_config(test::config_path("sensors/ct_gantry_housing_accelerometer.yaml"));
   EXPECT_TRUE(ct.installation.empty());
   EXPECT_TRUE(ct.path_modes.empty());
-  const AccelerometerConfig cwru = load_accelerometer_config(test::config_path("sensors/cwru_drive_end_accelerometer.yaml"));
+  const AccelerometerConfig cwru =
+      load_accelerometer_config(test::config_path("sensors/cwru_drive_end_accelerometer.yaml"));
   EXPECT_FALSE(cwru.installation.empty());
   EXPECT_GE(cwru.path_modes.size(), 4u);
   EXPECT_GT(cwru.mount_resonance_hz, 0.0);  // the magnetic base's

@@ -53,8 +53,7 @@ TEST(ModalAnalysis, TwoDofClosedFormOfATranslationTiltPair) {
   EXPECT_EQ(r.modes[0].dominant_dof, 5);  // rz
   // Mass-normalised, M-orthogonal shapes.
   for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j)
-      EXPECT_NEAR(r.modes[i].shape.dot(r.mass * r.modes[j].shape), i == j ? 1.0 : 0.0, 1e-9);
+    for (int j = 0; j < 6; ++j) EXPECT_NEAR(r.modes[i].shape.dot(r.mass * r.modes[j].shape), i == j ? 1.0 : 0.0, 1e-9);
 }
 
 TEST(ModalAnalysis, TwoBearingsWithoutAngularStiffnessGiveUncoupledClosedForms) {

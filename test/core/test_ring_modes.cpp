@@ -71,8 +71,8 @@ TEST(RingModes, TheCtRingsFreeModesAreTheThinRingClosedForms) {
   // The ring's mass, 2 pi R rho A: the "about 47 kg", the paper's 46.3 kg ring.
   EXPECT_NEAR(ring_mass_kg(s), 46.6, 0.05);
   for (const RingMode& m : bearing.modes())
-    std::cout << (m.direction == RingModeDirection::Radial ? "in-plane" : "out-of-plane") << " n = " << m.order
-              << ": " << m.frequency_rad_s() / (2 * kPi) << " Hz\n";
+    std::cout << (m.direction == RingModeDirection::Radial ? "in-plane" : "out-of-plane") << " n = " << m.order << ": "
+              << m.frequency_rad_s() / (2 * kPi) << " Hz\n";
 }
 
 TEST(RingModes, ASeatStiffnessAddsItsShareOfEachModesKineticEnergy) {
@@ -89,12 +89,12 @@ TEST(RingModes, ASeatStiffnessAddsItsShareOfEachModesKineticEnergy) {
     const int n = m.order;
     const double expected =
         m.direction == RingModeDirection::Radial
-            ? std::sqrt(std::pow(hoppe_rad_s(s, n), 2) + s.mounting_radial_stiffness_N_per_m2 / rho_a * n * n / (n * n + 1.0))
+            ? std::sqrt(std::pow(hoppe_rad_s(s, n), 2) +
+                        s.mounting_radial_stiffness_N_per_m2 / rho_a * n * n / (n * n + 1.0))
             : std::sqrt(std::pow(out_of_plane_rad_s(s, n), 2) + s.mounting_axial_stiffness_N_per_m2 / rho_a);
     EXPECT_NEAR(m.frequency_rad_s(), expected, kRel * expected) << "n = " << n;
     // Damping: the file's ratio of each mounted mode, c = 2 zeta sqrt(k m).
-    EXPECT_NEAR(m.modal_damping_Ns_per_m / (2.0 * m.modal_mass_kg * m.frequency_rad_s()), s.modal_damping_ratio,
-                1e-12);
+    EXPECT_NEAR(m.modal_damping_Ns_per_m / (2.0 * m.modal_mass_kg * m.frequency_rad_s()), s.modal_damping_ratio, 1e-12);
   }
 }
 

@@ -70,8 +70,9 @@ TEST(RowSpall, OneRowGivesAxialForceAndTiltThatTwoRowsInPhaseCancel) {
   const double d = config.ball_diameter_m, a0 = config.contact_angle_rad;
   const double c0 = model.row_contact_sign(0);
   const double rho = config.pitch_diameter_m / 2.0 - (config.outer_groove_curvature - 0.5) * d * std::cos(a0);
-  const Eigen::Vector3d p(rho * std::cos(ball.azimuth_rad), rho * std::sin(ball.azimuth_rad),
-                          model.row_axial_position_m(0) - (config.outer_groove_curvature - 0.5) * d * c0 * std::sin(a0));
+  const Eigen::Vector3d p(
+      rho * std::cos(ball.azimuth_rad), rho * std::sin(ball.azimuth_rad),
+      model.row_axial_position_m(0) - (config.outer_groove_curvature - 0.5) * d * c0 * std::sin(a0));
   const Eigen::Vector3d force = -sign * q_load * e, moment = -sign * q_load * p.cross(e);
   const double scale = q_load;  // rounding of sums of a few loads of this size
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(one_row[i], force[i], 1e-9 * scale) << "force " << i;
@@ -180,13 +181,15 @@ TEST(RowKeys, RowsTheBearingDoesNotHaveAreRejectedWithFileAndKey) {
                    "defects[0].row");
   expect_row_error(ins + "defects:\n  - {surface: ball, ball: 12, width_mm: 0.5, depth_um: 10, row: 1}\n",
                    "defects[0].row");
-  expect_row_error(ins + "imperfections:\n  waviness:\n    - {surface: outer_race, order: 4, amplitude_um: 0.1, row: -1}\n",
-                   "imperfections.waviness[0].row");
+  expect_row_error(
+      ins + "imperfections:\n  waviness:\n    - {surface: outer_race, order: 4, amplitude_um: 0.1, row: -1}\n",
+      "imperfections.waviness[0].row");
   expect_row_error(single + "imperfections:\n  roughness_rms_um: 0.05\n  roughness_row: 1\n",
                    "imperfections.roughness_row");
   // Row 1 of the pair is fine, and a race spall without `row` is on row 0.
-  const BearingConfig ok = ins_pair("defects:\n  - {surface: outer_race, width_mm: 1, depth_um: 10, row: 1}\n"
-                                    "  - {surface: inner_race, width_mm: 1, depth_um: 10}\n");
+  const BearingConfig ok = ins_pair(
+      "defects:\n  - {surface: outer_race, width_mm: 1, depth_um: 10, row: 1}\n"
+      "  - {surface: inner_race, width_mm: 1, depth_um: 10}\n");
   ASSERT_EQ(ok.imperfections.spalls.size(), 2u);
   EXPECT_EQ(ok.imperfections.spalls[0].row, 1);
   EXPECT_EQ(ok.imperfections.spalls[1].row, 0);
@@ -198,12 +201,13 @@ TEST(RowKeys, RowsTheBearingDoesNotHaveAreRejectedWithFileAndKey) {
 }
 
 TEST(RowKeys, ScenarioSpallEventsTakeARow) {
-  const std::string head = "name: rows\nduration_s: 10\nbearing_file: " + test::bearing_file("ins_618_22_db.yaml") +
-                           "\ndefects:\n";
-  const Scenario sc = Scenario::from_string(
-      head + "  - {type: spall, at_s: 1, surface: outer_race, width_mm: 1, depth_um: 10, row: 1}\n"
-             "  - {type: spall, at_s: 2, surface: inner_race, width_mm: 1, depth_um: 10}\n",
-      "rows_scenario.yaml");
+  const std::string head =
+      "name: rows\nduration_s: 10\nbearing_file: " + test::bearing_file("ins_618_22_db.yaml") + "\ndefects:\n";
+  const Scenario sc =
+      Scenario::from_string(head +
+                                "  - {type: spall, at_s: 1, surface: outer_race, width_mm: 1, depth_um: 10, row: 1}\n"
+                                "  - {type: spall, at_s: 2, surface: inner_race, width_mm: 1, depth_um: 10}\n",
+                            "rows_scenario.yaml");
   ASSERT_EQ(sc.defect_events().size(), 2u);
   EXPECT_EQ(sc.defect_events()[0].spall.row, 1);
   EXPECT_EQ(sc.defect_events()[1].spall.row, 0);

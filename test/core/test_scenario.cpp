@@ -209,8 +209,8 @@ TEST(Scenario, PhasesAndDefectEvents) {
 std::string spall_events(int count, double at_s, const std::string& size = "width_mm: 0.5, depth_um: 10") {
   std::string events;
   for (int i = 0; i < count; ++i)
-    events += "  - {type: spall, at_s: " + std::to_string(at_s) + ", surface: outer_race, position_deg: " +
-              std::to_string(i) + ", " + size + "}\n";
+    events += "  - {type: spall, at_s: " + std::to_string(at_s) +
+              ", surface: outer_race, position_deg: " + std::to_string(i) + ", " + size + "}\n";
   return events;
 }
 
@@ -224,30 +224,31 @@ TEST(Scenario, SpallsAreCountedAsTheRunHoldsThemAndRefusedBelowASpall) {
   expect_config_error(header() + "defects:\n" + spall_events(kMaxSpalls + 1, 1.0), "defects[64]",
                       "at most 64 may be at once");
   // A 1e-300 m spall (or a position of 1e300 degrees): refused as the service refuses it.
-  expect_config_error(header() + "defects:\n" + spall_events(1, 1.0, "width_mm: 1e-297, depth_um: 10"),
-                      "defects[0]", "at least 1 um wide and deep");
-  expect_config_error(header() + "defects:\n" +
-                          "  - {type: spall, at_s: 1, position_deg: 1e300, width_mm: 0.5, depth_um: 10}\n",
-                      "defects[0]", "beyond +-1e+06 rad");
+  expect_config_error(header() + "defects:\n" + spall_events(1, 1.0, "width_mm: 1e-297, depth_um: 10"), "defects[0]",
+                      "at least 1 um wide and deep");
+  expect_config_error(
+      header() + "defects:\n" + "  - {type: spall, at_s: 1, position_deg: 1e300, width_mm: 0.5, depth_um: 10}\n",
+      "defects[0]", "beyond +-1e+06 rad");
 }
 
 TEST(Scenario, ASpeedBeyondTheBearingsLimitIsRefusedNamingTheKey) {
   expect_config_error(header() + "speed: {initial_speed_rpm: 1e300}\n", "speed.initial_speed_rpm",
                       "is beyond +-900.1 rad/s");
-  expect_config_error(header() + "speed:\n  segments:\n    - {type: ramp, start_s: 1, end_s: 2, to_speed_rad_s: -1e4}\n",
-                      "speed.segments[0].to_speed_rad_s", "-1e+04 rad/s");
+  expect_config_error(
+      header() + "speed:\n  segments:\n    - {type: ramp, start_s: 1, end_s: 2, to_speed_rad_s: -1e4}\n",
+      "speed.segments[0].to_speed_rad_s", "-1e+04 rad/s");
   EXPECT_NO_THROW(Scenario::from_string(header() + "speed: {initial_speed_rpm: 8500}\n", kSource));
 }
 
 // The node refuses a load its bearing cannot carry and runs on at the last good one, while
 // scenario_state (the labels) said the refused load: such a scenario is refused when read.
 TEST(Scenario, ALoadTheBearingCannotCarryIsRefusedNamingTheSegment) {
-  expect_config_error(header() + "load:\n  initial: {force_N: [6800, 0, 0]}\n  segments:\n"
-                                 "    - {type: step, start_s: 5, force_N: [6800, 0, 0]}\n"
-                                 "    - {type: step, start_s: 10, force_N: [1e9, 0, 0]}\n",
+  expect_config_error(header() +
+                          "load:\n  initial: {force_N: [6800, 0, 0]}\n  segments:\n"
+                          "    - {type: step, start_s: 5, force_N: [6800, 0, 0]}\n"
+                          "    - {type: step, start_s: 10, force_N: [1e9, 0, 0]}\n",
                       "load.segments[1].force_N", "the bearing cannot carry the load (1e+09");
-  expect_config_error(header() + "load:\n  initial: {force_N: [0, 0, 1e12]}\n", "load.initial",
-                      "cannot carry");
+  expect_config_error(header() + "load:\n  initial: {force_N: [0, 0, 1e12]}\n", "load.initial", "cannot carry");
   EXPECT_NO_THROW(Scenario::from_string(
       header() + "load:\n  segments:\n    - {type: ramp, start_s: 1, end_s: 2, force_N: [20000, 0, 0]}\n", kSource));
 }

@@ -16,9 +16,8 @@ namespace {
 const char* kSource = "/tmp/unit_test_scenario_temperature.yaml";
 
 Scenario with_temperature(const std::string& block) {
-  return Scenario::from_string("name: unit\nduration_s: 30\nbearing_file: " + bearing_file("ct_gantry_lyc.yaml") +
-                                   "\n" + block,
-                               kSource);
+  return Scenario::from_string(
+      "name: unit\nduration_s: 30\nbearing_file: " + bearing_file("ct_gantry_lyc.yaml") + "\n" + block, kSource);
 }
 
 void expect_error(const std::string& block, std::vector<std::string> words) {
@@ -70,7 +69,8 @@ TEST(ScenarioTemperature, BadTimeLinesAreNamed) {
   expect_error("ring_temperature_difference: {segments: [{type: ramp, start_s: 1, end_s: 5, difference_K: 120}]}\n",
                {"segments[0].difference_K", "interference", "120 K"});
   expect_error("ring_temperature_difference: {initial_K: 200}\n", {"initial_K", "150 K"});
-  expect_error("ring_temperature_difference: {segments: [{type: step, start_s: 5, difference_K: 1}, "
-               "{type: step, start_s: 4, difference_K: 2}]}\n",
-               {"segments[1].start_s", "time order"});
+  expect_error(
+      "ring_temperature_difference: {segments: [{type: step, start_s: 5, difference_K: 1}, "
+      "{type: step, start_s: 4, difference_K: 2}]}\n",
+      {"segments[1].start_s", "time order"});
 }

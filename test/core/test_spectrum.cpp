@@ -25,7 +25,7 @@ TEST(Spectrum, FftFriendlyLength) {
   EXPECT_EQ(fft_friendly_length(32000), 32000u);  // 2^8 5^3
   EXPECT_EQ(fft_friendly_length(31249), 31104u);  // 2^7 3^5; no 2^a 3^b 5^c in 31105..31249
   EXPECT_EQ(fft_friendly_length(1), 1u);
-  EXPECT_EQ(fft_friendly_length(97), 96u);        // 97 is prime; 96 = 2^5 3
+  EXPECT_EQ(fft_friendly_length(97), 96u);  // 97 is prime; 96 = 2^5 3
   EXPECT_EQ(fft_friendly_length(1024), 1024u);
 }
 

@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 
 #include "bearing_sim/core/bearing_config.hpp"
-#include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/bearing_model.hpp"
 #include "bearing_sim/core/condition_indicators.hpp"
+#include "bearing_sim/core/errors.hpp"
 
 namespace bearing_sim::test {
 

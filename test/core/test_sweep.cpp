@@ -13,9 +13,7 @@ namespace {
 
 const std::string kBearings = std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings";
 
-SweepDefinition parse(const std::string& yaml) {
-  return parse_sweep_definition(YAML::Load(yaml), "<test>", kBearings);
-}
+SweepDefinition parse(const std::string& yaml) { return parse_sweep_definition(YAML::Load(yaml), "<test>", kBearings); }
 
 std::string error_of(const std::string& yaml) {
   try {
@@ -134,8 +132,9 @@ TEST(Sweep, ASpeedBeyondTheBearingsLimitIsRefusedBeforeAnyCaseRuns) {
   // 1e12 rpm ran and gave a number; the CT bearing's limit is ~8,600 rpm (500 m/s at dm 1111 mm).
   std::string why;
   try {
-    sweep_cases(parse("bearing: ct_gantry_lyc.yaml\noperating_point: {force_N: [6800, 0, 0], duration_s: 0.01}\n"
-                      "parameter: speed_rpm\nvalues: [180, 1e12]\n"));
+    sweep_cases(
+        parse("bearing: ct_gantry_lyc.yaml\noperating_point: {force_N: [6800, 0, 0], duration_s: 0.01}\n"
+              "parameter: speed_rpm\nvalues: [180, 1e12]\n"));
   } catch (const InvalidInputError& e) {
     why = e.what();
   }

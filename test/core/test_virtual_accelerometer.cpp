@@ -104,8 +104,8 @@ TEST(VirtualAccelerometer, PathGainMatchesSeismicTransmissibility) {
   };
   const double zeta = 0.05;
   for (const Case& c : {Case{10000, 3000, 100, 0.005}, Case{10000, 3000, 1500, 0.02}, Case{10000, 3000, 3000, 0.005},
-                        Case{10000, 3000, 3300, 0.03}, Case{51200, 12000, 250, 0.005},
-                        Case{51200, 12000, 12000, 0.005}, Case{51200, 12000, 6000, 0.02}}) {
+                        Case{10000, 3000, 3300, 0.03}, Case{51200, 12000, 250, 0.005}, Case{51200, 12000, 12000, 0.005},
+                        Case{51200, 12000, 6000, 0.02}}) {
     AccelerometerConfig config = quiet_config(c.fs, c.fn);
     config.path_damping_ratio = zeta;
     VirtualAccelerometer sensor(config, c.fs);
@@ -204,8 +204,8 @@ TEST(VirtualAccelerometer, AntiAliasAttenuatesToneAboveOutputNyquist) {
   // An in-band tone passes with the Butterworth gain (~1).
   sensor.reset();
   const std::vector<double> in_band = run_axis(sensor, sine(amplitude, 1000.0, fs_in, 0.5));
-  EXPECT_NEAR(tone_amplitude(in_band, fs_out, 1000.0, 0.4) / amplitude,
-              butterworth_gain(8, 4000.0, fs_in, 1000.0), 1e-3);
+  EXPECT_NEAR(tone_amplitude(in_band, fs_out, 1000.0, 0.4) / amplitude, butterworth_gain(8, 4000.0, fs_in, 1000.0),
+              1e-3);
 }
 
 TEST(VirtualAccelerometer, DecimationKeepsOneSampleInRatio) {

@@ -42,7 +42,8 @@ inline ::testing::AssertionResult same_floats(const std::vector<float>& ros, con
   return ::testing::AssertionSuccess();
 }
 
-#define LCM_EXPECT_SAME_DOUBLE(ros, lcm) EXPECT_EQ(lcm_test::bits(static_cast<double>(ros)), lcm_test::bits(lcm)) << #ros
+#define LCM_EXPECT_SAME_DOUBLE(ros, lcm) \
+  EXPECT_EQ(lcm_test::bits(static_cast<double>(ros)), lcm_test::bits(lcm)) << #ros
 
 inline void expect_equal(const std_msgs::Header& ros, const bearing_sim_lcm::header_t& lcm) {
   EXPECT_EQ(static_cast<std::int64_t>(ros.stamp.sec), lcm.stamp_sec);

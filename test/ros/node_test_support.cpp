@@ -62,7 +62,8 @@ std::vector<double> Recorder::accel_x(std::uint64_t from, std::uint64_t to) {
 double Recorder::max_abs_deviation(int c, double reference, std::uint64_t from, std::uint64_t to) {
   std::lock_guard<std::mutex> lock(mutex_);
   double m = 0.0;
-  for (std::uint64_t i = from; i < to; ++i) m = std::max(m, std::abs(displacement_[c].at(i - first_index_) - reference));
+  for (std::uint64_t i = from; i < to; ++i)
+    m = std::max(m, std::abs(displacement_[c].at(i - first_index_) - reference));
   return m;
 }
 

@@ -104,16 +104,16 @@ std_msgs::Float64 speed(double rad_s);
 Recorder& recorder();
 
 // Main of every rostest gtest node: background spinner for the subscriptions.
-#define NODE_TEST_MAIN(node_name)                         \
-  int main(int argc, char** argv) {                       \
-    testing::InitGoogleTest(&argc, argv);                 \
-    ros::init(argc, argv, node_name);                     \
-    ros::AsyncSpinner spinner(1);                         \
-    spinner.start();                                      \
-    const int result = RUN_ALL_TESTS();                   \
-    spinner.stop();                                       \
-    ros::shutdown();                                      \
-    return result;                                        \
+#define NODE_TEST_MAIN(node_name)         \
+  int main(int argc, char** argv) {       \
+    testing::InitGoogleTest(&argc, argv); \
+    ros::init(argc, argv, node_name);     \
+    ros::AsyncSpinner spinner(1);         \
+    spinner.start();                      \
+    const int result = RUN_ALL_TESTS();   \
+    spinner.stop();                       \
+    ros::shutdown();                      \
+    return result;                        \
   }
 
 }  // namespace node_test

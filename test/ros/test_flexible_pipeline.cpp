@@ -105,8 +105,8 @@ TEST(FlexiblePipeline, ADivergingFlexibleRingIsResetToItsStaticEquilibrium) {
   // far beyond RK4's stability limit of 2.8, so the state runs away; the source must hand out
   // the flexible ring's static equilibrium instead, finite, and go on.
   const BearingModel model(load_bearing_config(kFlexible));
-  SampleSource source(make_ring_dynamics(model, ct_load(), kCtSpeed,
-                                         DynamicsOptions{2000.0, 1, true, IntegrationMethod::Rk4}));
+  SampleSource source(
+      make_ring_dynamics(model, ct_load(), kCtSpeed, DynamicsOptions{2000.0, 1, true, IntegrationMethod::Rk4}));
   const FlexibleBearing bearing(model);
   int diverged = 0;
   for (int i = 0; i < 400 && diverged < 2; ++i) {

@@ -45,7 +45,8 @@ std::vector<float> signal(double seconds, double sigma, double impact_hz, double
   std::vector<double> impacts;
   if (impact_hz > 0.0) {
     std::normal_distribution<double> scatter(0.0, 0.01 / impact_hz);
-    for (int k = 0; k <= static_cast<int>(seconds * impact_hz) + 1; ++k) impacts.push_back(k / impact_hz + scatter(rng));
+    for (int k = 0; k <= static_cast<int>(seconds * impact_hz) + 1; ++k)
+      impacts.push_back(k / impact_hz + scatter(rng));
   }
   std::vector<float> x(len);
   for (std::size_t i = 0; i < len; ++i) {
@@ -103,7 +104,8 @@ TEST(HealthMonitor, RingBufferHoldsTheLastWindowOnly) {
   EXPECT_EQ(early.error.rfind("collecting", 0), 0u) << early.error;
   const auto quiet = signal(2.0, 0.01, 0.0, 0.0, 4);
   // In pieces of a chunk, as the node hands them over.
-  for (std::size_t i = 0; i < quiet.size(); i += 100) m.push(quiet.data() + i, std::min<std::size_t>(100, quiet.size() - i));
+  for (std::size_t i = 0; i < quiet.size(); i += 100)
+    m.push(quiet.data() + i, std::min<std::size_t>(100, quiet.size() - i));
   const HealthReport r = m.analyze_now(3.0);
   ASSERT_TRUE(r.analysed);
   EXPECT_NEAR(r.indicators.acceleration.rms, 0.01, 5e-4);  // none of the loud second

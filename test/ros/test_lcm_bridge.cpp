@@ -10,14 +10,14 @@
 #include <cstdio>
 #include <functional>
 #include <map>
-#include <set>
 #include <mutex>
+#include <set>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <lcm/lcm-cpp.hpp>
 #include <ros/ros.h>
+#include <lcm/lcm-cpp.hpp>
 
 #include "lcm_test_support.hpp"
 

@@ -275,8 +275,8 @@ TEST(LcmConversion, HealthBeforeTheFirstAnalysisHasNoLinesNorDefects) {
 }
 
 TEST(LcmPublishQueue, BadUrlsAreRefusedNamingTheUrl) {
-  for (const std::string url : {"nosuch://x", "file:///nonexistent_dir_bearing_sim/x.lcm?mode=w",
-                                "udpm://999.1.1.1:7667", "garbage"}) {
+  for (const std::string url :
+       {"nosuch://x", "file:///nonexistent_dir_bearing_sim/x.lcm?mode=w", "udpm://999.1.1.1:7667", "garbage"}) {
     try {
       LcmPublishQueue q(url, 1000);
       ADD_FAILURE() << "no error for " << url;

@@ -118,7 +118,8 @@ TEST_F(LiveRecording, VibrationHasNoGap) {
   std::size_t gaps = 0, bad_stamps = 0, bad_sizes = 0;
   for (const auto& [t, c] : chunks) {
     if (c->first_sample != next) ++gaps;
-    const double expected = first.header.stamp.toSec() + static_cast<double>(c->first_sample - first.first_sample) / rate;
+    const double expected =
+        first.header.stamp.toSec() + static_cast<double>(c->first_sample - first.first_sample) / rate;
     if (std::abs(c->header.stamp.toSec() - expected) > kStampTolerance_s) ++bad_stamps;
     const std::size_t n = c->accel_x.size();
     if (n == 0 || c->accel_y.size() != n || c->accel_z.size() != n || c->displacement_x.size() != n ||

@@ -34,7 +34,9 @@ TEST(FastMode, EverySampleOnceOnSimulatedTimeAndPublishesClock) {
   ASSERT_GT(chunk, 0u);
   ASSERT_TRUE(rec.wait_for([] { return !ros::Time::now().isZero(); }, 60.0)) << "no /clock received";
   const ros::Time clock0 = ros::Time::now();
-  const auto samples_at = [](const ros::Time& t) { return static_cast<std::uint64_t>(std::llround(t.toSec() * kRate)); };
+  const auto samples_at = [](const ros::Time& t) {
+    return static_cast<std::uint64_t>(std::llround(t.toSec() * kRate));
+  };
   EXPECT_EQ((samples_at(clock0) + 1) % chunk, 0u) << "clock " << clock0 << " is not a chunk end";
   ASSERT_TRUE(rec.wait_for([&] { return ros::Time::now() > clock0; }, 60.0)) << "/clock stopped at " << clock0;
   const ros::Time clock1 = ros::Time::now();

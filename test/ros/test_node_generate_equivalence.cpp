@@ -87,10 +87,12 @@ std::size_t compare(const std::vector<VibrationChunk>& chunks, const CollectSink
 TEST(NodeGenerateEquivalence, SameSamplesForTheSameInputsAndSeed) {
   ros::NodeHandle nh;
   Received ideal, measured;
-  ros::Subscriber si = nh.subscribe("vibration_ideal", 100000, &Received::on, &ideal, ros::TransportHints().tcpNoDelay());
+  ros::Subscriber si =
+      nh.subscribe("vibration_ideal", 100000, &Received::on, &ideal, ros::TransportHints().tcpNoDelay());
   ros::Subscriber sm = nh.subscribe("vibration", 100000, &Received::on, &measured, ros::TransportHints().tcpNoDelay());
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(60.0);
-  while ((ideal.size() < 30 || measured.size() < 30) && ros::WallTime::now() < deadline) ros::WallDuration(0.01).sleep();
+  while ((ideal.size() < 30 || measured.size() < 30) && ros::WallTime::now() < deadline)
+    ros::WallDuration(0.01).sleep();
   si.shutdown();
   sm.shutdown();
   ASSERT_GE(ideal.size(), 30u) << "no vibration_ideal from the node";

@@ -36,8 +36,8 @@ class Stream {
     next_ = msg->first_sample + n;
     ++chunks_;
     for (std::size_t i = 0; i < n; ++i) {
-      non_finite_ += !std::isfinite(msg->accel_x[i]) || !std::isfinite(msg->accel_y[i]) ||
-                     !std::isfinite(msg->accel_z[i]);
+      non_finite_ +=
+          !std::isfinite(msg->accel_x[i]) || !std::isfinite(msg->accel_y[i]) || !std::isfinite(msg->accel_z[i]);
       if (capture_.size() < capture_target_) capture_.push_back(msg->accel_x[i]);
     }
     tilt_fields_ok_ = msg->tilt_x.size() == n && msg->tilt_y.size() == n;
@@ -55,12 +55,30 @@ class Stream {
     std::lock_guard<std::mutex> lock(mutex_);
     return capture_;
   }
-  std::uint64_t next() { std::lock_guard<std::mutex> lock(mutex_); return next_; }
-  std::uint64_t chunks() { std::lock_guard<std::mutex> lock(mutex_); return chunks_; }
-  std::uint64_t gaps_or_repeats() { std::lock_guard<std::mutex> lock(mutex_); return gaps_or_repeats_; }
-  std::uint64_t non_finite() { std::lock_guard<std::mutex> lock(mutex_); return non_finite_; }
-  double sample_rate() { std::lock_guard<std::mutex> lock(mutex_); return sample_rate_; }
-  bool tilt_fields_ok() { std::lock_guard<std::mutex> lock(mutex_); return tilt_fields_ok_; }
+  std::uint64_t next() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return next_;
+  }
+  std::uint64_t chunks() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return chunks_;
+  }
+  std::uint64_t gaps_or_repeats() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return gaps_or_repeats_;
+  }
+  std::uint64_t non_finite() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return non_finite_;
+  }
+  double sample_rate() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return sample_rate_;
+  }
+  bool tilt_fields_ok() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return tilt_fields_ok_;
+  }
 
  private:
   std::mutex mutex_;
@@ -86,12 +104,12 @@ struct Fixture {
       health.push_back(*m);
       if (health.size() > 2000) health.pop_front();
     });
-    sub_d = nh.subscribe<diagnostic_msgs::DiagnosticArray>("/diagnostics", 100,
-                                                          [this](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
-      std::lock_guard<std::mutex> lock(mutex);
-      for (const auto& s : m->status)
-        if (s.name.find("bearing_sim_node: Health") != std::string::npos) diagnostics["Health"] = s;
-    });
+    sub_d = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
+        "/diagnostics", 100, [this](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+          std::lock_guard<std::mutex> lock(mutex);
+          for (const auto& s : m->status)
+            if (s.name.find("bearing_sim_node: Health") != std::string::npos) diagnostics["Health"] = s;
+        });
   }
   // The first health message stamped at or after t (simulated seconds) with an analysis.
   bool wait_health_after(double t, BearingHealth* out, double timeout_s) {
@@ -229,9 +247,10 @@ TEST(NodeHealth, InjectedInnerRaceSpallIsDiagnosedAndClearingReturnsToOk) {
   ASSERT_TRUE(f.wait_health_after(injected_at + 2.0 * kWindowS + 0.5, &h, 30.0));
   const auto* l = line(h, "BPFI");
   ASSERT_NE(l, nullptr);
-  std::printf("[ measured ] spall: level %d, BPFI expected %.3f Hz, peak %.3f Hz, %.1f dB; RMS %.3g, kurtosis %.2f\n"
-              "             %s\n",
-              h.level, bpfi, l->peak_hz, l->snr_db, h.accel_rms, h.kurtosis, h.reason.c_str());
+  std::printf(
+      "[ measured ] spall: level %d, BPFI expected %.3f Hz, peak %.3f Hz, %.1f dB; RMS %.3g, kurtosis %.2f\n"
+      "             %s\n",
+      h.level, bpfi, l->peak_hz, l->snr_db, h.accel_rms, h.kurtosis, h.reason.c_str());
   EXPECT_GE(h.level, BearingHealth::WARN);
   EXPECT_NE(h.reason.find("inner race defect suspected"), std::string::npos) << h.reason;
   EXPECT_NEAR(l->expected_hz, bpfi, 1e-9 * bpfi);

@@ -1,13 +1,13 @@
 // ROS-free units of bearing_sim_node: pacer, chunk assembler, input validation, the
 // divergence-safe sample source, the sample-rate divider and the timing statistics.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <algorithm>
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <optional>
 #include <regex>
-#include <limits>
 #include <stdexcept>
 #include <thread>
 
@@ -312,7 +312,8 @@ TEST(SampleSource, ADivergingStateIsResetToTheEquilibriumAndNeverNaN) {
   // exponential integrator is stable there, the linear part being exact.)
   const BearingModel model(load_bearing_config(kCtBearing));
   const StaticSolution s = solve_static(model, ct_load());
-  SampleSource source(BearingDynamics(model, ct_load(), kCtSpeed, DynamicsOptions{2000.0, 1, true, IntegrationMethod::Rk4}));
+  SampleSource source(
+      BearingDynamics(model, ct_load(), kCtSpeed, DynamicsOptions{2000.0, 1, true, IntegrationMethod::Rk4}));
   std::uint64_t diverged = 0;
   for (std::uint64_t i = 0; i < 4000; ++i) {
     const SampleSource::Sample smp = source.next();

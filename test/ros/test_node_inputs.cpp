@@ -48,8 +48,7 @@ void expect_mean_at_static(const Vector5& load, std::uint64_t from, std::uint64_
   const double scale = s.displacement.head<3>().norm();
   // 0.5 %: see test_node_steady_state (vibration < 1e-10 m, damped transients gone in ~10 ms).
   for (int c = 0; c < 3; ++c)
-    EXPECT_NEAR(recorder().mean_displacement(c, from, to), s.displacement[c], 0.005 * scale)
-        << what << ", axis " << c;
+    EXPECT_NEAR(recorder().mean_displacement(c, from, to), s.displacement[c], 0.005 * scale) << what << ", axis " << c;
 }
 
 bool reconfigure(const std::string& name, double value, bool is_int = false,
@@ -126,7 +125,7 @@ TEST_F(NodeInputs, LoadStepOf2xReachesTheNewEquilibrium) {
 
 TEST_F(NodeInputs, SpeedChangeMovesTheVaryingCompliancePeak) {
   const bearing_sim::BearingModel model = ct_model();
-  const double old_speed = kCtSpeed, new_speed = 120.0 * 2.0 * M_PI / 60.0;  // 180 -> 120 rpm
+  const double old_speed = kCtSpeed, new_speed = 120.0 * 2.0 * M_PI / 60.0;                       // 180 -> 120 rpm
   const double f_old = bearing_sim::bearing_frequencies(model, old_speed).varying_compliance_hz;  // 313 Hz
   const double f_new = bearing_sim::bearing_frequencies(model, new_speed).varying_compliance_hz;  // 209 Hz
   send_speed(old_speed);
@@ -265,8 +264,8 @@ TEST_F(NodeInputs, BadReconfigureValuesAndDefectGrowthsAreRefused) {
   dynamic_reconfigure::Config before;
   ASSERT_TRUE(reconfigure("level_rate_hz", 10.0, false, &before));
   int refused = 0;
-  for (const char* name : {"clearance_um", "contact_damping_Ns_per_m", "level_window_s", "level_rate_hz",
-                           "ball_loads_rate_hz"}) {
+  for (const char* name :
+       {"clearance_um", "contact_damping_Ns_per_m", "level_window_s", "level_rate_hz", "ball_loads_rate_hz"}) {
     // NaN passes the server's clamp and must be refused by the node (reverted).
     dynamic_reconfigure::Config applied;
     ASSERT_TRUE(reconfigure(name, nan, false, &applied)) << name;

@@ -117,7 +117,7 @@ TEST(SimNodeParameters, ShippedFileIsReadAsWritten) {
   EXPECT_EQ(p.limits.max_force_N, yaml["max_force_N"].as<double>());
   EXPECT_EQ(*p.chunk_samples, yaml["chunk_samples"].as<int>());
   EXPECT_EQ(bearing_sim::integration_method_name(p.integrator), yaml["integrator"].as<std::string>());
-  EXPECT_FALSE(p.frame_id.has_value());  // commented out: the rotating ring's frame
+  EXPECT_FALSE(p.frame_id.has_value());      // commented out: the rotating ring's frame
   EXPECT_FALSE(p.clearance_um.has_value());  // commented out: the bearing file's
   EXPECT_EQ(p.publish_clock, !p.real_time);
   EXPECT_EQ(p.max_real_time_factor, yaml["max_real_time_factor"].as<double>());
@@ -169,8 +169,7 @@ TEST(SimNodeParameters, EachBadValueIsNamedWithItsKeyAndRange) {
     XmlRpcValue v = sim_file();
     v[c.key] = c.value;
     const std::string message = error_of([&] { read_sim(v); });
-    EXPECT_NE(message.find(kSimNs + "/" + c.key + " = " + c.expected), std::string::npos)
-        << c.key << ": " << message;
+    EXPECT_NE(message.find(kSimNs + "/" + c.key + " = " + c.expected), std::string::npos) << c.key << ": " << message;
   }
 }
 
@@ -191,7 +190,8 @@ TEST(SimNodeParameters, InitialForceMagnitudeBeyondTheLimitIsRefused) {
   v["initial_force_y_N"] = 0.8e5;
   const std::string message = error_of([&] { read_sim(v); });
   EXPECT_NE(message.find("initial_force_x_N = 80000: the initial force's magnitude exceeds max_force_N"),
-            std::string::npos) << message;
+            std::string::npos)
+      << message;
   v["initial_force_y_N"] = 0.6e5;  // magnitude exactly 1e5 N: accepted
   EXPECT_NO_THROW(read_sim(v));
 }
@@ -211,8 +211,9 @@ TEST(VizParameters, ShippedFileIsReadAsWrittenAndDocumented) {
 TEST(VizParameters, BadValuesAreNamed) {
   XmlRpcValue v = viz_file();
   v["update_rate_hz"] = 0.0;
-  EXPECT_NE(error_of([&] { read_viz(v); }).find("/bearing/bearing_viz/update_rate_hz = 0: must be a finite number in "
-                                                "[0.1, 200] Hz"),
+  EXPECT_NE(error_of([&] { read_viz(v); })
+                .find("/bearing/bearing_viz/update_rate_hz = 0: must be a finite number in "
+                      "[0.1, 200] Hz"),
             std::string::npos);
   v = viz_file();
   v["ball_scale"] = std::string("big");
@@ -241,8 +242,9 @@ TEST(LcmBridgeParameters, ShippedFileIsReadAsWrittenAndDocumented) {
 TEST(LcmBridgeParameters, BadValuesAreNamed) {
   XmlRpcValue v = lcm_file();
   v["lcm_url"] = std::string("file:///tmp/run.lcm");
-  EXPECT_NE(error_of([&] { read_lcm(v); }).find("/bearing/lcm_bridge/lcm_url = \"file:///tmp/run.lcm\": a file:// URL "
-                                                "needs mode=w"),
+  EXPECT_NE(error_of([&] { read_lcm(v); })
+                .find("/bearing/lcm_bridge/lcm_url = \"file:///tmp/run.lcm\": a file:// URL "
+                      "needs mode=w"),
             std::string::npos);
   v = lcm_file();
   v["health_channel"] = std::string("");

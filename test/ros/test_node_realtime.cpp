@@ -90,8 +90,8 @@ TEST(RealTime, EverySampleOnceAndOnTheWallClock) {
   EXPECT_FALSE(Recorder::value(rt, "overruns").empty());
   std::cout << "node lag p50/p99/max (ms): " << Recorder::value(rt, "lag p50 (ms)") << " / "
             << Recorder::value(rt, "lag p99 (ms)") << " / " << Recorder::value(rt, "lag max (ms)") << ", overruns "
-            << Recorder::value(rt, "overruns") << "; CPU of " << (manager_pid > 0 ? "the nodelet manager" : "bearing_sim_node") << ": "
-            << 100.0 * cpu_s / wall_s
+            << Recorder::value(rt, "overruns") << "; CPU of "
+            << (manager_pid > 0 ? "the nodelet manager" : "bearing_sim_node") << ": " << 100.0 * cpu_s / wall_s
             << " % of one core" << std::endl;
 }
 

@@ -95,10 +95,10 @@ TEST(SteadyState, BallLoadsBalanceTheAppliedLoad) {
     const Eigen::Vector3d e(std::cos(a) * std::cos(phi), std::cos(a) * std::sin(phi), cr * std::sin(a));
     const Eigen::Vector3d e0(std::cos(c.contact_angle_rad) * std::cos(phi),
                              std::cos(c.contact_angle_rad) * std::sin(phi), cr * std::sin(c.contact_angle_rad));
-    const Eigen::Vector3d p_o = Eigen::Vector3d(model.pitch_radius_m() * std::cos(phi),
-                                                model.pitch_radius_m() * std::sin(phi),
-                                                model.row_axial_position_m(row)) -
-                                (c.outer_groove_curvature - 0.5) * c.ball_diameter_m * e0;
+    const Eigen::Vector3d p_o =
+        Eigen::Vector3d(model.pitch_radius_m() * std::cos(phi), model.pitch_radius_m() * std::sin(phi),
+                        model.row_axial_position_m(row)) -
+        (c.outer_groove_curvature - 0.5) * c.ball_diameter_m * e0;
     force += q * e;
     moment += p_o.cross(q * e);
   }

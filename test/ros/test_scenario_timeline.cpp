@@ -132,7 +132,7 @@ TEST(ScenarioTimeline, EachDefectEventFiresOnceInOrderAtItsTime) {
       const ScenarioDefectEvent& e = sc.defect_events()[i];
       EXPECT_EQ(events[i].command.event.kind, e.kind);
       EXPECT_EQ(events[i].command.event.time_s, e.time_s);
-      EXPECT_GE(events[i].tick_s, e.time_s);       // never early
+      EXPECT_GE(events[i].tick_s, e.time_s);         // never early
       EXPECT_LT(events[i].tick_s, e.time_s + step);  // at the first tick at or after it
     }
     EXPECT_EQ(events[0].command.event.kind, ScenarioDefectEvent::Kind::Spall);
@@ -281,11 +281,10 @@ int main(int argc, char** argv) {
 // The ring temperature difference goes out on the load grid, only when its staircase steps,
 // with the scenario's value at the time sent; a scenario without the key sends none.
 TEST(ScenarioTimeline, RingTemperatureGoesOutOnEachStepOnly) {
-  const Scenario s = Scenario::from_string(
-      scenario_text() +
-          "ring_temperature_difference:\n"
-          "  segments: [{type: ramp, start_s: 1, end_s: 3, difference_K: -1}]\n",
-      "/tmp/timeline_test.yaml");
+  const Scenario s = Scenario::from_string(scenario_text() +
+                                               "ring_temperature_difference:\n"
+                                               "  segments: [{type: ramp, start_s: 1, end_s: 3, difference_K: -1}]\n",
+                                           "/tmp/timeline_test.yaml");
   ScenarioTimeline tl(s, TimelineSettings{});
   const std::vector<Sent> sent = of_kind(play(tl, 0.001, 6.0), Kind::RingTemperature);
   // 0 K at the start, then 10 steps of 0.1 K down to -1 K.

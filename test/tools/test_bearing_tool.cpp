@@ -27,7 +27,6 @@ namespace {
 using nlohmann::json;
 constexpr double kPi = 3.14159265358979323846;
 
-
 using bearing_sim::test::read_file;
 using bearing_sim::test::RunResult;
 
@@ -82,8 +81,8 @@ TEST_F(ToolTest, HelpOnEverySubcommandExitsZeroAndListsItsOptions) {
       {"static", {"--bearing", "--force", "--moment", "--cage-angle-deg", "--json"}},
       {"frequencies", {"--bearing", "--outer-rpm", "--inner-rpm", "--json"}},
       {"simulate",
-       {"--bearing", "--force", "--moment", "--outer-rpm", "--inner-rpm", "--duration", "--rate", "--csv",
-        "--substeps", "--json"}},
+       {"--bearing", "--force", "--moment", "--outer-rpm", "--inner-rpm", "--duration", "--rate", "--csv", "--substeps",
+        "--json"}},
   };
   for (const auto& [command, options] : cases) {
     const RunResult r = run(command + " --help");
@@ -161,11 +160,11 @@ TEST_F(ToolTest, MissingBearingFileIsBadInputNamingIt) {
 TEST_F(ToolTest, BadVectorsAndNumbersNameTheOption) {
   const std::string b = " --bearing '" + kCt + "'";
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"static" + b + " --force 1,2", "--force"},            // too few
-      {"static" + b + " --force 1,2,3,4", "--force"},        // too many
-      {"static" + b + " --force 1,nan,3", "--force"},        // NaN
-      {"static" + b + " --force 1,inf,3", "--force"},        // infinite
-      {"static" + b + " --force 1,abc,3", "--force"},        // not a number
+      {"static" + b + " --force 1,2", "--force"},      // too few
+      {"static" + b + " --force 1,2,3,4", "--force"},  // too many
+      {"static" + b + " --force 1,nan,3", "--force"},  // NaN
+      {"static" + b + " --force 1,inf,3", "--force"},  // infinite
+      {"static" + b + " --force 1,abc,3", "--force"},  // not a number
       {"static" + b + " --moment 1", "--moment"},
       {"static" + b + " --moment 1,nan", "--moment"},
       {"static" + b + " --cage-angle-deg nan", "--cage-angle-deg"},
@@ -253,8 +252,7 @@ TEST_F(ToolTest, StaticMatchesCoreSolverAndBallLoadsBalanceTheForce) {
     // out is 0.44 % off for the CT case (|u| / A = 6.6 um / 1.3 mm). Taking v_t from the
     // translation (x, y) only neglects the tilt's share theta * z (about 0.3 um against 6.6 um,
     // a few % of that 0.44 %): within 0.1 % of |F|.
-    const double A = model.groove_centre_distance_m(), s = model.moving_sign(),
-                 g0 = model.config().clearance_m;
+    const double A = model.groove_centre_distance_m(), s = model.moving_sign(), g0 = model.config().clearance_m;
     const double ux = j["displacement"][0], uy = j["displacement"][1];
     ASSERT_EQ(j["balls"].size(), static_cast<std::size_t>(model.ball_count()));
     double fx = 0, fy = 0, fz = 0, fx_angles = 0, fy_angles = 0, max_load = 0;
@@ -400,8 +398,7 @@ TEST_F(ToolTest, SimulateCsvHasOneRowPerSampleAndMeanIsTheStaticDisplacement) {
 
   std::string header;
   const auto rows = parse_csv(csv, &header);
-  EXPECT_EQ(header,
-            "time_s,x_m,y_m,z_m,theta_x_rad,theta_y_rad,ax_m_s2,ay_m_s2,az_m_s2,alpha_x_rad_s2,alpha_y_rad_s2");
+  EXPECT_EQ(header, "time_s,x_m,y_m,z_m,theta_x_rad,theta_y_rad,ax_m_s2,ay_m_s2,az_m_s2,alpha_x_rad_s2,alpha_y_rad_s2");
   ASSERT_EQ(rows.size(), expected_rows);
   EXPECT_EQ(j["samples"].get<std::size_t>(), expected_rows);
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -453,14 +450,16 @@ TEST_F(ToolTest, SimulateCsvHasOneRowPerSampleAndMeanIsTheStaticDisplacement) {
 // 5 % holds both. Gaussian noise has kurtosis 3 (its estimate from 5000 correlated samples
 // scatters by ~0.1).
 TEST_F(ToolTest, SimulateThroughASensorGivesItsNoiseFloorAndWritesItsSamples) {
-  const std::string sensor_file = std::string(BEARING_SIM_SOURCE_DIR) + "/config/sensors/ct_gantry_housing_accelerometer.yaml";
+  const std::string sensor_file =
+      std::string(BEARING_SIM_SOURCE_DIR) + "/config/sensors/ct_gantry_housing_accelerometer.yaml";
   const std::string csv = dir_ + "/sensor.csv";
   const json j = run_json("simulate --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 " +
                           "--duration 1 --sensor '" + sensor_file + "' --sensor-csv '" + csv + "'");
   ASSERT_TRUE(j["sensor"].is_object()) << j.dump();
   const bearing_sim::AccelerometerConfig config = bearing_sim::load_accelerometer_config(sensor_file);
   const double pi = 3.141592653589793, n = config.anti_alias_order;
-  const double bandwidth = config.anti_alias_cutoff_fraction * config.output_rate_hz * (pi / (2 * n)) / std::sin(pi / (2 * n));
+  const double bandwidth =
+      config.anti_alias_cutoff_fraction * config.output_rate_hz * (pi / (2 * n)) / std::sin(pi / (2 * n));
   const double noise_rms = config.noise_density_m_s2_per_sqrt_hz * std::sqrt(bandwidth);
   EXPECT_NEAR(j["sensor"]["rms"][0].get<double>(), noise_rms, 0.05 * noise_rms);
   EXPECT_NEAR(j["sensor"]["kurtosis"][0].get<double>(), 3.0, 0.3);
@@ -483,20 +482,23 @@ TEST_F(ToolTest, SimulateThroughASensorGivesItsNoiseFloorAndWritesItsSamples) {
   EXPECT_NEAR(rms, j["sensor"]["rms"][0].get<double>(), 1e-8 * rms);
 
   // Without --sensor the JSON says so (null), and --sensor-csv alone is refused.
-  const json ideal = run_json("simulate --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.01");
+  const json ideal =
+      run_json("simulate --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.01");
   EXPECT_TRUE(ideal["sensor"].is_null());
-  const RunResult alone = run("simulate --bearing '" + kCt + "' --outer-rpm 10 --duration 0.01 --sensor-csv '" + csv + "'");
+  const RunResult alone =
+      run("simulate --bearing '" + kCt + "' --outer-rpm 10 --duration 0.01 --sensor-csv '" + csv + "'");
   EXPECT_EQ(alone.exit_code, 2);
   EXPECT_NE(alone.err.find("--sensor"), std::string::npos) << alone.err;
   // A sensor that cannot run at the run's rate (its 10 kHz output does not divide 7 kHz).
-  const RunResult rate = run("simulate --bearing '" + kCt + "' --outer-rpm 10 --duration 0.01 --rate 7000 --sensor '" +
-                             sensor_file + "'");
+  const RunResult rate =
+      run("simulate --bearing '" + kCt + "' --outer-rpm 10 --duration 0.01 --rate 7000 --sensor '" + sensor_file + "'");
   EXPECT_EQ(rate.exit_code, 2);
   EXPECT_NE(rate.err.find("--sensor"), std::string::npos) << rate.err;
 }
 
 TEST_F(ToolTest, SimulateExplicitSubstepsAreUsed) {
-  const json j = run_json("simulate --bearing '" + kCt + "' --force 6800,0,0 --outer-rpm 180 --duration 0.01 "
+  const json j = run_json("simulate --bearing '" + kCt +
+                          "' --force 6800,0,0 --outer-rpm 180 --duration 0.01 "
                           "--rate 10000 --substeps 3");
   EXPECT_EQ(j["substeps"].get<int>(), 3);
   EXPECT_NEAR(j["internal_step_s"].get<double>(), 1.0 / 30000.0, 1e-15);
@@ -505,7 +507,8 @@ TEST_F(ToolTest, SimulateExplicitSubstepsAreUsed) {
 
 TEST_F(ToolTest, SimulateRefusesASpeedOnTheFixedRing) {
   // CT file: the outer ring turns, the inner one is fixed.
-  const RunResult r = run("simulate --bearing '" + kCt + "' --force 6800,0,0 --outer-rpm 180 --inner-rpm 10 "
+  const RunResult r = run("simulate --bearing '" + kCt +
+                          "' --force 6800,0,0 --outer-rpm 180 --inner-rpm 10 "
                           "--duration 0.01");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(contains(r.err, "--inner-rpm")) << r.err;
@@ -519,8 +522,10 @@ TEST_F(ToolTest, SimulateRefusesASpeedOnTheFixedRing) {
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_TRUE(contains(o.err, "--outer-rpm")) << o.err;
   // ... and its own speed is accepted.
-  EXPECT_EQ(run("simulate --json --bearing '" + path + "' --force 100,0,0 --inner-rpm 600 --duration 0.002 "
-                "--rate 10000").exit_code,
+  EXPECT_EQ(run("simulate --json --bearing '" + path +
+                "' --force 100,0,0 --inner-rpm 600 --duration 0.002 "
+                "--rate 10000")
+                .exit_code,
             0);
   // frequencies takes both speeds.
   EXPECT_EQ(run("frequencies --bearing '" + kCt + "' --outer-rpm 180 --inner-rpm 10").exit_code, 0);
@@ -555,8 +560,7 @@ TEST_F(ToolTest, StaticWithAFlexibleRingIsTheCoresFlexibleEquilibrium) {
   // The same computation: equal to the printed digits (JSON doubles round-trip).
   EXPECT_NEAR(j["max_ball_load_N"].get<double>(), core.rigid_coordinates.max_ball_load_N, 1e-9);
   EXPECT_NEAR(j["flexible_ring"]["rigid_ring_max_ball_load_N"].get<double>(), rigid_peak, 1e-9);
-  for (int i = 0; i < 5; ++i)
-    EXPECT_NEAR(j["displacement"][i].get<double>(), core.coordinates[i], 1e-15) << i;
+  for (int i = 0; i < 5; ++i) EXPECT_NEAR(j["displacement"][i].get<double>(), core.coordinates[i], 1e-15) << i;
   // Ten modes, n = 2..6 in and out of plane; the first is the free ring's n = 2 (Hoppe, 84.7 Hz).
   ASSERT_EQ(j["flexible_ring"]["modes"].size(), 10u);
   EXPECT_EQ(j["flexible_ring"]["modes"][0]["direction"], "in_plane");
@@ -588,7 +592,8 @@ TEST_F(ToolTest, SimulateWithAFlexibleRingWritesTheModalCoordinates) {
   EXPECT_EQ(run_json("simulate --bearing '" + kCtFlexible + "' --force 6800,0,0 --outer-rpm 180 --duration 0.01 " +
                      "--integrator rk4")["integrator"],
             "rk4");
-  const RunResult r = run("simulate --bearing '" + kCtFlexible + "' --force 6800,0,0 --outer-rpm 180 --duration 0.01 "
+  const RunResult r = run("simulate --bearing '" + kCtFlexible +
+                          "' --force 6800,0,0 --outer-rpm 180 --duration 0.01 "
                           "--integrator etdrk4");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("--integrator"), std::string::npos) << r.err;

@@ -15,11 +15,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "../core/bearing_6205_yaml.hpp"
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/condition_indicators.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/simulation_run.hpp"
-#include "../core/bearing_6205_yaml.hpp"
 #include "tool_runner.hpp"
 
 namespace {
@@ -49,7 +49,8 @@ TEST_F(AnalyzeTool, SameIndicatorsAsTheLibrary) {
   const RunResult sim = run("simulate --bearing '" + bearing_ +
                             "' --force 1000,0,200 --inner-rpm 1800 --rate 40000 --duration 1 --csv '" + csv + "'");
   ASSERT_EQ(sim.exit_code, 0) << sim.err;
-  const RunResult r = run("analyze --csv '" + csv + "' --bearing '" + bearing_ + "' --inner-rpm 1800 --window-s 0.8 --json");
+  const RunResult r =
+      run("analyze --csv '" + csv + "' --bearing '" + bearing_ + "' --inner-rpm 1800 --window-s 0.8 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json j = json::parse(r.out);
 
@@ -61,7 +62,8 @@ TEST_F(AnalyzeTool, SameIndicatorsAsTheLibrary) {
   req.duration_s = 1.0;
   req.sample_rate_hz = 40000.0;
   std::vector<double> ax;
-  bearing_sim::run_simulation(model, req, [&ax](const bearing_sim::DynamicSample& s) { ax.push_back(s.acceleration[0]); });
+  bearing_sim::run_simulation(model, req,
+                              [&ax](const bearing_sim::DynamicSample& s) { ax.push_back(s.acceleration[0]); });
   bearing_sim::AnalysisOptions o;
   o.window_s = 0.8;
   const bearing_sim::ConditionIndicators c =
@@ -122,7 +124,8 @@ TEST_F(AnalyzeTool, SameIndicatorsAsTheLibrary) {
   const RunResult t = run("analyze --csv '" + csv + "' --bearing '" + bearing_ + "' --inner-rpm 1800 --window-s 0.8");
   ASSERT_EQ(t.exit_code, 0) << t.err;
   EXPECT_NE(t.out.find("Diagnosis: " + std::string(bearing_sim::health_level_name(c.diagnosis.level))),
-            std::string::npos) << t.out;
+            std::string::npos)
+      << t.out;
 }
 
 TEST_F(AnalyzeTool, BadInput) {

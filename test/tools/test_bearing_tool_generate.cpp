@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <std_msgs/String.h>
+#include <nlohmann/json.hpp>
 
 #include "bearing_sim/BallLoads.h"
 #include "bearing_sim/BearingHealth.h"
@@ -308,13 +308,14 @@ TEST_F(Generate, AFlexibleRingScenarioIsFlexibleDynamicsDrivenByIt) {
   // (speed at each sample's middle, the load's line through it, defects before the sample
   // after their time), to the float.
   const std::string file = dir_ + "/flexible.yaml";
-  std::ofstream(file) << "name: flexible\nduration_s: 0.12\nseed: 3\nbearing_file: "
-                      << source_file("config/bearings/ct_gantry_flexible.yaml")
-                      << "\nspeed:\n  initial_speed_rpm: 150\n"
-                         "  segments: [{type: ramp, start_s: 0.02, end_s: 0.1, to_speed_rpm: 180}]\n"
-                         "load:\n  initial: {force_N: [6800, 0, 0], moment_Nm: [0, 2100]}\n"
-                         "  segments: [{type: step, start_s: 0.05, force_N: [9000, 0, 0], moment_Nm: [0, 2100]}]\n"
-                         "defects:\n  - {type: spall, at_s: 0.03, surface: outer_race, position_deg: 0, width_mm: 1, depth_um: 20}\n";
+  std::ofstream(file)
+      << "name: flexible\nduration_s: 0.12\nseed: 3\nbearing_file: "
+      << source_file("config/bearings/ct_gantry_flexible.yaml")
+      << "\nspeed:\n  initial_speed_rpm: 150\n"
+         "  segments: [{type: ramp, start_s: 0.02, end_s: 0.1, to_speed_rpm: 180}]\n"
+         "load:\n  initial: {force_N: [6800, 0, 0], moment_Nm: [0, 2100]}\n"
+         "  segments: [{type: step, start_s: 0.05, force_N: [9000, 0, 0], moment_Nm: [0, 2100]}]\n"
+         "defects:\n  - {type: spall, at_s: 0.03, surface: outer_race, position_deg: 0, width_mm: 1, depth_um: 20}\n";
   const auto r = run_bearing_tool("generate '" + file + "' --out '" + dir_ + "/f' --format npy --quiet", dir_);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::uint64_t rows = 0;

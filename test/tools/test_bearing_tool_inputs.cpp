@@ -34,8 +34,8 @@ class ToolInputTest : public bearing_sim::test::ToolScratchTest {
  protected:
   // The CT bearing file with one line replaced (the key must be in it).
   std::string ct_with(const std::string& key, const std::string& value) {
-    const std::string text = std::regex_replace(read_file(kCt), std::regex("(^|\n)( *)" + key + ":[^\n]*"),
-                                                "$1$2" + key + ": " + value);
+    const std::string text =
+        std::regex_replace(read_file(kCt), std::regex("(^|\n)( *)" + key + ":[^\n]*"), "$1$2" + key + ": " + value);
     EXPECT_NE(text, read_file(kCt)) << key;
     return write("ct_" + key + ".yaml", text);
   }
@@ -53,7 +53,8 @@ class ToolInputTest : public bearing_sim::test::ToolScratchTest {
 TEST_F(ToolInputTest, FilesThatAreNoRegularFilesAreRefusedNamingThem) {
   // /dev/zero used to be read until memory ran out; a directory gave "empty file" or
   // "basic_filebuf::underflow" with exit 1.
-  for (const std::string& path : {std::string("/dev/zero"), std::string("/dev/urandom"), dir_, dir_ + "/missing.yaml"}) {
+  for (const std::string& path :
+       {std::string("/dev/zero"), std::string("/dev/urandom"), dir_, dir_ + "/missing.yaml"}) {
     expect_refused("static --bearing '" + path + "'", {path});
     expect_refused("frequencies --bearing '" + path + "' --outer-rpm 10", {path});
     expect_refused("sweep --definition '" + path + "' --csv '" + dir_ + "/out.csv'", {path});
@@ -130,8 +131,8 @@ TEST_F(ToolInputTest, ACsvWithAHoleInItsTimeIsRefusedNamingTheLineAndTheGap) {
   EXPECT_TRUE(contains(r.out, "\"sample_rate_hz\": 20000")) << r.out;
   // Uniform steps pass, also with times printed to a microsecond at 200 kHz (5 us +- 1 us).
   EXPECT_EQ(run("analyze --csv '" + write("whole.csv", sine_csv(2.0, 9)) + "'" + analyze).exit_code, 0);
-  const RunResult coarse = run("analyze --csv '" + write("coarse.csv", sine_csv(0.1, 6, 0.0, 0.0, 200000.0)) +
-                               "'" + analyze + " --json");
+  const RunResult coarse =
+      run("analyze --csv '" + write("coarse.csv", sine_csv(0.1, 6, 0.0, 0.0, 200000.0)) + "'" + analyze + " --json");
   EXPECT_EQ(coarse.exit_code, 0) << coarse.err;
   // One sample missing is a step of twice the others: refused.
   expect_refused("analyze --csv '" + write("one.csv", sine_csv(0.1, 9, 0.05, 0.05004)) + "'" + analyze,
@@ -171,9 +172,10 @@ TEST_F(ToolInputTest, ABearingValueThatStallsTheIntegratorIsRefusedNamingTheKeyA
                      "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.01",
                  {"overdamped", "contact_damping_Ns_per_m", "implausibly large"});
   // A dynamic sweep over such a bearing: refused before any case runs, naming the case.
-  const std::string sweep = write("stall_sweep.yaml", "name: stall\nbearing: " + ct_with("contact_damping_Ns_per_m", "1e10") +
-                                                          "\noperating_point: {force_N: [6800, 0, 0], speed_rpm: 180, "
-                                                          "duration_s: 0.01}\nparameter: clearance_um\nvalues: [0, 1]\n");
+  const std::string sweep =
+      write("stall_sweep.yaml", "name: stall\nbearing: " + ct_with("contact_damping_Ns_per_m", "1e10") +
+                                    "\noperating_point: {force_N: [6800, 0, 0], speed_rpm: 180, "
+                                    "duration_s: 0.01}\nparameter: clearance_um\nvalues: [0, 1]\n");
   expect_refused("sweep --definition '" + sweep + "' --csv '" + dir_ + "/stall.csv' --quiet",
                  {sweep, "case 1 (clearance_um = 0", "overdamped", "contact_damping_Ns_per_m"});
   EXPECT_FALSE(std::filesystem::exists(dir_ + "/stall.csv")) << "nothing may be written for a refused sweep";
@@ -241,9 +243,9 @@ TEST_F(ToolInputTest, ABodyOrBearingPlaceBeyondAnyMachineIsRefusedNamingWhatWasG
                  {"--bearing-positions-mm 1e+300", "+-100000 mm"});
   EXPECT_FALSE(contains(run(modes + " --mass-kg 100 --inertia-kg-m2 1,1,1 --bearing-positions-mm 1e300").err, "kg"));
   // The limits themselves are machines.
-  EXPECT_EQ(run(modes + " --mass-kg 0.001 --inertia-kg-m2 1e-9,1e-9,1e-9 --bearing-positions-mm -100000,100000")
-                .exit_code,
-            0);
+  EXPECT_EQ(
+      run(modes + " --mass-kg 0.001 --inertia-kg-m2 1e-9,1e-9,1e-9 --bearing-positions-mm -100000,100000").exit_code,
+      0);
 }
 
 }  // namespace

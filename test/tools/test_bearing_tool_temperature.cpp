@@ -70,8 +70,10 @@ TEST_F(ToolTemperatureTest, BadValuesExit2NamingTheOption) {
   for (const std::string v : {"nan", "inf", "-inf", "warm"}) {
     expect_refused("static --bearing '" + kCt + "' --ring-temperature-difference-K " + v,
                    {"--ring-temperature-difference-K"});
-    expect_refused("simulate --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 "
-                   "--duration 0.01 --ring-temperature-difference-K " + v,
+    expect_refused("simulate --bearing '" + kCt +
+                       "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 "
+                       "--duration 0.01 --ring-temperature-difference-K " +
+                       v,
                    {"--ring-temperature-difference-K"});
     expect_refused("generate '" + kScan + "' --out '" + dir_ + "/out' --quiet --ring-temperature-difference-K " + v,
                    {"--ring-temperature-difference-K"});
@@ -79,8 +81,9 @@ TEST_F(ToolTemperatureTest, BadValuesExit2NamingTheOption) {
   // 120 K on the CT bearing's 1111 mm pitch circle: 630 um of interference, beyond 5 % of d.
   expect_refused("static --bearing '" + kCt + "' --force 6800,0,0 --ring-temperature-difference-K 120",
                  {"--ring-temperature-difference-K", "interference", "5 % of the ball diameter"});
-  expect_refused("simulate --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 "
-                 "--duration 0.01 --ring-temperature-difference-K 200",
+  expect_refused("simulate --bearing '" + kCt +
+                     "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 "
+                     "--duration 0.01 --ring-temperature-difference-K 200",
                  {"--ring-temperature-difference-K", "150 K"});
   expect_refused("generate '" + kScan + "' --out '" + dir_ + "/out' --quiet --ring-temperature-difference-K 120",
                  {"ring temperature difference 120 K", "interference"});

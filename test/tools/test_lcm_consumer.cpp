@@ -39,8 +39,8 @@ std::string write_log(const std::string& name, int seconds, std::int64_t skip) {
       const double t = static_cast<double>(i) / kRate;
       c.accel_x.push_back(static_cast<float>(kOffset + kAmplitude * std::sin(2.0 * M_PI * kFrequency * t)));
     }
-    for (auto* a : {&c.accel_y, &c.accel_z, &c.displacement_x, &c.displacement_y, &c.displacement_z, &c.tilt_x,
-                    &c.tilt_y})
+    for (auto* a :
+         {&c.accel_y, &c.accel_z, &c.displacement_x, &c.displacement_y, &c.displacement_z, &c.tilt_x, &c.tilt_y})
       a->assign(100, 0.0f);
     queue.push("BEARING_VIBRATION", encode_lcm(to_lcm(c)));
     // Another channel in the same log must be ignored.
@@ -72,7 +72,8 @@ struct Line {
 };
 
 std::vector<Line> lines(const std::string& output) {
-  static const std::regex re(R"(t = +([-0-9.]+) s +samples (\d+) +rms\(accel_x\) = ([-0-9.e+]+) m/s\^2 +L = +([-0-9.]+) dB)");
+  static const std::regex re(
+      R"(t = +([-0-9.]+) s +samples (\d+) +rms\(accel_x\) = ([-0-9.e+]+) m/s\^2 +L = +([-0-9.]+) dB)");
   std::vector<Line> out;
   for (std::sregex_iterator it(output.begin(), output.end(), re), end; it != end; ++it)
     out.push_back({std::stod((*it)[1]), std::stod((*it)[3]), std::stod((*it)[4]), std::stoi((*it)[2])});

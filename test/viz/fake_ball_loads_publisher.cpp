@@ -101,13 +101,12 @@ int main(int argc, char** argv) {
   fake.loads_pub = nh.advertise<bearing_sim::BallLoads>("ball_loads", 1);
   fake.chunk_pub = nh.advertise<bearing_sim::VibrationChunk>("vibration", 10);
   fake.level_pub = nh.advertise<bearing_sim::VibrationLevel>("vibration_level", 1);
-  auto speed_sub = nh.subscribe<std_msgs::Float64>("speed", 1, [&](const std_msgs::Float64::ConstPtr& m) {
-    fake.speed = m->data;
-  });
-  auto load_sub = nh.subscribe<geometry_msgs::WrenchStamped>("load", 1,
-                                                             [&](const geometry_msgs::WrenchStamped::ConstPtr& m) {
-    fake.load << m->wrench.force.x, m->wrench.force.y, m->wrench.force.z, m->wrench.torque.x, m->wrench.torque.y;
-  });
+  auto speed_sub =
+      nh.subscribe<std_msgs::Float64>("speed", 1, [&](const std_msgs::Float64::ConstPtr& m) { fake.speed = m->data; });
+  auto load_sub =
+      nh.subscribe<geometry_msgs::WrenchStamped>("load", 1, [&](const geometry_msgs::WrenchStamped::ConstPtr& m) {
+        fake.load << m->wrench.force.x, m->wrench.force.y, m->wrench.force.z, m->wrench.torque.x, m->wrench.torque.y;
+      });
   fake.last = ros::Time::now();
   ros::Timer timer = nh.createTimer(ros::Duration(1.0 / rate), &Fake::tick, &fake);
   ros::spin();

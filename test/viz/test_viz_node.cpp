@@ -19,7 +19,7 @@
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-constexpr int kBallsPerRow = 207;             // CT gantry bearing, two rows
+constexpr int kBallsPerRow = 207;  // CT gantry bearing, two rows
 constexpr double kHalfPitch = kPi / kBallsPerRow;
 
 double wrap(double a) { return std::remainder(a, 2.0 * kPi); }
@@ -113,8 +113,7 @@ std::vector<double> wait_for_zone(double expected, double tolerance) {
       if (!m) return centres;
       centres[r] = zone_centre_from_colours(*m);
     }
-    if (std::abs(wrap(centres[0] - expected)) < tolerance && std::abs(wrap(centres[1] - expected)) < tolerance)
-      break;
+    if (std::abs(wrap(centres[0] - expected)) < tolerance && std::abs(wrap(centres[1] - expected)) < tolerance) break;
   }
   return centres;
 }
@@ -139,8 +138,8 @@ TEST(VizNode, TransformChainExists) {
 TEST(VizNode, RingOffsetIsTheExaggeratedDisplacement) {
   // 6800 N along +x on the outer ring (the fake's initial load): the ring moves to +x by the
   // static deflection, shown 1000 times larger (launch file default).
-  const bearing_sim::BearingModel model(bearing_sim::load_bearing_config(
-      std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/ct_gantry_lyc.yaml"));
+  const bearing_sim::BearingModel model(
+      bearing_sim::load_bearing_config(std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/ct_gantry_lyc.yaml"));
   bearing_sim::Vector5 load = bearing_sim::Vector5::Zero();
   load[0] = 6800.0;
   const double expected_x = 1000.0 * bearing_sim::solve_static(model, load).displacement[0];

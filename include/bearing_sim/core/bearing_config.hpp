@@ -59,9 +59,9 @@ struct BearingConfig {
   double width_m = 0.0;
   RotatingRing rotating_ring = RotatingRing::Outer;
   Material material;
-  double rotating_mass_kg = 0.0;     // 0: not given (static analysis only)
-  CarriedBody carried_body;          // moves with the rotating ring; adds to its mass matrix
-  double tilt_inertia_kg_m2 = 0.0;   // after loading: given or derived from the envelope
+  double rotating_mass_kg = 0.0;    // 0: not given (static analysis only)
+  CarriedBody carried_body;         // moves with the rotating ring; adds to its mass matrix
+  double tilt_inertia_kg_m2 = 0.0;  // after loading: given or derived from the envelope
   bool tilt_inertia_given = false;
   // c_n per loaded contact: given, or solved from modal_damping_ratio at the reference load.
   double contact_damping_Ns_per_m = 0.0;
@@ -79,7 +79,6 @@ struct BearingConfig {
 // Parses and validates; throws ConfigError naming `source` (a file name) and the key.
 BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& source);
 BearingConfig load_bearing_config(const std::string& path);
-BearingConfig bearing_config_from_string(const std::string& yaml_text,
-                                         const std::string& source = "<string>");
+BearingConfig bearing_config_from_string(const std::string& yaml_text, const std::string& source = "<string>");
 
 }  // namespace bearing_sim

@@ -18,7 +18,7 @@ namespace bearing_sim {
 struct DynamicSample {
   double time_s = 0.0;
   double cage_angle_rad = 0.0;
-  double ring_angle_rad = 0.0;  // of the rotating ring
+  double ring_angle_rad = 0.0;             // of the rotating ring
   Vector5 displacement = Vector5::Zero();  // x, y, z, theta_x, theta_y
   Vector5 velocity = Vector5::Zero();
   Vector5 acceleration = Vector5::Zero();
@@ -192,16 +192,16 @@ class BearingDynamics {
   // One output sample from the acceleration a_start: q, v and phase from the sample's start
   // to its end. The Adams methods advance `adams` past the sample's end and give the end's
   // acceleration in *a_end (returning true); the others leave its evaluation to the caller.
-  bool integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
-                        const BallArrays& balls, AdamsState& adams, Vector5* a_end) const;
+  bool integrate_sample(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start, const BallArrays& balls,
+                        AdamsState& adams, Vector5* a_end) const;
   void integrate_sample_rk4(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
                             const BallArrays& balls) const;
   void integrate_sample_exponential(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
                                     const BallArrays& balls) const;
   // One ETDRK4 step of the stored weights' step (h, or -h for the Adams method's history)
   // from y with the remainder r1 at its start; `rotation`: the cage's turn in half of it.
-  Vector10 etdrk4_step(const Vector10& y, const Vector5& r1, const RollingPhase& phase, const CageTrig& trig,
-                       double h, const CageTrig& rotation, const BallArrays& balls) const;
+  Vector10 etdrk4_step(const Vector10& y, const Vector5& r1, const RollingPhase& phase, const CageTrig& trig, double h,
+                       const CageTrig& rotation, const BallArrays& balls) const;
   // The Adams method's history at the start: three ETDRK4 steps backward from x's y and r
   // at `phase`.
   void start_adams(AdamsState& adams, const RollingPhase& phase, const BallArrays& balls) const;

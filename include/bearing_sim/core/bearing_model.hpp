@@ -19,13 +19,13 @@ using Matrix5 = Eigen::Matrix<double, 5, 5>;
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
 
 struct BallState {
-  int row = 0;                    // 0 or 1
+  int row = 0;  // 0 or 1
   int index_in_row = 0;
   double azimuth_rad = 0.0;
-  double load_N = 0.0;            // normal contact force Q
-  double deflection_m = 0.0;      // delta (negative: gap)
-  double contact_angle_rad = 0.0; // loaded contact angle
-  double pressure_Pa = 0.0;       // largest of the inner and outer maximum Hertz pressures
+  double load_N = 0.0;                               // normal contact force Q
+  double deflection_m = 0.0;                         // delta (negative: gap)
+  double contact_angle_rad = 0.0;                    // loaded contact angle
+  double pressure_Pa = 0.0;                          // largest of the inner and outer maximum Hertz pressures
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // contact line, inner to outer
 };
 
@@ -39,8 +39,8 @@ struct BallArrays {
   std::vector<double> groove_centre_z;     // axial coordinate of the moving ring's groove centre
   std::vector<double> normal_z;            // c_r sin a0
   std::vector<double> deflection_offset;   // constant extra deflection (ball size), m
-  std::uint64_t generation = 0;           // changes whenever the subset changes
-  std::uint64_t source_stamp = 0;         // of the model's arrays a subset was taken from
+  std::uint64_t generation = 0;            // changes whenever the subset changes
+  std::uint64_t source_stamp = 0;          // of the model's arrays a subset was taken from
   std::size_t size() const { return ball.size(); }
   void clear();
   void push_back(const BallArrays& from, std::size_t i);
@@ -64,14 +64,14 @@ class BearingModel {
   double groove_centre_distance_m() const { return groove_centre_distance_; }  // A
   // g0 in use: the file's clearance changed by the ring temperature difference (section 3.7).
   double clearance_m() const { return clearance_m_; }
-  double contact_stiffness() const { return contact_stiffness_; }             // Kn, N/m^1.5
+  double contact_stiffness() const { return contact_stiffness_; }  // Kn, N/m^1.5
   const HertzContact& inner_contact() const { return inner_contact_; }
   const HertzContact& outer_contact() const { return outer_contact_; }
   double pitch_radius_m() const { return config_.pitch_diameter_m / 2.0; }
   // Radial coordinate of the moving ring's groove centres (P_o or P_i), m.
   double groove_centre_radius_m() const { return groove_centre_radius_; }
   double row_axial_position_m(int row) const;  // z_r of the ball centres
-  int row_contact_sign(int row) const;          // c_r
+  int row_contact_sign(int row) const;         // c_r
   int row_of_ball(int ball) const { return balls_.row[ball]; }
   double base_azimuth_rad(int ball) const { return base_azimuth_[ball]; }
   // +1 when the outer ring is the moving body, -1 for the inner ring.

@@ -24,9 +24,8 @@ class ColouredFloor {
   // process: only its density matters): white numbers through a linear-phase FIR whose
   // magnitude is D(f) |H_aa(f)| sqrt(f_out / 2), designed by frequency sampling on ~10 Hz
   // bins (Hann-windowed). anti_alias: the chain's sections at input_rate_hz.
-  ColouredFloor(const std::vector<double>& frequencies_hz, const std::vector<double>& densities,
-                double output_rate_hz, const std::vector<Biquad>& anti_alias, double input_rate_hz,
-                std::uint64_t seed);
+  ColouredFloor(const std::vector<double>& frequencies_hz, const std::vector<double>& densities, double output_rate_hz,
+                const std::vector<Biquad>& anti_alias, double input_rate_hz, std::uint64_t seed);
 
   // The floor's next output sample.
   double next() {

@@ -26,7 +26,7 @@ enum class VelocityZone { A, B, C, D };
 const char* velocity_zone_name(VelocityZone zone);  // "A" .. "D"
 VelocityZone velocity_zone(double velocity_rms_mm_s, const VelocityZoneBoundaries& b);
 
-enum class HealthLevel { Ok, Warn, Error };  // same order as diagnostic_msgs OK/WARN/ERROR
+enum class HealthLevel { Ok, Warn, Error };        // same order as diagnostic_msgs OK/WARN/ERROR
 const char* health_level_name(HealthLevel level);  // "OK", "WARN", "ERROR"
 
 struct DiagnosisThresholds {
@@ -57,7 +57,7 @@ struct DiagnosisThresholds {
   double line_chance_max = 0.1;
   // The neighbourhood (+- this fraction of the frequency) that line_chance counts lines in.
   double line_neighbourhood_rel = 0.2;
-  double kurtosis_warn = 6.0;    // impulsive signal -> WARN (Gaussian noise: 3); <= 0 disables
+  double kurtosis_warn = 6.0;                 // impulsive signal -> WARN (Gaussian noise: 3); <= 0 disables
   VelocityZone warn_zone = VelocityZone::C;   // velocity zone at or above: WARN
   VelocityZone error_zone = VelocityZone::D;  // ... ERROR
 };
@@ -121,7 +121,7 @@ enum class FaultKind { OuterRace, InnerRace, Ball, Cage };
 // One line of a fault's evidence in the envelope spectrum: a harmonic n f_fault (order n)
 // or a sideband f_fault + offset_hz (offset -f_mod or +f_mod).
 struct EvidenceLine {
-  int order = 1;           // harmonic number (1: the fundamental); sidebands: 1
+  int order = 1;  // harmonic number (1: the fundamental); sidebands: 1
   // Within the search window of a line of another series whose fundamental is found
   // (2 x BPFI and 3 x BPFO of the 6205 lie 0.7 % apart): evidence for neither, skipped.
   bool shared = false;
@@ -129,7 +129,7 @@ struct EvidenceLine {
   SpectralPeak peak;       // searched at expected_hz (amplitude in m/s^2, snr_db over noise)
   bool found = false;      // a local maximum with snr_db >= its threshold
 };
-const char* fault_kind_name(FaultKind kind);  // "outer race", "inner race", "ball", "cage"
+const char* fault_kind_name(FaultKind kind);        // "outer race", "inner race", "ball", "cage"
 const char* fault_frequency_label(FaultKind kind);  // "BPFO", "BPFI", "2xBSF", "FTF"
 
 struct FaultIndicator {
@@ -144,10 +144,10 @@ struct FaultIndicator {
   // load frame; outer race: the outer ring's; ball: the cage's), else empty.
   std::vector<EvidenceLine> harmonics;
   std::vector<EvidenceLine> sidebands;
-  double modulation_hz = 0.0;        // f_mod (0: no modulation predicted or not resolvable)
-  int harmonics_found = 0;           // consecutive from the 1st, shared ones skipped: 0 .. 4
-  int sidebands_found = 0;           // 0 .. 2
-  bool sidebands_required = false;   // modulation predicted and resolvable
+  double modulation_hz = 0.0;       // f_mod (0: no modulation predicted or not resolvable)
+  int harmonics_found = 0;          // consecutive from the 1st, shared ones skipped: 0 .. 4
+  int sidebands_found = 0;          // 0 .. 2
+  bool sidebands_required = false;  // modulation predicted and resolvable
   // The fault frequency is >= noise_exclude_bins + 2 bins (else nothing of it is "found").
   bool resolvable = true;
   // No sideband evidence: the band must be impulsive (impulsive_band_kurtosis).
@@ -184,13 +184,13 @@ struct ConditionIndicators {
   std::size_t samples = 0;  // analysed (after windowing)
   double window_s = 0.0;
   double sample_rate_hz = 0.0;
-  SignalStatistics acceleration;  // m/s^2: rms, peak, crest factor, kurtosis
-  double level_db = 0.0;          // L = 20 lg(a_rms / 9.81e-3 m/s^2), JB/T 5314
-  double velocity_rms_mm_s = 0.0; // in [velocity_low_hz, velocity_high_hz]
+  SignalStatistics acceleration;                         // m/s^2: rms, peak, crest factor, kurtosis
+  double level_db = 0.0;                                 // L = 20 lg(a_rms / 9.81e-3 m/s^2), JB/T 5314
+  double velocity_rms_mm_s = 0.0;                        // in [velocity_low_hz, velocity_high_hz]
   double velocity_low_hz = 0.0, velocity_high_hz = 0.0;  // the band used
   VelocityZone zone = VelocityZone::A;
   double envelope_low_hz = 0.0, envelope_high_hz = 0.0;
-  std::string envelope_band_source;    // "resonance", "kurtogram" or "fixed"
+  std::string envelope_band_source;  // "resonance", "kurtogram" or "fixed"
   // Spectral kurtosis of the band (band_spectral_kurtosis, any band source) and the number
   // of independent envelope samples it rests on (Gaussian noise: 0 +- 2 / sqrt of that).
   double envelope_band_kurtosis = 0.0;
@@ -206,7 +206,7 @@ struct ConditionIndicators {
   double envelope_segment_s = 0.0;
   // The detection thresholds for that average (averaged_threshold_db of the options').
   double fault_snr_db_used = 0.0, evidence_snr_db_used = 0.0;
-  Spectrum envelope;  // envelope spectrum, m/s^2 (pre-whitened: relative to the whitened level)
+  Spectrum envelope;                   // envelope spectrum, m/s^2 (pre-whitened: relative to the whitened level)
   std::vector<FaultIndicator> faults;  // outer race, inner race, ball, cage in that order
   Diagnosis diagnosis;
 };

@@ -72,8 +72,8 @@ struct FlexibleStaticSolution {
   // q, stiffness condensed onto q (the ring's modes statically eliminated: what the bearing
   // offers the rigid-body coordinates), ball loads and pressures, with the flexible ring.
   StaticSolution rigid_coordinates;
-  Eigen::VectorXd coordinates;      // x = (q, eta)
-  Eigen::MatrixXd stiffness;        // full: contacts plus the ring's own, -dF/dx
+  Eigen::VectorXd coordinates;  // x = (q, eta)
+  Eigen::MatrixXd stiffness;    // full: contacts plus the ring's own, -dF/dx
 };
 
 // Solves F_ext + F_contact(x) - K_ring eta = 0 (rigid coordinates and modes) by damped Newton
@@ -84,6 +84,6 @@ FlexibleStaticSolution solve_flexible_static(const FlexibleBearing& bearing, con
 // Natural frequencies (rad/s, ascending) of the linearized system at a solution: rigid ring
 // and ring modes on the loaded contacts, with the ring's seat.
 Eigen::VectorXd flexible_natural_frequencies_rad_s(const FlexibleBearing& bearing,
-                                                  const FlexibleStaticSolution& solution);
+                                                   const FlexibleStaticSolution& solution);
 
 }  // namespace bearing_sim

@@ -160,7 +160,7 @@ class FlexibleDynamics {
   IntegrationMethod method_ = IntegrationMethod::ExponentialAdamsPec;
   mutable Eigen::VectorXd material_rate_;     // load_frame_acceleration's scratch
   mutable std::vector<double> contact_work_;  // the contact kernel's
-  std::optional<FlexibleAdams> adams_;  // holds no reference to this: copies step on their own
+  std::optional<FlexibleAdams> adams_;        // holds no reference to this: copies step on their own
   std::uint64_t sample_index_ = 0;
   FlexibleSample current_;
 };

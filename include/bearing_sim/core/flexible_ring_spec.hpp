@@ -21,8 +21,8 @@ struct FlexibleRingSpec {
   double youngs_modulus_Pa = 0.0;
   double shear_modulus_Pa = 0.0;
   double density_kg_m3 = 0.0;
-  int in_plane_max_order = 0;       // modes n = 2..this (>= 2)
-  int out_of_plane_max_order = 0;   // modes n = 2..this, or 0: none
+  int in_plane_max_order = 0;      // modes n = 2..this (>= 2)
+  int out_of_plane_max_order = 0;  // modes n = 2..this, or 0: none
   double modal_damping_ratio = 0.0;
   // Seat (mounting) stiffness per unit length of the ring's circumference, N/m^2.
   double mounting_radial_stiffness_N_per_m2 = 0.0;

@@ -22,16 +22,16 @@ std::string ring_speed_refusal(double speed_rad_s, double pitch_diameter_m);
 void check_ring_speed(double speed_rad_s, double pitch_diameter_m, const std::string& what);
 
 struct BearingFrequencies {
-  double cage_hz = 0.0;                    // f_c, in the bearing frame
-  double ball_pass_outer_race_hz = 0.0;    // Z |f_o - f_c|
-  double ball_pass_inner_race_hz = 0.0;    // Z |f_i - f_c|
-  double ball_spin_hz = 0.0;               // dm/(2d) (1 - gamma^2) f_r
-  double relative_ring_hz = 0.0;           // |f_i - f_o|
-  double varying_compliance_hz = 0.0;      // Z |f_c|: balls passing the stationary load zone
+  double cage_hz = 0.0;                  // f_c, in the bearing frame
+  double ball_pass_outer_race_hz = 0.0;  // Z |f_o - f_c|
+  double ball_pass_inner_race_hz = 0.0;  // Z |f_i - f_c|
+  double ball_spin_hz = 0.0;             // dm/(2d) (1 - gamma^2) f_r
+  double relative_ring_hz = 0.0;         // |f_i - f_o|
+  double varying_compliance_hz = 0.0;    // Z |f_c|: balls passing the stationary load zone
   // Ring speeds in the bearing frame (where the load is fixed): a spall on a ring turns
   // through the load zone at this rate (0 for a stationary ring).
-  double inner_ring_hz = 0.0;              // |f_i|
-  double outer_ring_hz = 0.0;              // |f_o|
+  double inner_ring_hz = 0.0;  // |f_i|
+  double outer_ring_hz = 0.0;  // |f_o|
 };
 
 BearingFrequencies bearing_frequencies(const BearingModel& model, double inner_rad_s, double outer_rad_s);

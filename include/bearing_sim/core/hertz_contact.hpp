@@ -4,13 +4,13 @@
 namespace bearing_sim {
 
 struct HertzContact {
-  double curvature_sum_per_m = 0.0;  // 1/R = 1/Rx + 1/Ry
-  double radius_ratio = 0.0;         // ar = Ry / Rx
-  double ellipticity = 0.0;          // k
-  double elliptic_E = 0.0;           // second-kind elliptic integral approximation
-  double elliptic_F = 0.0;           // first-kind elliptic integral approximation
-  double effective_modulus_Pa = 0.0; // E' = E / (1 - nu^2) for two bodies of the same steel
-  double stiffness_N_per_m15 = 0.0;  // K in Q = K delta^1.5
+  double curvature_sum_per_m = 0.0;   // 1/R = 1/Rx + 1/Ry
+  double radius_ratio = 0.0;          // ar = Ry / Rx
+  double ellipticity = 0.0;           // k
+  double elliptic_E = 0.0;            // second-kind elliptic integral approximation
+  double elliptic_F = 0.0;            // first-kind elliptic integral approximation
+  double effective_modulus_Pa = 0.0;  // E' = E / (1 - nu^2) for two bodies of the same steel
+  double stiffness_N_per_m15 = 0.0;   // K in Q = K delta^1.5
 
   // Maximum (central) contact pressure for a normal load Q.
   double max_pressure_Pa(double load_N) const;

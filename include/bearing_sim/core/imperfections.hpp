@@ -15,10 +15,10 @@ Surface parse_surface(const std::string& name);  // throws InvalidInputError
 
 struct Waviness {
   Surface surface = Surface::OuterRace;
-  int order = 1;              // lobes per revolution (of the race, or of the ball)
-  double amplitude_m = 0.0;   // of the radius
+  int order = 1;             // lobes per revolution (of the race, or of the ball)
+  double amplitude_m = 0.0;  // of the radius
   double phase_rad = 0.0;
-  int row = -1;               // only the balls of this row (-1: every row, the same form)
+  int row = -1;  // only the balls of this row (-1: every row, the same form)
 };
 
 // A spall: the ball loses contact depth while over it (half-sine profile).
@@ -43,8 +43,7 @@ struct SpallLimit {
   double max_width_m = 0.0;
   double max_depth_m = 0.0;
 };
-SpallLimit spall_limit(Surface surface, double ball_diameter_m, double outer_race_radius_m,
-                       double inner_race_radius_m);
+SpallLimit spall_limit(Surface surface, double ball_diameter_m, double outer_race_radius_m, double inner_race_radius_m);
 // The smallest spall, width and depth alike: below a micrometre a dip is the surface's
 // roughness (a ground raceway's is 0.05-0.2 um RMS), not a spall.
 constexpr double kMinSpallSizeM = 1e-6;
@@ -68,20 +67,20 @@ struct ImperfectionSpec {
   // Irregular ball spacing (cage pocket clearance) and cage slip: real bearings are not
   // perfectly periodic, which keeps distributed roughness from ringing at the ball-pass
   // frequencies.
-  double ball_spacing_jitter_m = 0.0;      // standard deviation of each ball's place on the pitch circle
-  double cage_slip = 0.0;                  // mean fraction the cage lags its kinematic speed
-  double cage_slip_variation = 0.0;        // standard deviation of the slip fluctuation
-  double cage_slip_correlation_s = 0.05;   // correlation time of the fluctuation
+  double ball_spacing_jitter_m = 0.0;     // standard deviation of each ball's place on the pitch circle
+  double cage_slip = 0.0;                 // mean fraction the cage lags its kinematic speed
+  double cage_slip_variation = 0.0;       // standard deviation of the slip fluctuation
+  double cage_slip_correlation_s = 0.05;  // correlation time of the fluctuation
   // A ball's place in its cage pocket wanders within the pocket clearance: it meets a race
   // spall early or late by its place error, so the impacts scatter about their periodic grid
   // without the scatter accumulating (the cage keeps the mean period). Applied where a ball
   // meets a race spall's sharp edges; the smooth load distribution does not notice it.
-  double ball_place_wander_m = 0.0;              // standard deviation along the pitch circle
+  double ball_place_wander_m = 0.0;  // standard deviation along the pitch circle
   double ball_place_wander_correlation_s = 0.05;
   // A ball's spin axis wanders, carrying a ball spall in and out of the rolling track: the
   // spall is struck along a chord of its width at its latitude from the track, and not at
   // all while that latitude exceeds its half width.
-  double ball_spin_axis_wander_rad = 0.0;        // standard deviation of the spall's latitude
+  double ball_spin_axis_wander_rad = 0.0;  // standard deviation of the spall's latitude
   double ball_spin_axis_wander_correlation_s = 0.1;
   std::vector<Spall> spalls;
   bool empty() const {
@@ -133,7 +132,7 @@ class Imperfections {
     std::vector<int> ball;           // bearing ball of each entry
     std::vector<int> entry_of_ball;  // inverse, per bearing ball; -1: not in the set
     std::vector<double> base_azimuth;
-    std::vector<double> harmonic_terms;  // per harmonic: cos column, then sin column
+    std::vector<double> harmonic_terms;    // per harmonic: cos column, then sin column
     std::vector<double> roughness_weight;  // 1 on the rough row, 0 elsewhere; empty: every row
   };
   BallSet ball_set(const std::vector<int>& balls) const;
@@ -154,7 +153,7 @@ class Imperfections {
     double sin_half_width;          // sin(w / 2); w <= pi / 2
     double pi_over_width, depth;    // rad^-1, m
     int row;
-    double row_groove_centre_z;     // set by the model: the row's balls are the ones at this z
+    double row_groove_centre_z;  // set by the model: the row's balls are the ones at this z
   };
   // The race spalls at `phase` into windows[0..count), count returned; -1 when there are
   // more than `capacity`.
@@ -194,8 +193,7 @@ class Imperfections {
   // How far the ball nearest race spall `index` is from its even place at time t, as an
   // angle, for a spall of that angular width (bounded so that the nearest ball changes only
   // while no ball is over the spall). `start` is cage - ring - spall position.
-  double place_shift_rad(std::size_t index, const Spall& s, double start, double angular_width,
-                         double time_s) const;
+  double place_shift_rad(std::size_t index, const Spall& s, double start, double angular_width, double time_s) const;
   // A ball spall's chord at time t: the width and depth struck, from its latitude.
   void struck_chord(std::size_t index, double time_s, double* angular_width, double* depth) const;
 
@@ -213,7 +211,7 @@ class Imperfections {
   std::vector<Harmonic> race_waviness_, ball_waviness_;
   std::vector<double> waviness_amplitudes_;  // of race_waviness_ then ball_waviness_, the order of add_offsets
   bool has_roughness_ = false;
-  int roughness_row_ = -1;  // -1: every row
+  int roughness_row_ = -1;                    // -1: every row
   std::vector<double> roughness_profile_[2];  // 0 outer, 1 inner: radius deviation, m
   std::vector<double> ball_diameter_deviation_;
   std::vector<double> ball_phase_;  // random initial spin angle of each ball

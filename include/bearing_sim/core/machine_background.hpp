@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
 #include <yaml-cpp/yaml.h>
+#include <Eigen/Dense>
 
 namespace bearing_sim {
 
@@ -21,14 +21,14 @@ struct SpeedLockedOrder {
 };
 
 struct InstallationConfig {
-  std::vector<double> shaft_harmonics_m_s2;      // 1, 2, ..., N x f_r (peak)
-  std::vector<double> half_orders_m_s2;          // 0.5, 1.5, 2.5, ... x f_r (peak)
+  std::vector<double> shaft_harmonics_m_s2;  // 1, 2, ..., N x f_r (peak)
+  std::vector<double> half_orders_m_s2;      // 0.5, 1.5, 2.5, ... x f_r (peak)
   std::vector<SpeedLockedOrder> speed_locked_orders;
   double line_frequency_hz = 50.0;
-  std::vector<double> line_harmonics_m_s2;       // 1, 2, ..., H x the line frequency (peak)
-  double shaft_modulation_depth = 0.0;           // m: bearing signal x (1 + m cos(theta + phase))
+  std::vector<double> line_harmonics_m_s2;  // 1, 2, ..., H x the line frequency (peak)
+  double shaft_modulation_depth = 0.0;      // m: bearing signal x (1 + m cos(theta + phase))
   double shaft_modulation_phase_rad = 0.0;
-  std::vector<double> floor_frequencies_hz;      // increasing; empty: no floor
+  std::vector<double> floor_frequencies_hz;  // increasing; empty: no floor
   std::vector<double> floor_density_m_s2_per_sqrt_hz;
 
   bool has_lines() const {
@@ -82,7 +82,7 @@ class MachineBackground {
   double max_other_order_ = 0.0;
   double rotation_increment_ = 0.0;  // the increment the rotations were computed for
   int resync_countdown_ = 0;
-  std::vector<std::complex<double>> line_series_;        // k x the line frequency
+  std::vector<std::complex<double>> line_series_;  // k x the line frequency
   double line_step_rad_ = 0.0, line_phase_ = 0.0;
   double modulation_depth_ = 0.0, modulation_phase_ = 0.0;
   bool started_ = false;

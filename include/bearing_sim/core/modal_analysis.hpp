@@ -44,11 +44,11 @@ struct ModalOptions {
 };
 
 struct Mode {
-  double frequency_hz = 0.0;  // 0 for a free (rigid-body) mode
-  bool free = false;          // eigenvalue below 1e-9 of the largest: unrestrained motion
-  Vector6 shape = Vector6::Zero();           // mass-normalised (phi^T M phi = 1)
-  Vector6 energy_fraction = Vector6::Zero(); // kinetic energy share of each coordinate, sums to 1
-  int dominant_dof = 0;                      // index of the largest share
+  double frequency_hz = 0.0;                  // 0 for a free (rigid-body) mode
+  bool free = false;                          // eigenvalue below 1e-9 of the largest: unrestrained motion
+  Vector6 shape = Vector6::Zero();            // mass-normalised (phi^T M phi = 1)
+  Vector6 energy_fraction = Vector6::Zero();  // kinetic energy share of each coordinate, sums to 1
+  int dominant_dof = 0;                       // index of the largest share
 };
 
 struct ModalResult {

@@ -6,7 +6,7 @@
 namespace bearing_sim {
 
 struct RadialMode {
-  double omega_rad_s = 0.0;  // undamped, of M^-1 K at the static equilibrium
+  double omega_rad_s = 0.0;         // undamped, of M^-1 K at the static equilibrium
   Vector5 shape = Vector5::Zero();  // mass-normalised: shape^T M shape = 1
   // Kinetic energy share of the translation along the radial load (x without one), 0..1.
   double radial_share = 0.0;

@@ -23,7 +23,7 @@ struct RingMode {
   double mounting_stiffness_N_per_m = 0.0;  // of the seat
   double modal_damping_Ns_per_m = 0.0;      // 2 zeta sqrt(k m), k with the seat
   double stiffness_N_per_m() const { return bending_stiffness_N_per_m + mounting_stiffness_N_per_m; }
-  double frequency_rad_s() const;           // sqrt(k / m), on its seat, without the balls
+  double frequency_rad_s() const;  // sqrt(k / m), on its seat, without the balls
 };
 
 // The modes the spec asks for: in-plane n = 2..in_plane_max_order, then out-of-plane

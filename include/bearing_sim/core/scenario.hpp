@@ -20,8 +20,8 @@ constexpr double kMaxScenarioDurationS = 1e7;
 struct ScenarioInputs {
   Vector5 load = Vector5::Zero();  // Fx, Fy, Fz (N), Mx, My (N*m) on the rotating ring, unbalance included
   double ring_speed_rad_s = 0.0;
-  double ring_angle_rad = 0.0;  // integral of the speed from t = 0 (not wrapped)
-  std::string phase;            // name of the phase the time lies in ("" if none)
+  double ring_angle_rad = 0.0;                 // integral of the speed from t = 0 (not wrapped)
+  std::string phase;                           // name of the phase the time lies in ("" if none)
   double ring_temperature_difference_K = 0.0;  // inner minus outer ring
 };
 
@@ -99,10 +99,10 @@ class Scenario {
     // |(Fx, Fy, Fz)| with the rotating unbalance at its worst angle (along the radial force):
     // sqrt((|(Fx, Fy)| + U)^2 + Fz^2), U = m e sqrt(omega^4 + alpha^2).
     double force_N = 0.0;
-    double unbalance_N = 0.0;  // U, 0 without an unbalance
+    double unbalance_N = 0.0;   // U, 0 without an unbalance
     double load_force_N = 0.0;  // |(Fx, Fy, Fz)| of the load alone
-    double moment_Nm = 0.0;    // |(Mx, My)|
-    double speed_rad_s = 0.0;  // |speed|
+    double moment_Nm = 0.0;     // |(Mx, My)|
+    double speed_rad_s = 0.0;   // |speed|
     double speed_signed_rad_s = 0.0;
     // The keys of the file that set the load and the speed there, e.g. "load.segments[1].force_N",
     // "load.initial.moment_Nm", "speed.segments[0].to_speed_rpm" ("" for a speed never set: 0).

@@ -34,7 +34,7 @@ class SeededGaussian {
       return spare_;
     }
     const double u1 = (static_cast<double>(rng_() >> 11) + 1.0) * 0x1.0p-53;  // (0, 1]
-    const double u2 = uniform();                                             // [0, 1)
+    const double u2 = uniform();                                              // [0, 1)
     const double radius = std::sqrt(-2.0 * std::log(u1)), angle = 2.0 * kPi * u2;
     spare_ = radius * std::sin(angle);
     has_spare_ = true;
@@ -42,7 +42,6 @@ class SeededGaussian {
   }
 
   double uniform() { return static_cast<double>(rng_() >> 11) * 0x1.0p-53; }  // [0, 1)
-
 
  private:
   std::uint64_t seed_;

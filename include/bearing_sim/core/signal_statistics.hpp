@@ -19,9 +19,7 @@ struct SignalStatistics {
 // Over samples [begin, end) of x; throws InvalidInputError for an empty range or a
 // non-finite sample.
 SignalStatistics signal_statistics(const std::vector<double>& x, std::size_t begin, std::size_t end);
-inline SignalStatistics signal_statistics(const std::vector<double>& x) {
-  return signal_statistics(x, 0, x.size());
-}
+inline SignalStatistics signal_statistics(const std::vector<double>& x) { return signal_statistics(x, 0, x.size()); }
 
 // The same statistics one sample at a time, for runs too long to store: the mean and the
 // central moment sums updated as in Welford (1962) and Pebay (2008), safe for a small signal

@@ -12,7 +12,7 @@ struct SimulationRequest {
   double ring_speed_rad_s = 0.0;   // of the configured rotating ring
   double duration_s = 1.0;
   double sample_rate_hz = 10000.0;
-  int substeps = 0;                // 0: automatic
+  int substeps = 0;  // 0: automatic
   IntegrationMethod method = kDefaultIntegrationMethod;
 };
 

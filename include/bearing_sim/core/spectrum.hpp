@@ -94,7 +94,7 @@ double band_velocity_rms(const std::vector<double>& accel, double sample_rate_hz
 struct KurtogramBand {
   int bands_in_level = 1;  // 1, 2, 3, 4, 6, 8, 12, ...: width = (fs/2) / bands_in_level
   double low_hz = 0.0, high_hz = 0.0;
-  double kurtosis = 0.0;   // spectral kurtosis of the band's complex envelope
+  double kurtosis = 0.0;             // spectral kurtosis of the band's complex envelope
   double independent_samples = 0.0;  // as in BandKurtosis below
 };
 struct Kurtogram {
@@ -116,7 +116,7 @@ Kurtogram fast_kurtogram(const std::vector<double>& x, double sample_rate_hz, do
 // band's bins, i.e. width x window duration, less the tapered ends); a stationary line
 // series gives SK < 0 (a pure tone -1), a train of short impacts SK > 0.
 struct BandKurtosis {
-  bool valid = false;               // the band holds enough bins (> 8)
+  bool valid = false;  // the band holds enough bins (> 8)
   double kurtosis = 0.0;
   double independent_samples = 0.0;
 };
@@ -125,7 +125,7 @@ BandKurtosis band_spectral_kurtosis(const std::vector<double>& x, double sample_
 
 // Peak search around an expected frequency.
 struct PeakSearchOptions {
-  double tolerance_rel = 0.01;     // search expected * (1 +- tolerance_rel) ...
+  double tolerance_rel = 0.01;  // search expected * (1 +- tolerance_rel) ...
   // ... but at least +- one bin: the nearest bin of a line is within half a bin of it, and a
   // wider window near a low frequency (FTF) would catch unrelated lines.
   int tolerance_min_bins = 1;
@@ -134,14 +134,14 @@ struct PeakSearchOptions {
 };
 
 struct SpectralPeak {
-  bool searched = false;        // false: the expected frequency is not inside the spectrum
-  bool local_maximum = false;   // the largest bin is a peak of the spectrum, not the flank
-                                // of a line outside the search range
+  bool searched = false;       // false: the expected frequency is not inside the spectrum
+  bool local_maximum = false;  // the largest bin is a peak of the spectrum, not the flank
+                               // of a line outside the search range
   double expected_hz = 0.0;
-  double frequency_hz = 0.0;    // of the largest bin, refined by Gaussian interpolation
-  double amplitude = 0.0;       // of the largest bin
-  double noise_floor = 0.0;     // MEDIAN of the neighbouring bins (robust to other lines)
-  double snr_db = 0.0;          // 20 lg(amplitude / max(noise_floor, absolute_floor))
+  double frequency_hz = 0.0;  // of the largest bin, refined by Gaussian interpolation
+  double amplitude = 0.0;     // of the largest bin
+  double noise_floor = 0.0;   // MEDIAN of the neighbouring bins (robust to other lines)
+  double snr_db = 0.0;        // 20 lg(amplitude / max(noise_floor, absolute_floor))
   // The chance that a search window this wide holds a local maximum at least this high
   // where no line of the searched series lies (line_chance; 1 until computed).
   double chance = 1.0;

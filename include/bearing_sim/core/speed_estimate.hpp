@@ -10,8 +10,8 @@
 namespace bearing_sim {
 
 struct SpeedEstimate {
-  bool measured = false;  // the lines agreed and stood clear: scale applies
-  double scale = 1.0;     // measured / given speed
+  bool measured = false;                      // the lines agreed and stood clear: scale applies
+  double scale = 1.0;                         // measured / given speed
   double implied_scale[3] = {0.0, 0.0, 0.0};  // from harmonics 1, 2, 3 (0: none found)
 };
 

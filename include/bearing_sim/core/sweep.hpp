@@ -41,7 +41,7 @@ struct SweepDefinition {
   std::string bearing_path;  // resolved
   YAML::Node bearing;        // the base bearing file
   SweepOperatingPoint operating_point;
-  bool dynamic = true;       // false: quasi-static only (stiffness against load)
+  bool dynamic = true;  // false: quasi-static only (stiffness against load)
   std::vector<SweepImperfectionSet> imperfection_sets;
   std::vector<SweepStudy> studies;
 };
@@ -80,8 +80,7 @@ const std::vector<SweepParameterInfo>& sweep_parameters();
 // Throws InvalidInputError naming the file and key (also for a value of a study that
 // makes the bearing file invalid, e.g. a groove curvature <= 0.5).
 SweepDefinition load_sweep_definition(const std::string& path);
-SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string& source,
-                                       const std::string& base_dir);
+SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string& source, const std::string& base_dir);
 
 // All cases, study by study, imperfection set by set, value by value (validated).
 std::vector<SweepCase> sweep_cases(const SweepDefinition& definition);
@@ -91,9 +90,9 @@ SweepResult run_sweep_case(const SweepCase& c, bool dynamic);
 
 // Runs every case on `threads` threads (0: hardware_concurrency); results in case order,
 // identical for any thread count. on_done (optional) is called after each case under a lock.
-std::vector<SweepResult> run_sweep(const SweepDefinition& definition, int threads = 0,
-                                   const std::function<void(const SweepResult&, std::size_t done,
-                                                            std::size_t total)>& on_done = {});
+std::vector<SweepResult> run_sweep(
+    const SweepDefinition& definition, int threads = 0,
+    const std::function<void(const SweepResult&, std::size_t done, std::size_t total)>& on_done = {});
 
 // CSV with a header row (columns in docs/bearing_tool.md).
 std::string sweep_csv_header();

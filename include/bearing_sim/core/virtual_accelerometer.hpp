@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
 #include <yaml-cpp/yaml.h>
+#include <Eigen/Dense>
 
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/biquad.hpp"
@@ -56,9 +56,9 @@ struct AccelerometerConfig {
   double mount_damping_ratio = 0.05;
   // The machine around the bearing (machine_background.hpp); empty: none.
   InstallationConfig installation;
-  double sensitivity_V_per_m_s2 = 0.100 / kStandardGravity_m_s2;               // 100 mV/g
-  double noise_density_m_s2_per_sqrt_hz = 1.5e-6 * kStandardGravity_m_s2;      // 1.5 ug/sqrt(Hz)
-  double range_m_s2 = 50.0 * kStandardGravity_m_s2;                            // +-50 g full scale
+  double sensitivity_V_per_m_s2 = 0.100 / kStandardGravity_m_s2;           // 100 mV/g
+  double noise_density_m_s2_per_sqrt_hz = 1.5e-6 * kStandardGravity_m_s2;  // 1.5 ug/sqrt(Hz)
+  double range_m_s2 = 50.0 * kStandardGravity_m_s2;                        // +-50 g full scale
   int adc_bits = 24;
   double output_rate_hz = 10000.0;
   double anti_alias_cutoff_fraction = 0.4;  // of the output rate

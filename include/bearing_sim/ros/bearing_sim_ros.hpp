@@ -12,21 +12,21 @@
 #include <string>
 #include <thread>
 
-#include <boost/thread/recursive_mutex.hpp>
 #include <dynamic_reconfigure/server.h>
 #include <geometry_msgs/WrenchStamped.h>
 #include <ros/ros.h>
 #include <std_msgs/Float64.h>
 #include <std_srvs/Trigger.h>
+#include <boost/thread/recursive_mutex.hpp>
 
 #include "bearing_sim/BearingSimConfig.h"
 #include "bearing_sim/InjectDefect.h"
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
-#include "bearing_sim/ros/load_ramp.hpp"
 #include "bearing_sim/ros/chunk_assembler.hpp"
 #include "bearing_sim/ros/health_monitor.hpp"
 #include "bearing_sim/ros/input_validator.hpp"
+#include "bearing_sim/ros/load_ramp.hpp"
 #include "bearing_sim/ros/node_diagnostics.hpp"
 #include "bearing_sim/ros/priority_inheritance_mutex.hpp"
 #include "bearing_sim/ros/realtime_pacer.hpp"
@@ -127,7 +127,7 @@ class BearingSimRos : private PipelineSink {
   bool lock_memory_ = true;    // mlockall in real time
   double lead_s_ = 0.03;       // real time: chunks computed up to this far ahead of their due time
   std::string frame_id_, bearing_frame_id_;
-  std::string sensor_description_;  // "sensor: <name>" or "ideal ring acceleration"
+  std::string sensor_description_;     // "sensor: <name>" or "ideal ring acceleration"
   double measured_rate_hz_ = 10000.0;  // of `vibration`, L and health: the sensor's output rate, or sample_rate_hz_
   InputLimits limits_;
   std::optional<OutputSettings> accepted_settings_;  // last good reconfigure output settings

@@ -12,7 +12,7 @@ namespace ros_node {
 
 struct SampleChunk {
   std::uint64_t first_sample = 0;
-  std::vector<float> accel_x, accel_y, accel_z;                      // m/s^2
+  std::vector<float> accel_x, accel_y, accel_z;                       // m/s^2
   std::vector<float> displacement_x, displacement_y, displacement_z;  // m
   std::vector<float> tilt_x, tilt_y;                                  // rad
   std::size_t size() const { return accel_x.size(); }

@@ -17,11 +17,11 @@
 #include <thread>
 #include <vector>
 
-#include "bearing_sim/ros/priority_inheritance_mutex.hpp"
 #include "bearing_sim/core/bearing_life.hpp"
 #include "bearing_sim/core/bearing_model.hpp"
 #include "bearing_sim/core/condition_indicators.hpp"
 #include "bearing_sim/core/frequencies.hpp"
+#include "bearing_sim/ros/priority_inheritance_mutex.hpp"
 
 namespace bearing_sim {
 namespace ros_node {
@@ -34,19 +34,19 @@ struct HealthSettings {
 };
 
 struct DefectNow {
-  Spall spall;                 // as injected (created_at_s on simulated time)
-  double width_m = 0.0;        // now, with growth
+  Spall spall;           // as injected (created_at_s on simulated time)
+  double width_m = 0.0;  // now, with growth
   double depth_m = 0.0;
   double age_s = 0.0;
 };
 
 struct HealthReport {
-  bool analysed = false;            // false: no complete window yet, or the analysis failed (error)
+  bool analysed = false;  // false: no complete window yet, or the analysis failed (error)
   std::string error;
-  std::uint64_t end_sample = 0;     // index (analysed signal) after the window's last sample
-  double end_time_s = 0.0;          // simulated time of the window's last sample
+  std::uint64_t end_sample = 0;  // index (analysed signal) after the window's last sample
+  double end_time_s = 0.0;       // simulated time of the window's last sample
   ConditionIndicators indicators;
-  BearingFrequencies frequencies;   // at ring_speed_rad_s
+  BearingFrequencies frequencies;  // at ring_speed_rad_s
   std::vector<DefectNow> defects;
   // Operating point (at the request) and life.
   Vector5 load = Vector5::Zero();
@@ -108,7 +108,7 @@ class HealthMonitor {
     std::shared_ptr<const BearingModel> model;
   };
   Snapshot take_snapshot(double end_time_s);  // locks
-  HealthReport analyse(Snapshot& s);           // no lock held
+  HealthReport analyse(Snapshot& s);          // no lock held
   void worker();
 
   HealthSettings settings_;

@@ -8,14 +8,14 @@ namespace bearing_sim {
 namespace ros_node {
 
 struct InputLimits {
-  double max_force_N = 1.0e5;       // |(Fx, Fy, Fz)|
-  double max_moment_Nm = 5.0e4;     // |(Mx, My)|
-  double max_speed_rad_s = 100.0;   // |speed of the rotating ring|
+  double max_force_N = 1.0e5;      // |(Fx, Fy, Fz)|
+  double max_moment_Nm = 5.0e4;    // |(Mx, My)|
+  double max_speed_rad_s = 100.0;  // |speed of the rotating ring|
 };
 
 struct InputCheck {
   bool accepted = true;
-  std::string reason;  // why it was rejected
+  std::string reason;                    // why it was rejected
   double max_contact_pressure_Pa = 0.0;  // of the static solution, when the load was solved
 };
 

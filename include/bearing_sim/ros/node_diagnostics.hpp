@@ -19,15 +19,15 @@ namespace ros_node {
 
 struct DiagnosticsSettings {
   bool real_time = true;
-  double max_lag_s = 0.005;   // WARN above this lag of simulated behind wall time
-  double hold_s = 5.0;        // a rejected input (WARN) or divergence (ERROR) stays reported this long
+  double max_lag_s = 0.005;  // WARN above this lag of simulated behind wall time
+  double hold_s = 5.0;       // a rejected input (WARN) or divergence (ERROR) stays reported this long
 };
 
 struct ModelState {
   std::string bearing_name;
   Vector5 load = Vector5::Zero();
   double ring_speed_rad_s = 0.0;
-  double clearance_m = 0.0;            // at equal ring temperatures (file / clearance_um)
+  double clearance_m = 0.0;  // at equal ring temperatures (file / clearance_um)
   double ring_temperature_difference_K = 0.0;
   double operating_clearance_m = 0.0;  // what the model uses
   double contact_damping_Ns_per_m = 0.0;

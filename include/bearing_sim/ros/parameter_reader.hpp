@@ -48,8 +48,7 @@ class ParameterReader {
 
  private:
   const XmlRpc::XmlRpcValue* find(const std::string& key);
-  [[noreturn]] void fail_value(const std::string& key, const XmlRpc::XmlRpcValue& value,
-                               const std::string& what) const;
+  [[noreturn]] void fail_value(const std::string& key, const XmlRpc::XmlRpcValue& value, const std::string& what) const;
 
   std::map<std::string, XmlRpc::XmlRpcValue> params_;
   std::string ns_;

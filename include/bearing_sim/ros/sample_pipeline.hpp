@@ -58,8 +58,7 @@ class PipelineSink {
     (void)x, (void)analysis_time_s;
   }
   // After each ideal chunk and its health hand-over: the inputs at its end (Miner damage).
-  virtual void chunk_end(std::uint64_t last_index, std::size_t samples, const Vector5& load,
-                         double ring_speed_rad_s) {
+  virtual void chunk_end(std::uint64_t last_index, std::size_t samples, const Vector5& load, double ring_speed_rad_s) {
     (void)last_index, (void)samples, (void)load, (void)ring_speed_rad_s;
   }
   virtual void divergence(const std::string& message) { (void)message; }
@@ -95,9 +94,7 @@ class SamplePipeline {
   double measured_rate_hz() const { return measured_rate_hz_; }
   // The chunk being filled: its size and the index of its last sample.
   std::size_t current_chunk_samples() const { return assembler_.current_target(); }
-  std::uint64_t current_chunk_last_index() const {
-    return assembler_.next_sample() + assembler_.current_target() - 1;
-  }
+  std::uint64_t current_chunk_last_index() const { return assembler_.next_sample() + assembler_.current_target() - 1; }
   std::uint64_t ideal_samples() const { return assembler_.next_sample(); }
   std::uint64_t measured_samples() const { return sensor_ ? sensor_assembler_->next_sample() : ideal_samples(); }
 

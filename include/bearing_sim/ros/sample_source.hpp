@@ -20,7 +20,7 @@ class SampleSource {
 
   struct Sample {
     std::uint64_t index = 0;
-    double time_s = 0.0;  // index / sample rate
+    double time_s = 0.0;                   // index / sample rate
     const DynamicSample* state = nullptr;  // valid until the next call
     bool diverged = false;                 // the step diverged and the model was reset
   };

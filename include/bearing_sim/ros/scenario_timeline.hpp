@@ -29,8 +29,8 @@ struct TimelineCommand {
     Load,          // `load` = the scenario's at `scenario_time_s` (unbalance included)
     // `ring_temperature_difference_K` changed (on the load grid; only for a scenario with the key)
     RingTemperature,
-    State,         // publish the labels at `scenario_time_s`
-    End            // the scenario is over (not looping): the node keeps the last inputs
+    State,  // publish the labels at `scenario_time_s`
+    End     // the scenario is over (not looping): the node keeps the last inputs
   };
   Kind kind = Kind::State;
   double scenario_time_s = 0.0;  // within the current pass: evaluate the scenario here

@@ -20,9 +20,9 @@ struct SimNodeParameters {
   IntegrationMethod integrator = kDefaultIntegrationMethod;
   double load_ramp_s = 0.0;
   bool real_time = true;
-  bool publish_clock = false;  // default: !real_time
+  bool publish_clock = false;         // default: !real_time
   double max_real_time_factor = 0.0;  // not real time: simulated s per wall s at most; 0: unbounded
-  int realtime_priority = 0;   // SCHED_FIFO of the publisher thread; 0: normal
+  int realtime_priority = 0;          // SCHED_FIFO of the publisher thread; 0: normal
   bool lock_memory = true;
   double lead_s = 0.03;
   std::optional<std::string> frame_id;  // unset: the rotating ring's frame
@@ -35,7 +35,7 @@ struct SimNodeParameters {
   double initial_speed_rad_s = 0.0;
   double health_rate_hz = 1.0;
   double health_window_s = 2.0;
-  double dynamic_load_rating_N = 0.0;            // 0: from the geometry (ISO 281)
+  double dynamic_load_rating_N = 0.0;           // 0: from the geometry (ISO 281)
   std::optional<double> envelope_resonance_hz;  // unset: the sensor's path resonance, else 0 (automatic)
   double envelope_band_width_hz = 2000.0;
   double fault_snr_db = 12.0;

@@ -57,9 +57,9 @@ struct BearingScene {
   std::vector<std::vector<BallGlyph>> balls;               // [row][index in row]
   std::vector<std::vector<Segment>> force_arrows;          // [row]: shaft and head segments
   std::vector<std::vector<Eigen::Vector3d>> polar_curves;  // [row]: closed line strip
-  double full_scale_N = 0.0;  // the colour and length scale used
+  double full_scale_N = 0.0;                               // the colour and length scale used
   double max_load_N = 0.0;
-  int max_load_ball = -1;  // row-major index, -1 when no ball is loaded
+  int max_load_ball = -1;                    // row-major index, -1 when no ball is loaded
   std::vector<double> load_zone_centre_rad;  // [row], NaN when the row carries no load
 };
 
@@ -70,8 +70,8 @@ BearingScene build_scene(const BearingModel& model, const BallLoadArrays& loads,
 
 // Centre of the load zone: the load-weighted circular mean of the azimuths of balls
 // [begin, end), in (-pi, pi]; NaN when they carry no load.
-double load_zone_centre_rad(const std::vector<float>& azimuth_rad, const std::vector<float>& load_N,
-                            std::size_t begin, std::size_t end);
+double load_zone_centre_rad(const std::vector<float>& azimuth_rad, const std::vector<float>& load_N, std::size_t begin,
+                            std::size_t end);
 
 // Radial extent and width of the rings, from the configured envelope: the outer ring from
 // just outside the ball centres to the outer diameter, the inner ring from the bore to
@@ -89,8 +89,7 @@ std::vector<Segment> ring_outline(const RingSection& section, int circle_segment
 
 // Pose of the rotating ring in the bearing frame: turned by ring_angle_rad about z and
 // shifted by the (exaggerated) displacement of the moving ring.
-Eigen::Isometry3d rotating_ring_pose(double ring_angle_rad, const Eigen::Vector3d& displacement_m,
-                                     double exaggeration);
+Eigen::Isometry3d rotating_ring_pose(double ring_angle_rad, const Eigen::Vector3d& displacement_m, double exaggeration);
 // Pose of the cage in the rotating-ring frame, for a cage centred on the bearing axis
 // (it rides on the balls, which sit on the pitch circle of the bearing frame) turned by
 // cage_angle_rad in the bearing frame.

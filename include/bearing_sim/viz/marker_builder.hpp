@@ -27,11 +27,11 @@ struct MarkerFrames {
 };
 
 struct SceneExtras {
-  std::vector<Segment> fixed_ring_outline;     // in the bearing frame
-  std::vector<Segment> rotating_ring_outline;  // in the rotating-ring frame
+  std::vector<Segment> fixed_ring_outline;                    // in the bearing frame
+  std::vector<Segment> rotating_ring_outline;                 // in the rotating-ring frame
   Eigen::Vector3d applied_force_N = Eigen::Vector3d::Zero();  // on the moving ring, bearing frame
   Eigen::Vector3d applied_moment_Nm = Eigen::Vector3d::Zero();
-  double bearing_outer_radius_m = 0.5;         // places the text, legend and load arrow
+  double bearing_outer_radius_m = 0.5;  // places the text, legend and load arrow
   std::string status_text;
 };
 
