@@ -1,4 +1,4 @@
-"""scripts/cwru_measures.py, the measures that compare real and simulated CWRU records: band
+"""dev/cwru_measures.py, the measures that compare real and simulated CWRU records: band
 shares and the share of the power in discrete lines against synthetic signals of known
 power, and the envelope-spectrum level of an impact train at its rate."""
 import math
@@ -8,7 +8,7 @@ import numpy as np
 
 from conftest import SOURCE
 
-sys.path.insert(0, str(SOURCE / 'scripts'))
+sys.path.insert(0, str(SOURCE / 'dev'))
 import cwru_measures  # noqa: E402
 
 FS = 12000.0

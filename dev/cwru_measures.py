@@ -1,6 +1,6 @@
 """Measures of an acceleration record that compare real and simulated CWRU drive-end data
-(scripts/cwru_rig_compare.py) and serve as a classifier's features
-(scripts/cwru_classifier_check.py): the power spectral density, the shares of the power in
+(dev/cwru_rig_compare.py) and serve as a classifier's features
+(dev/cwru_classifier_check.py): the power spectral density, the shares of the power in
 frequency bands and in discrete lines, and envelope-spectrum levels at given frequencies.
 Pure functions of numpy arrays (SI units: m/s^2, Hz); tested in
 test/python/test_cwru_measures.py."""

@@ -6,9 +6,9 @@ it reads the CWRU Bearing Data Center's .mat files from a directory given on the
 line (their licence does not allow copying them into this repository) and prints the
 derived numbers only.
 
-    python3 scripts/cwru_installation.py /work/cwru                    # the installation, as YAML
-    python3 scripts/cwru_installation.py /work/cwru --compare sim.csv  # real vs simulated table
-    python3 scripts/cwru_installation.py /work/cwru --slot-comb        # + the fault records' comb level
+    python3 dev/cwru_installation.py /work/cwru                    # the installation, as YAML
+    python3 dev/cwru_installation.py /work/cwru --compare sim.csv  # real vs simulated table
+    python3 dev/cwru_installation.py /work/cwru --slot-comb        # + the fault records' comb level
 
 Not executable and not installed: a development script (like cwru_indicators.py, it works on
 the source tree).
@@ -49,7 +49,7 @@ MOUNT_WINDOW = (3200, 3700)
 # The structure's modes carry the whole path at the sensor: their participations, in their
 # measured ratios, add up to 1 (the housing follows the ring below them, isolates above). With
 # the mount in series this meets the real fault records' 2-4 kHz power without a level of its
-# own (median over the 36 fault conditions of scripts/cwru_rig_compare.py: -2.8 dB; before the
+# own (median over the 36 fault conditions of dev/cwru_rig_compare.py: -2.8 dB; before the
 # mount, the five modes had to add up to 5.6 for it, their residual -4.6 passing 4-6 kHz).
 PATH_LEVEL = 1.0
 FLOOR_POINTS_HZ = (30, 60, 100, 150, 200, 300, 400, 500, 700, 1000, 1300, 1600, 2000, 2500, 3000,

@@ -9,8 +9,8 @@ lowers the kurtosis of the larger faults), the fault line's envelope SNR, and wh
 analyser reports.
 
     source scripts/env.sh; source build/devel/setup.bash
-    scripts/cwru_indicators.py                     # 0 hp, 10 ug/sqrt(Hz)
-    scripts/cwru_indicators.py --hp 3 --noise-ug 1000
+    dev/cwru_indicators.py                     # 0 hp, 10 ug/sqrt(Hz)
+    dev/cwru_indicators.py --hp 3 --noise-ug 1000
 """
 import argparse
 import pathlib

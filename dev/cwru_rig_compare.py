@@ -4,13 +4,13 @@
 For each condition of the CWRU 12 kHz drive-end set found in CWRU_DIR (normal; inner race,
 ball and outer race at 0.007 / 0.014 / 0.021 in; the motor loads asked for) the package
 simulates the same condition: config/bearings/cwru_6205_drive_end.yaml at the real file's
-speed, the seeded fault (scripts/cwru_indicators.py: EDM width, 0.011 in deep; outer race at
+speed, the seeded fault (dev/cwru_indicators.py: EDM width, 0.011 in deep; outer race at
 6:00 in the load along x, 3:00 at 90 deg, 12:00 at 180 deg), the radial load of the
 scenarios (49 N), a sensor file sampling at 12 kHz, the dynamics at --dynamics-rate-hz. Real
 and simulated records are measured alike over the same window: RMS, crest factor and
 kurtosis and the fault line's envelope SNR and verdict of bearing_sim.analyze (the call of
 bearing_sim.cwru_benchmark: the record's speed, default options), the shares of the power
-in the bands of scripts/cwru_measures.BANDS_HZ and in discrete lines (line_share: the excess
+in the bands of dev/cwru_measures.BANDS_HZ and in discrete lines (line_share: the excess
 of PSD bins > 10 dB over the PSD's 51 Hz running median, 1 s Hann Welch).
 
 Writes into --out: summary.md (the table and issue 30's three targets, pass or fail),
@@ -20,8 +20,8 @@ three pass, 1 when one fails, 2 for bad input. The record 97
 (normal, 48 kHz) is decimated to 12 kHz (FIR, zero phase) first.
 
     source scripts/env.sh; source build/devel/setup.bash
-    /usr/bin/python3 scripts/cwru_rig_compare.py /work/cwru --out /tmp/cwru_rig_compare
-    /usr/bin/python3 scripts/cwru_rig_compare.py /work/cwru --out /tmp/x --hp 0,3 --positions @6,@3,@12 --window-s 1
+    /usr/bin/python3 dev/cwru_rig_compare.py /work/cwru --out /tmp/cwru_rig_compare
+    /usr/bin/python3 dev/cwru_rig_compare.py /work/cwru --out /tmp/x --hp 0,3 --positions @6,@3,@12 --window-s 1
 
 Data: CWRU Bearing Data Center, Case Western Reserve University,
 https://engineering.case.edu/bearingdatacenter (not shipped: read from CWRU_DIR).
@@ -56,7 +56,7 @@ BAND_POINTS = 10.0          # target 2: every band share within this many percen
 VERDICT_SHARE = 0.8         # target 3: the same verdict on this share of the conditions
 # The motor's slot harmonics (the sensor file's speed-locked orders above SLOT_ORDER_MIN, the
 # 4.0-4.4 kHz comb) as the 12 kHz fault records hold them: 22 dB below the normal record 97's
-# (the median over the 36 fault records of their summed power, scripts/cwru_installation.py
+# (the median over the 36 fault records of their summed power, dev/cwru_installation.py
 # --slot-comb; 8-38 dB). They belong to an assembly (the motor taken apart for each test
 # bearing), not to the rig; the normal record keeps the file's.
 SLOT_ORDER_MIN = 100.0
@@ -88,7 +88,7 @@ def parser():
                         'config/bearings/cwru_6205_drive_end.yaml; a variant may set imperfections)')
     p.add_argument('--sensor', type=pathlib.Path,
                    help=f'sensor file of the simulation; it must sample at 12 kHz (default: {CWRU_SENSOR_FILE.name} '
-                        'if present, else ct_gantry_housing_accelerometer.yaml adapted as scripts/cwru_indicators.py '
+                        'if present, else ct_gantry_housing_accelerometer.yaml adapted as dev/cwru_indicators.py '
                         'does, with --noise-ug)')
     p.add_argument('--noise-ug', type=float, default=cwru_indicators.NOISE_UG,
                    help='noise density of the adapted CT sensor, ug/sqrt(Hz) (default %(default)s; not used with a '
@@ -141,7 +141,7 @@ def sensor_file(args, work):
                                   f'{args.fault_slot_comb_db:+g} dB)')
     path = pathlib.Path(work) / 'sensor.yaml'
     path.write_text(bearing_sim.yaml_text({'sensor': cwru_indicators.housing_sensor(args.noise_ug)}), encoding='utf-8')
-    return path, (f'config/sensors/ct_gantry_housing_accelerometer.yaml adapted as scripts/cwru_indicators.py does, '
+    return path, (f'config/sensors/ct_gantry_housing_accelerometer.yaml adapted as dev/cwru_indicators.py does, '
                   f'{args.noise_ug:g} ug/sqrt(Hz)')
 
 
@@ -263,7 +263,7 @@ def markdown(rows, target_lines, notes):
             + [f'{b} (%)' for b in BAND_NAMES] + ['lines (%)', 'fault line SNR (dB)', 'verdict'])
     out = ['# CWRU drive end: real and simulated, per condition', '',
            'Each cell: real / simulated. Bands and lines: share of the power (%); lines: the PSD bins > 10 dB over '
-           'its 51 Hz running median (scripts/cwru_measures.py). Fault line SNR: the envelope SNR of the record\'s '
+           'its 51 Hz running median (dev/cwru_measures.py). Fault line SNR: the envelope SNR of the record\'s '
            'fault series (BPFI, 2xBSF, BPFO) from bearing_sim.analyze; verdict: its class (bearing_sim.cwru_scoring).',
            '', *notes, '', '| ' + ' | '.join(head) + ' |', '|' + '---|' * len(head)]
     for r in rows:

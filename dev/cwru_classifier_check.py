@@ -18,13 +18,13 @@ of windows right.
 Features of a window (no feature reads the label; the speed is the record's, as a
 tachometer gives it): RMS (log10, m/s^2; left out with --features scale_free), crest
 factor, kurtosis, skewness, the shares of the power in the bands and in discrete lines
-(scripts/cwru_measures.py), the squared-envelope spectrum's levels over its floor at f_r,
+(dev/cwru_measures.py), the squared-envelope spectrum's levels over its floor at f_r,
 FTF, BSF, 2 x BSF, BPFO, 2 x BPFO, BPFI, 2 x BPFI in three bands (1-2, 2-4, 4-5.8 kHz), and
 the analyser's (bearing_sim.analyze) envelope SNR of the BPFO, BPFI, 2xBSF and FTF series
 and its band's kurtosis.
 
     source scripts/env.sh; source build/devel/setup.bash
-    /usr/bin/python3 scripts/cwru_classifier_check.py /work/cwru --campaign-dir /tmp/cwru_rig --out /tmp/cwru_check
+    /usr/bin/python3 dev/cwru_classifier_check.py /work/cwru --campaign-dir /tmp/cwru_rig --out /tmp/cwru_check
 
 Exit 0 when issue 30's target is met (>= 80 % right, inner race >= 11/12, outer race >=
 25/28, the normal record right), 1 when not, 2 for bad input.
