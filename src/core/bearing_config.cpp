@@ -213,8 +213,8 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
   }
 
   if (const YAML::Node body = r.map("carried_body")) read_carried_body(Reader(body, source, "carried_body."), &c);
-  if (const YAML::Node ring = r.map("flexible_ring"))
-    detail::read_flexible_ring(Reader(ring, source, "flexible_ring."), &c);
+  if (const YAML::Node flexible = r.map("flexible_ring"))
+    detail::read_flexible_ring(Reader(flexible, source, "flexible_ring."), &c);
   const YAML::Node dmp = r.map("damping");
   if (dmp) read_damping(Reader(dmp, source, "damping."), dmp, &c);
   c.imperfections = parse_imperfections(root["imperfections"], root["defects"], source, c.rows);

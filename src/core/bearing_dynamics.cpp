@@ -170,10 +170,10 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
     // One exponential for all of them.
     using Matrix50 = Eigen::Matrix<double, 50, 50>;
     const int m = step_ratio_.samples;
-    Matrix50 w = Matrix50::Zero();
-    w.topLeftCorner<10, 10>() = (h / m) * balanced;
-    for (int k = 0; k < 4; ++k) w.block<10, 10>(10 * k, 10 * (k + 1)) = Matrix10::Identity() / m;
-    const Matrix50 part = w.exp();
+    Matrix50 augmented = Matrix50::Zero();
+    augmented.topLeftCorner<10, 10>() = (h / m) * balanced;
+    for (int k = 0; k < 4; ++k) augmented.block<10, 10>(10 * k, 10 * (k + 1)) = Matrix10::Identity() / m;
+    const Matrix50 part = augmented.exp();
     Eigen::Matrix<double, 10, 50> row = part.topRows<10>();
     std::vector<std::array<Matrix10, 5>> phi_at(m);  // at theta = (j + 1)/m: e, phi_1 .. phi_4
     for (int j = 0; j < m; ++j) {
@@ -219,9 +219,9 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
     for (int lead = 1; lead < step_ratio_.samples; ++lead) {
       const double theta = 1.0 - static_cast<double>(lead) / m;
       const std::array<Matrix10, 5>& f = phi_at[m - lead - 1];
-      Eigen::Matrix<double, 15, 30>& d = adams_sample_within_step_[lead - 1];
-      d.setZero();
-      d.topLeftCorner<10, 10>() = f[0];
+      Eigen::Matrix<double, 15, 30>& sample_map = adams_sample_within_step_[lead - 1];
+      sample_map.setZero();
+      sample_map.topLeftCorner<10, 10>() = f[0];
       for (int i = 0; i < 4; ++i) {
         Matrix10 weight = Matrix10::Zero();
         double basis = 0.0;
@@ -231,10 +231,10 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
           weight += monomial(k, i) * factorial * std::pow(theta, k + 1) * f[k + 1];
           basis += monomial(k, i) * std::pow(theta, k);
         }
-        d.block<10, 5>(0, 10 + 5 * i) = h * weight.rightCols<5>();
-        d.block<5, 5>(10, 10 + 5 * i) = basis * Matrix5::Identity();
+        sample_map.block<10, 5>(0, 10 + 5 * i) = h * weight.rightCols<5>();
+        sample_map.block<5, 5>(10, 10 + 5 * i) = basis * Matrix5::Identity();
       }
-      d.bottomRows<5>() += lin_accel_ * d.topRows<10>();
+      sample_map.bottomRows<5>() += lin_accel_ * sample_map.topRows<10>();
     }
   }
   // ETDRK4 (backward with the Adams methods, for their history): Cox-Matthews weights of the

@@ -230,13 +230,13 @@ Scenario Scenario::from_string(const std::string& yaml, const std::string& sourc
         p.start_speed = speed;
         p.start_key = p.end_key = speed_key;
         if (p.kind == SpeedPiece::Kind::Hold) {  // a step, if given
-          const std::string given = read_speed(g, "speed", bearing_config.pitch_diameter_m, &p.start_speed);
-          if (!given.empty()) p.start_key = p.end_key = key + "." + given;
+          const std::string step = read_speed(g, "speed", bearing_config.pitch_diameter_m, &p.start_speed);
+          if (!step.empty()) p.start_key = p.end_key = key + "." + step;
         }
         if (p.kind == SpeedPiece::Kind::Ramp) {
-          const std::string given = read_speed(g, "to_speed", bearing_config.pitch_diameter_m, &p.end_speed);
-          if (given.empty()) g.fail("to_speed_rpm", "a ramp needs its target, to_speed_rpm or to_speed_rad_s");
-          p.end_key = key + "." + given;
+          const std::string target = read_speed(g, "to_speed", bearing_config.pitch_diameter_m, &p.end_speed);
+          if (target.empty()) g.fail("to_speed_rpm", "a ramp needs its target, to_speed_rpm or to_speed_rad_s");
+          p.end_key = key + "." + target;
         }
         if (p.kind == SpeedPiece::Kind::Coast) {
           p.time_constant_s = g.number("time_constant_s", 0.0, true);

@@ -139,7 +139,9 @@ TEST(FlexibleInputs, ASpallAddedWhileRunningFollowsConvergedRk4) {
     for (int i = 1; i <= 2000; ++i) {
       if (i == 101) {
         d.add_spall(spall);
-        if (k == 0) EXPECT_EQ(d.substeps(), FlexibleDynamics::kAdamsStepsPerSampleWithSpall);
+        if (k == 0) {
+          EXPECT_EQ(d.substeps(), FlexibleDynamics::kAdamsStepsPerSampleWithSpall);
+        }
       }
       const double ax = d.step().accelerations[0];
       if (i <= 1000) continue;
