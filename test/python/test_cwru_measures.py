@@ -68,3 +68,27 @@ def test_envelope_line_level_stands_out_at_the_impact_rate_only():
     assert cwru_measures.line_level_db(f, a, 107.3) > 20.0
     # Midway between its 1st and 2nd harmonics there is only the floor.
     assert cwru_measures.line_level_db(f, a, 161.0) < 10.0
+
+
+def test_pass_scatter_reads_a_shaft_rate_modulation_of_the_impacts():
+    # Impacts at 107.3 Hz whose strengths follow 1 + m cos(2 pi f_r t), f_r = 29.93 Hz, m = 0.6:
+    # the pass strengths' coefficient of variation is m / sqrt(2) (the mean of cos^2 is 1/2; the
+    # shaft's phase at the passes is spread evenly, 107.3 / 29.93 is not a ratio of small
+    # integers) and the depth read at f_r is m. Each ringing (12 % of a period long, 3 % damped)
+    # stays in its own period; the band-pass filter's own ringing and the noise: 0.03.
+    m, shaft_hz, fault_hz = 0.6, 29.93, 107.3
+    n = int(10.0 * FS)
+    times = np.arange(0.3 / fault_hz, 10.0 - 1.0 / fault_hz, 1.0 / fault_hz)
+    impacts = np.zeros(n)
+    impacts[(times * FS).astype(int)] = 1.0 + m * np.cos(2.0 * math.pi * shaft_hz * times)
+    t = np.arange(int(0.3 * FS / fault_hz)) / FS
+    ring = np.exp(-0.03 * 2 * math.pi * 3000.0 * t) * np.sin(2 * math.pi * 3000.0 * t)
+    x = np.convolve(impacts, ring)[:n] + 0.001 * white(10.0, 1.0)
+    cv, depth = cwru_measures.pass_scatter(x, FS, fault_hz, shaft_hz)
+    assert abs(depth - m) < 0.03
+    assert abs(cv - m / math.sqrt(2.0)) < 0.03
+    # Equal impacts: no modulation, and a scatter of 0.03 from the whole samples (a period is
+    # 111.8 samples, the impacts fall on whole samples) and the filter's ringing across periods.
+    impacts[impacts > 0] = 1.0
+    cv, depth = cwru_measures.pass_scatter(np.convolve(impacts, ring)[:n], FS, fault_hz, shaft_hz)
+    assert cv < 0.04 and depth < 0.01
