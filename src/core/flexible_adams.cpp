@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include <Eigen/Eigenvalues>
-#include <unsupported/Eigen/MatrixFunctions>
 
 #include "bearing_sim/core/errors.hpp"
+#include "phi_functions.hpp"
 #include "small_products.hpp"
 
 namespace bearing_sim {
@@ -68,9 +68,9 @@ void FlexibleAdams::linearize(const Acceleration& accel, const Eigen::VectorXd& 
     }
     lin_.col(j) = (accel(zp, vp, t0) - accel(zm, vm, t0)) / (2.0 * d);
   }
-  // L = [0 I; lin]; e^{hL} and phi_1..4(hL) from the exponential of the block matrix
-  // [hL I 0 0 0; 0 0 I 0 0; ...; 0] (its first block row), on the balanced D L D^-1 with
-  // D = diag(w I, I), w^2 = |d z''/d z| (SI units put 1e8 next to 1: see BearingDynamics).
+  // L = [0 I; lin]; e^{hL} and phi_1..4(hL) (their right halves, the remainder's) by scaling
+  // and squaring, on the balanced D L D^-1 with D = diag(w I, I), w^2 = |d z''/d z| (SI units
+  // put 1e8 next to 1: see BearingDynamics).
   const double w = std::max(1.0, std::sqrt(lin_.leftCols(n).lpNorm<Eigen::Infinity>()));
   const int m = 2 * n;
   Eigen::MatrixXd balanced = Eigen::MatrixXd::Zero(m, m);
@@ -78,18 +78,13 @@ void FlexibleAdams::linearize(const Acceleration& accel, const Eigen::VectorXd& 
   balanced.bottomLeftCorner(n, n) = lin_.leftCols(n) / w;
   balanced.bottomRightCorner(n, n) = lin_.rightCols(n);
   highest_rate_ = Eigen::EigenSolver<Eigen::MatrixXd>(balanced, false).eigenvalues().cwiseAbs().maxCoeff();
-  Eigen::MatrixXd big = Eigen::MatrixXd::Zero(5 * m, 5 * m);
-  big.topLeftCorner(m, m) = h_ * balanced;
-  for (int k = 0; k < 4; ++k) big.block(m * k, m * (k + 1), m, m).setIdentity();
-  const Eigen::MatrixXd e = big.exp();
+  const detail::PhiFunctions f = detail::phi_functions(h_ * balanced, n);
   Eigen::VectorXd d(m);
   d << Eigen::VectorXd::Constant(n, w), Eigen::VectorXd::Ones(n);
-  const auto unbalance = [&](const Eigen::MatrixXd& f) -> Eigen::MatrixXd {
-    return d.cwiseInverse().asDiagonal() * f * d.asDiagonal();
-  };
-  exp_ = unbalance(e.topLeftCorner(m, m));
-  std::array<Eigen::MatrixXd, 5> phi;  // phi_1..phi_4 (index 1..4), right half (the remainder's), times h
-  for (int k = 1; k <= 4; ++k) phi[k] = h_ * unbalance(e.block(0, m * k, m, m)).rightCols(n);
+  exp_ = d.cwiseInverse().asDiagonal() * f.exp * d.asDiagonal();
+  // The right halves' columns are D's unit ones.
+  std::array<Eigen::MatrixXd, 5> phi;  // phi_1..phi_4 (index 1..4), right half, times h
+  for (int k = 1; k <= 4; ++k) phi[k] = h_ * (d.cwiseInverse().asDiagonal() * f.phi[k - 1]);
   // ETD-AB (polynomial through the step's start and the steps before): phi1, phi2,
   // phi3 + phi2/2, phi4 + phi3 + phi2/3 on nabla^0..3; ETD-AM (through the step's end and
   // the steps before): phi1, phi2 - phi1, phi3 - phi2/2, phi4 - phi2/6.

@@ -10,6 +10,9 @@
 #include <utility>
 #include <vector>
 
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "../../src/core/phi_functions.hpp"
 #include "../../src/core/small_products.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/flexible_adams.hpp"
@@ -110,6 +113,60 @@ struct CtRing {
   FlexibleBearing bearing{BearingModel(load_bearing_config(test::bearing_file("ct_gantry_flexible.yaml")))};
   FlexibleStaticSolution equilibrium = solve_flexible_static(bearing, test::ct_load());
 };
+
+// phi_k(z) = (e^z - sum_{j<k} z^j / j!) / z^k, closed form (no cancellation for |z| >= 1).
+std::complex<double> phi_closed_form(int k, std::complex<double> z) {
+  std::complex<double> sum = std::exp(z), term = 1.0;
+  for (int j = 0; j < k; ++j) {
+    sum -= term;
+    term *= z / static_cast<double>(j + 1);
+  }
+  return sum / std::pow(z, k);
+}
+
+TEST(PhiFunctions, RotationBlocksGiveTheClosedFormOfTheirEigenvalues) {
+  // [a -b; b a] acts as z = a + i b: its phi_k is [Re -Im; Im Re] of phi_k(z). Rates from a
+  // slow damped mode to |z| = 40 (the scaling's 7 doublings).
+  const std::vector<std::complex<double>> zs = {{-0.02, 1.0}, {-0.3, 3.0}, {-1.0, 12.0}, {-2.0, 40.0}, {-5.0, 0.5}};
+  const int m = 2 * static_cast<int>(zs.size());
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(m, m);
+  for (std::size_t i = 0; i < zs.size(); ++i)
+    a.block<2, 2>(2 * i, 2 * i) << zs[i].real(), -zs[i].imag(), zs[i].imag(), zs[i].real();
+  const detail::PhiFunctions f = detail::phi_functions(a, m);
+  for (int k = 0; k <= 4; ++k) {
+    const Eigen::MatrixXd& got = k == 0 ? f.exp : f.phi[k - 1];
+    for (std::size_t i = 0; i < zs.size(); ++i) {
+      const std::complex<double> want = phi_closed_form(k, zs[i]);
+      // Each doubling adds a few roundings of the size of phi_k: 1e-13 of it with margin.
+      const double tolerance = 1e-12 * std::max(1.0, std::abs(want));
+      EXPECT_NEAR(got(2 * i, 2 * i), want.real(), tolerance) << "phi_" << k << " at z = " << zs[i];
+      EXPECT_NEAR(got(2 * i + 1, 2 * i), want.imag(), tolerance) << "phi_" << k << " at z = " << zs[i];
+    }
+  }
+}
+
+TEST(PhiFunctions, AreTheBlockRowOfTheAugmentedExponential) {
+  // A non-normal matrix of norm 8: e^A and the right halves of phi_1..4 are the first block
+  // row of exp([A I 0 0 0; 0 0 I 0 0; ...; 0]) (Eigen's Pade scaling and squaring, 5 times the size).
+  const int m = 30, half = m / 2;
+  std::mt19937 random(7);
+  std::normal_distribution<double> normal;
+  Eigen::MatrixXd a(m, m);
+  for (int i = 0; i < m * m; ++i) a.data()[i] = normal(random);
+  a *= 8.0 / a.cwiseAbs().colwise().sum().maxCoeff();
+  a.diagonal().array() -= 2.0;  // decaying, as a damped structure
+  Eigen::MatrixXd big = Eigen::MatrixXd::Zero(5 * m, 5 * m);
+  big.topLeftCorner(m, m) = a;
+  for (int k = 0; k < 4; ++k) big.block(m * k, m * (k + 1), m, m).setIdentity();
+  const Eigen::MatrixXd e = big.exp();
+  const detail::PhiFunctions f = detail::phi_functions(a, half);
+  // Both are accurate to rounding times the scaling's doublings: 1e-12 of the largest entry.
+  EXPECT_LE((f.exp - e.topLeftCorner(m, m)).cwiseAbs().maxCoeff(), 1e-12 * e.topLeftCorner(m, m).cwiseAbs().maxCoeff());
+  for (int k = 1; k <= 4; ++k) {
+    const Eigen::MatrixXd want = e.block(0, m * k, m, m).rightCols(half);
+    EXPECT_LE((f.phi[k - 1] - want).cwiseAbs().maxCoeff(), 1e-12 * want.cwiseAbs().maxCoeff()) << "phi_" << k;
+  }
+}
 
 TEST(FlexibleBearing, LoadFrameForceIsTheRingFrameForceRotated) {
   // b = R(n psi) a per pair: the kernel with the shapes at the balls' azimuths must give the
@@ -212,9 +269,11 @@ TEST(FlexibleDynamics, AdamsStepGivesTheCtRingsResponseOfConvergedRk4) {
   EXPECT_NEAR(adams.a_rms_x, rk4.a_rms_x, 0.01 * rk4.a_rms_x);
   EXPECT_NEAR(adams.a_rms_y, rk4.a_rms_y, 0.01 * rk4.a_rms_y);
   EXPECT_NEAR(20.0 * std::log10(adams.a_rms_x / rk4.a_rms_x), 0.0, 0.1);
-  for (std::size_t i = 0; i < rk4.mode_rms_m.size(); ++i)
-    if (rk4.mode_rms_m[i] > 1e-3 * rk4.mode_rms_m[0])  // modes the load drives (in plane)
+  for (std::size_t i = 0; i < rk4.mode_rms_m.size(); ++i) {
+    if (rk4.mode_rms_m[i] > 1e-3 * rk4.mode_rms_m[0]) {  // modes the load drives (in plane)
       EXPECT_NEAR(adams.mode_rms_m[i], rk4.mode_rms_m[i], 0.01 * rk4.mode_rms_m[i]) << "mode " << i;
+    }
+  }
 }
 
 TEST(FlexibleDynamics, OtherIntegratorsAreRefusedNamingTheChoices) {
