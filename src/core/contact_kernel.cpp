@@ -8,6 +8,7 @@
 #include "dispatch.hpp"
 #include "hwy/contrib/math/math-inl.h"
 
+#include "bearing_sim/core/constants.hpp"
 #include "contact_kernel.hpp"
 #include "padded_balls.hpp"
 
@@ -28,9 +29,15 @@ namespace hn = hwy::HWY_NAMESPACE;
 // The dip of the balls of `inside` (asin and cos only here, out of line: a vector rarely holds a
 // ball in a spall, and inline they would crowd the kernel's registers).
 template <class D, class V, class M>
-HWY_NOINLINE V WindowDip(D d, V sin_x, M inside, double depth, double pi_over_width) {
+HWY_NOINLINE V WindowDip(D d, V sin_x, M inside, const Imperfections::SpallWindow& w) {
+  if (w.sharp_edges) {  // min(depth, geometric_depth (1 - 2|x| / width)^2)
+    const V u = hn::NegMulAdd(hn::Abs(hn::Asin(d, sin_x)), hn::Set(d, w.pi_over_width * (2.0 / bearing_sim::kPi)),
+                              hn::Set(d, 1.0));
+    return hn::IfThenElseZero(inside,
+                              hn::Min(hn::Set(d, w.depth), hn::Mul(hn::Set(d, w.geometric_depth), hn::Mul(u, u))));
+  }
   return hn::IfThenElseZero(
-      inside, hn::Mul(hn::Set(d, depth), hn::Cos(d, hn::Mul(hn::Asin(d, sin_x), hn::Set(d, pi_over_width)))));
+      inside, hn::Mul(hn::Set(d, w.depth), hn::Cos(d, hn::Mul(hn::Asin(d, sin_x), hn::Set(d, w.pi_over_width)))));
 }
 
 // kWindows: the balls may be under race spalls' windows (a separate variant, so that the
@@ -71,7 +78,7 @@ HWY_INLINE ContactSums Sums(const ContactKernelInput& in) {
     const V sin_x = hn::MulSub(sphi, cw, hn::Mul(cphi, sw));
     const V cos_x = hn::MulAdd(cphi, cw, hn::Mul(sphi, sw));
     const auto inside = hn::And(hn::And(hn::Gt(cos_x, zero), hn::Lt(hn::Abs(sin_x), half)), hn::Eq(pz, row));
-    return hn::AllFalse(d, inside) ? zero : WindowDip(d, sin_x, inside, w.depth, w.pi_over_width);
+    return hn::AllFalse(d, inside) ? zero : WindowDip(d, sin_x, inside, w);
   };
   auto balls = [&](V cb, V sb, V pz, V nz, V off, M valid) HWY_ATTR {
     const V cphi = hn::MulSub(cc, cb, hn::Mul(sc, sb));
@@ -179,8 +186,14 @@ ContactSums contact_sums_scalar(const ContactKernelInput& in) {
       const Imperfections::SpallWindow& w = in.spalls[i];
       const double sin_x = sphi * w.cos_centre - cphi * w.sin_centre;
       const double cos_x = cphi * w.cos_centre + sphi * w.sin_centre;
-      if (cos_x > 0.0 && std::abs(sin_x) < w.sin_half_width && pz == w.row_groove_centre_z)
-        offset -= w.depth * std::cos(std::asin(sin_x) * w.pi_over_width);
+      if (cos_x > 0.0 && std::abs(sin_x) < w.sin_half_width && pz == w.row_groove_centre_z) {
+        if (w.sharp_edges) {
+          const double u = 1.0 - std::abs(std::asin(sin_x)) * (w.pi_over_width * (2.0 / bearing_sim::kPi));
+          offset -= std::min(w.depth, w.geometric_depth * u * u);
+        } else {
+          offset -= w.depth * std::cos(std::asin(sin_x) * w.pi_over_width);
+        }
+      }
     }
     const double vx = A * in.cos_a0 * cphi - sg * (q[0] + q[4] * pz);
     const double vy = A * in.cos_a0 * sphi - sg * (q[1] - q[3] * pz);

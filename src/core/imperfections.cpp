@@ -45,9 +45,14 @@ inline double ring_angle(const RollingPhase& phase, Surface race) {
   return race == Surface::OuterRace ? phase.outer_ring : phase.inner_ring;
 }
 
-// Half-sine dip of a spall centred at 0 of angular width w, at angle x (|x| < w/2).
-inline double spall_dip(double x, double angular_width, double depth) {
-  return std::abs(x) < 0.5 * angular_width ? depth * std::cos(kPi * x / angular_width) : 0.0;
+// Dip of a spall centred at 0 of angular width w, at angle x (|x| < w/2): a half-sine of the
+// effective depth (rounded edges), or with sharp edges the ball's drop pivoting on the nearer
+// edge, geometric_depth (1 - 2|x| / w)^2, at most the effective depth (the spall's floor).
+inline double spall_dip(double x, double angular_width, double depth, bool sharp_edges, double geometric_depth) {
+  if (!(std::abs(x) < 0.5 * angular_width)) return 0.0;
+  if (!sharp_edges) return depth * std::cos(kPi * x / angular_width);
+  const double u = 1.0 - 2.0 * std::abs(x) / angular_width;
+  return std::min(depth, geometric_depth * u * u);
 }
 }  // namespace
 
@@ -94,7 +99,7 @@ ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML
     r.check_keys({"seed", "waviness", "ball_diameter_variation_um", "roughness_rms_um", "roughness_row",
                   "ball_spacing_jitter_mm", "cage_slip_percent", "cage_slip_variation_percent",
                   "cage_slip_correlation_s", "ball_place_wander_mm", "ball_place_wander_correlation_s",
-                  "ball_spin_axis_wander_deg", "ball_spin_axis_wander_correlation_s"});
+                  "ball_spin_axis_wander_deg", "ball_spin_axis_wander_correlation_s", "spall_edges"});
     const int seed = r.integer("seed", 1);
     r.require(seed >= 0, "seed", "must be >= 0");
     spec.seed = static_cast<std::uint64_t>(seed);
@@ -125,6 +130,9 @@ ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML
     spec.ball_spin_axis_wander_correlation_s = r.number("ball_spin_axis_wander_correlation_s", 0.1);
     r.require(spec.ball_spin_axis_wander_correlation_s >= 1e-4 && spec.ball_spin_axis_wander_correlation_s <= 1e3,
               "ball_spin_axis_wander_correlation_s", "must be in [1e-4, 1e3] s");
+    const std::string edges = r.text("spall_edges", "rounded");
+    r.require(edges == "rounded" || edges == "sharp", "spall_edges", "must be 'rounded' or 'sharp'");
+    spec.spall_sharp_edges = edges == "sharp";
     const YAML::Node list = imperfections["waviness"];
     if (list) {
       if (!list.IsSequence()) r.fail("waviness", "expected a list of {surface, order, amplitude_um, phase_deg}");
@@ -333,7 +341,7 @@ void Imperfections::add_spall(const Spall& spall) {
   // Without growth the size does not depend on time (grown_size is then min(size, limit)).
   shape.fixed = spall.width_growth_m_per_s == 0.0 && spall.depth_growth_m_per_s == 0.0;
   if (shape.fixed) {
-    spall_size(spall, spall.created_at_s, &shape.angular_width, &shape.depth);
+    spall_size(spall, spall.created_at_s, &shape.angular_width, &shape.depth, &shape.geometric_depth);
     shape.sin_half_width = std::sin(0.5 * shape.angular_width);
     shape.pi_over_width = kPi / shape.angular_width;
   }
@@ -369,6 +377,7 @@ int Imperfections::spall_windows(const RollingPhase& phase, SpallWindow* windows
     SpallWindow& w = windows[count];
     if (shape.fixed) {
       w.depth = shape.depth;
+      w.geometric_depth = shape.geometric_depth;
       w.sin_half_width = shape.sin_half_width;
       w.pi_over_width = shape.pi_over_width;
     } else {
@@ -383,6 +392,7 @@ int Imperfections::spall_windows(const RollingPhase& phase, SpallWindow* windows
     } else {
       centre_trig(centre, count, &w.cos_centre, &w.sin_centre);
     }
+    w.sharp_edges = spec_.spall_sharp_edges;
     w.row = s.row;
     w.row_groove_centre_z = 0.0;
     ++count;
@@ -409,7 +419,8 @@ double Imperfections::place_shift_rad(std::size_t index, const Spall& s, double 
   return std::clamp(shift, -bound, bound);
 }
 
-void Imperfections::struck_chord(std::size_t index, double time_s, double* angular_width, double* depth) const {
+void Imperfections::struck_chord(std::size_t index, double time_s, double* angular_width, double* depth,
+                                 double* geometric_depth) const {
   if (spec_.ball_spin_axis_wander_rad <= 0.0) return;
   const std::uint64_t key = detail::mix64(spec_.seed ^ 0x3c6ef372fe94f82bull) ^ detail::mix64(index);
   const double latitude =
@@ -424,18 +435,20 @@ void Imperfections::struck_chord(std::size_t index, double time_s, double* angul
   }
   const double width = *angular_width * std::sqrt(chord);
   const double width_m = width * 0.5 * geometry_.ball_diameter_m;
-  *depth = std::min(*depth, width_m * width_m / (4.0 * geometry_.ball_diameter_m));
+  *geometric_depth = width_m * width_m / (4.0 * geometry_.ball_diameter_m);
+  *depth = std::min(*depth, *geometric_depth);
   *angular_width = width;
 }
 
 void Imperfections::grown_window(const Spall& s, double time_s, SpallWindow* w) const {
   double angular_width = 0.0;
-  spall_size(s, time_s, &angular_width, &w->depth);
+  spall_size(s, time_s, &angular_width, &w->depth, &w->geometric_depth);
   w->sin_half_width = std::sin(0.5 * angular_width);
   w->pi_over_width = kPi / angular_width;
 }
 
-void Imperfections::spall_size(const Spall& s, double time_s, double* angular_width, double* depth) const {
+void Imperfections::spall_size(const Spall& s, double time_s, double* angular_width, double* depth,
+                               double* geometric_depth) const {
   const double age = std::max(0.0, time_s - s.created_at_s);
   const SpallLimit limit =
       spall_limit(s.surface, geometry_.ball_diameter_m, geometry_.outer_race_radius_m, geometry_.inner_race_radius_m);
@@ -443,6 +456,7 @@ void Imperfections::spall_size(const Spall& s, double time_s, double* angular_wi
   const double width = grown_size(s.width_m, s.width_growth_m_per_s, age, limit.max_width_m);
   *depth = effective_depth(width, grown_size(s.depth_m, s.depth_growth_m_per_s, age, limit.max_depth_m),
                            geometry_.ball_diameter_m);
+  *geometric_depth = width * width / (4.0 * geometry_.ball_diameter_m);
   const double radius = s.surface == Surface::Ball        ? 0.5 * geometry_.ball_diameter_m
                         : s.surface == Surface::OuterRace ? geometry_.outer_race_radius_m
                                                           : geometry_.inner_race_radius_m;
@@ -557,16 +571,17 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
   for (std::size_t i = 0; i < spalls_.size(); ++i) {
     const Spall& s = spalls_[i];
     const SpallShape& shape = spall_shapes_[i];
-    double angular_width = shape.angular_width, depth = shape.depth;
-    if (!shape.fixed) spall_size(s, phase.time_s, &angular_width, &depth);
+    double angular_width = shape.angular_width, depth = shape.depth, geometric_depth = shape.geometric_depth;
+    if (!shape.fixed) spall_size(s, phase.time_s, &angular_width, &depth, &geometric_depth);
+    const bool sharp = spec_.spall_sharp_edges;
     if (s.surface == Surface::Ball) {
       // The spot faces the outer and the inner race once each per spin turn.
       const int entry = set.entry_of_ball[s.ball];
       if (entry < 0) continue;
-      struck_chord(i, phase.time_s, &angular_width, &depth);
+      struck_chord(i, phase.time_s, &angular_width, &depth, &geometric_depth);
       if (depth <= 0.0) continue;
       const double x = std::remainder(phase.ball_spin + ball_phase_[s.ball] - s.position_rad, kPi);
-      out[entry] -= spall_dip(x, angular_width, depth);
+      out[entry] -= spall_dip(x, angular_width, depth, sharp, geometric_depth);
     } else {
       // Only the few balls within half a width of the spall centre: find them by index,
       // since the balls of a row are evenly spaced.
@@ -606,7 +621,7 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
           // To [-pi, pi]; the product by 1/(2 pi) can round differently from the quotient
           // only next to +-pi, where no spall reaches (at most a quarter turn wide).
           const double x = angle - kTwoPi * round_to_nearest(angle * kInverseTwoPi);
-          out[entry] -= spall_dip(x, angular_width, depth);
+          out[entry] -= spall_dip(x, angular_width, depth, sharp, geometric_depth);
         }
       }
     }

@@ -210,13 +210,15 @@ void expect_windows_match_dips(const BearingModel& model, const Vector5& load, d
 
 TEST(ContactKernel, RaceSpallWindowsGiveTheOffsetsDips) {
   test::for_each_simd_target([&] {
-    for (const Surface surface : {Surface::OuterRace, Surface::InnerRace}) {
-      BearingModel model = test::bearing_6205();
-      // Centred on ball 0's azimuth at cage angle 0 in the race's frame (the inner ring at 0.37 rad).
-      Spall spall{surface, surface == Surface::InnerRace ? -0.37 : 0.0, 0, 1.5e-3, 20e-6};
-      model.add_spall(spall);
-      expect_windows_match_dips(model, test::load5(1000.0, 0.0, 0.0, 0.0, 0.0), 1.5e-3 / 0.02);
-    }
+    // Rounded and sharp edges (docs/model.md 9.6).
+    for (const Surface surface : {Surface::OuterRace, Surface::InnerRace})
+      for (const char* edges : {"", "imperfections: {spall_edges: sharp}\n"}) {
+        BearingModel model = test::bearing_6205(edges);
+        // Centred on ball 0's azimuth at cage angle 0 in the race's frame (the inner ring at 0.37 rad).
+        Spall spall{surface, surface == Surface::InnerRace ? -0.37 : 0.0, 0, 1.5e-3, 20e-6};
+        model.add_spall(spall);
+        expect_windows_match_dips(model, test::load5(1000.0, 0.0, 0.0, 0.0, 0.0), 1.5e-3 / 0.02);
+      }
     // The CT bearing: row 0's ball nearest 180 deg, in the load zone of its 6800 N.
     BearingModel ct(test::ct_bearing());
     const int ball = ct.balls_per_row() / 2;

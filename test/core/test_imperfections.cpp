@@ -116,6 +116,57 @@ TEST(Spall, AShallowWideSpallIsLimitedByHowFarTheBallCanDrop) {
   EXPECT_NEAR(drop, 0.5e-3 * 0.5e-3 / (4.0 * 7.94e-3), 1e-12);
 }
 
+// A sharp-edged pit (an EDM fault: 0.021 in wide, 0.011 in deep) under ball 0: the ball pivots
+// on the nearer edge, so its centre drops as the exact circle geometry has it,
+// r - sqrt(r^2 - u^2), u = w/2 - |s| its distance along the race from that edge (s from the
+// centre), deepest, w^2 / (4 d), at the centre where it rests on both. The model's parabola
+// u^2 / (2 r) is that to a relative u^2 / (4 r^2) <= 0.12 % (u <= w / 2 = 0.27 mm, r = 3.97 mm):
+// tolerance 0.2 % of the drop. Past the edge nothing changes.
+TEST(Spall, ABallOverASharpEdgedSpallDropsAsItPivotsOnTheNearerEdge) {
+  const double w = 0.5334e-3, r = 0.5 * 7.94e-3;
+  const double outer_race_radius = 0.5 * (39.04e-3 + 7.94e-3);  // dm / 2 + d / 2 (contact angle 0)
+  const BearingModel a(deep_groove(""));
+  const BearingModel b(
+      deep_groove("imperfections: {spall_edges: sharp}\n"
+                  "defects:\n  - {surface: outer_race, position_deg: 0, width_mm: 0.5334, depth_um: 279.4}\n"));
+  const Vector5 q = solve_static(a, test::load5(1000.0, 0, 0, 0, 0)).displacement;
+  for (const double f : {0.0, 0.1, 0.3, 0.5, 0.7, 0.9, -0.6}) {
+    const double s = f * 0.5 * w;  // along the race from the pit's centre
+    const double cage = s / outer_race_radius;
+    const double drop = a.ball_states(q, cage)[0].deflection_m - b.ball_states(q, cage)[0].deflection_m;
+    const double u = 0.5 * w - std::abs(s);
+    const double exact = r - std::sqrt(r * r - u * u);
+    EXPECT_NEAR(drop, exact, 2e-3 * exact) << "at " << f << " of the half width";
+  }
+  EXPECT_NEAR(a.ball_states(q, 0.0)[0].deflection_m - b.ball_states(q, 0.0)[0].deflection_m, w * w / (4.0 * 7.94e-3),
+              1e-12);
+  const double past = 0.51 * w / outer_race_radius;
+  EXPECT_DOUBLE_EQ(a.ball_states(q, past)[0].deflection_m, b.ball_states(q, past)[0].deflection_m);
+}
+
+TEST(Spall, ASharpEdgedSpallShallowerThanTheBallCanDropHasAFlatFloor) {
+  // 2 mm wide, 5 um deep: resting on both edges the ball would drop 126 um; it reaches the
+  // floor, 5 um, wherever the pivoting drop (1 - 2|x|/w)^2 126 um exceeds it, and drops less
+  // only within 0.2 (= sqrt(5 / 126)) of the half width from the edges.
+  const BearingModel a(deep_groove(""));
+  const BearingModel b(
+      deep_groove("imperfections: {spall_edges: sharp}\n"
+                  "defects:\n  - {surface: outer_race, position_deg: 0, width_mm: 2.0, depth_um: 5}\n"));
+  const Vector5 q = solve_static(a, test::load5(1000.0, 0, 0, 0, 0)).displacement;
+  const double outer_race_radius = 0.5 * (39.04e-3 + 7.94e-3), d = 7.94e-3, w = 2e-3;
+  for (const double f : {0.0, 0.5, 0.79, 0.9}) {
+    const double cage = f * 0.5 * w / outer_race_radius;
+    const double drop = a.ball_states(q, cage)[0].deflection_m - b.ball_states(q, cage)[0].deflection_m;
+    const double u = 1.0 - f;
+    EXPECT_NEAR(drop, std::min(5e-6, w * w / (4.0 * d) * u * u), 1e-12) << "at " << f << " of the half width";
+  }
+}
+
+TEST(Spall, AnUnknownSpallEdgeIsRefusedNamingTheKey) {
+  test::expect_config_error([] { BearingModel m(deep_groove("imperfections: {spall_edges: jagged}\n")); },
+                            {"imperfections.spall_edges", "'rounded' or 'sharp'"}, "spall_edges: jagged");
+}
+
 TEST(Spall, AGrowingSpallDeepensAtItsRateAndAFixedOneKeepsItsDepth) {
   // 2 mm wide outer-race spalls centred under ball 0 (at rest: every angle 0), 5 um deep,
   // one growing at 3600 um/h = 1 um/s: after 2 s the ball drops 7 um into it (still below

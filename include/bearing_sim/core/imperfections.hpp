@@ -82,6 +82,11 @@ struct ImperfectionSpec {
   // all while that latitude exceeds its half width.
   double ball_spin_axis_wander_rad = 0.0;  // standard deviation of the spall's latitude
   double ball_spin_axis_wander_correlation_s = 0.1;
+  // The spalls' edges. Rounded (false): the ball's deflection dips as a half-sine, a worn
+  // spall's smooth entry and exit. Sharp (true, an EDM pit or a fresh spall): the ball pivots
+  // on the nearer edge, its centre drops by min(h, D (1 - 2|x| / w)^2) (D = w^2 / (4 d), the
+  // drop resting on both edges), steepest where it meets the far edge (docs/model.md 9.6).
+  bool spall_sharp_edges = false;
   std::vector<Spall> spalls;
   bool empty() const {
     return waviness.empty() && ball_diameter_variation_m == 0.0 && roughness_rms_m == 0.0 && spalls.empty() &&
@@ -152,6 +157,10 @@ class Imperfections {
     double cos_centre, sin_centre;  // psi, in the bearing frame
     double sin_half_width;          // sin(w / 2); w <= pi / 2
     double pi_over_width, depth;    // rad^-1, m
+    // Sharp edges (ImperfectionSpec::spall_sharp_edges): the dip is
+    // min(depth, geometric_depth (1 - 2|x| / w)^2), geometric_depth = w^2 / (4 d) in metres.
+    bool sharp_edges;
+    double geometric_depth;
     int row;
     double row_groove_centre_z;  // set by the model: the row's balls are the ones at this z
   };
@@ -186,8 +195,8 @@ class Imperfections {
 
  private:
   void validate(const Spall& s) const;
-  // Width and effective depth of a spall at time t.
-  void spall_size(const Spall& s, double time_s, double* angular_width, double* depth) const;
+  // Width, effective depth and the depth w^2 / (4 d) resting on both edges of a spall at time t.
+  void spall_size(const Spall& s, double time_s, double* angular_width, double* depth, double* geometric_depth) const;
   // A growing spall's window terms at time t (spall_windows).
   void grown_window(const Spall& s, double time_s, SpallWindow* w) const;
   // How far the ball nearest race spall `index` is from its even place at time t, as an
@@ -195,7 +204,8 @@ class Imperfections {
   // while no ball is over the spall). `start` is cage - ring - spall position.
   double place_shift_rad(std::size_t index, const Spall& s, double start, double angular_width, double time_s) const;
   // A ball spall's chord at time t: the width and depth struck, from its latitude.
-  void struck_chord(std::size_t index, double time_s, double* angular_width, double* depth) const;
+  void struck_chord(std::size_t index, double time_s, double* angular_width, double* depth,
+                    double* geometric_depth) const;
 
   ImperfectionSpec spec_;
   Geometry geometry_;
@@ -220,7 +230,7 @@ class Imperfections {
   // at every rolling phase.
   struct SpallShape {
     bool fixed = false;
-    double angular_width = 0.0, depth = 0.0, sin_half_width = 0.0, pi_over_width = 0.0;
+    double angular_width = 0.0, depth = 0.0, sin_half_width = 0.0, pi_over_width = 0.0, geometric_depth = 0.0;
   };
   std::vector<SpallShape> spall_shapes_;
   int race_spall_count_ = 0;
