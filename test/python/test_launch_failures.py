@@ -2,13 +2,16 @@
 was asked: record:=true with a bag directory that cannot be created or written or has too
 little free space (the recorder is required; record_bag checks before rosbag starts), and a
 scenario whose player waits for a scenario_state subscriber that never comes (a bounded wait,
-~wait_timeout_s). Each launch runs on a master of its own port; the tests wait for it to end
+~wait_timeout_s), and model:= a name other than paper, rotor or flexible. That each model
+starts its bearing file and publishes is checked here too. Each launch runs on a master of its own port; the tests wait for it to end
 (at most LAUNCH_TIMEOUT_S, generous for a loaded machine) and never time it."""
+import math
 import os
 import shutil
 import signal
 import socket
 import subprocess
+import time
 
 import pytest
 
@@ -99,3 +102,46 @@ def test_the_scenario_player_refuses_an_unbounded_wait(tmp_path):
     out = launch(tmp_path, 'scenario:=ct_gantry_scan', 'scenario_shutdown:=true', 'scenario_wait_timeout_s:=0')
     assert 'scenario_player: ~wait_timeout_s must be a finite number of seconds > 0, got 0' in out, out[-4000:]
     assert 'REQUIRED process [bearing/scenario_player' in out, out[-4000:]
+
+
+def test_an_unknown_model_stops_the_launch_naming_the_choices(tmp_path):
+    out = launch(tmp_path, 'model:=rigid')
+    assert "arg 'model:=rigid, choose paper, rotor or flexible' is not defined" in out, out[-4000:]
+
+
+def ros_command(env, *args, timeout):
+    """Runs a ROS command line tool (rostopic, rosparam) on the launch's master, retried until
+    the master and the topic are there or `timeout` s have passed; returns its output."""
+    tool = shutil.which(args[0], path='/usr/bin:' + env.get('PATH', ''))
+    deadline = time.monotonic() + timeout
+    while True:
+        r = subprocess.run([tool, *args[1:]], env=env, capture_output=True, text=True,
+                           timeout=max(deadline - time.monotonic(), 1.0))
+        if r.returncode == 0 or time.monotonic() > deadline:
+            return r.stdout + r.stderr
+        time.sleep(1.0)
+
+
+@pytest.mark.parametrize('model, bearing_file', [('paper', 'ct_gantry_lyc.yaml'), ('rotor', 'ct_gantry_physical.yaml'),
+                                                 ('flexible', 'ct_gantry_flexible.yaml')])
+def test_each_model_runs_its_bearing_file_and_publishes(tmp_path, model, bearing_file):
+    # As fast as possible, so that a loaded machine only makes it slower; a finite level is
+    # published once the dynamics run.
+    port = free_port()
+    env = dict(os.environ, ROS_MASTER_URI=f'http://localhost:{port}', ROS_HOME=str(tmp_path / 'ros_home'),
+               ROS_LOG_DIR=str(tmp_path / 'ros_home' / 'log'))
+    roslaunch = shutil.which('roslaunch', path='/usr/bin:' + env.get('PATH', ''))
+    p = subprocess.Popen([roslaunch, '-p', str(port), 'bearing_sim', 'ct_gantry.launch', 'viz:=false',
+                          'real_time:=false', f'model:={model}'], stdout=subprocess.DEVNULL,
+                         stderr=subprocess.STDOUT, start_new_session=True, env=env)
+    try:
+        param = ros_command(env, 'rosparam', 'get', '/bearing/bearing_sim_node/bearing_file',
+                            timeout=LAUNCH_TIMEOUT_S)
+        assert param.strip().endswith('/config/bearings/' + bearing_file), param
+        level = ros_command(env, 'rostopic', 'echo', '-n', '1', '/bearing/vibration_level/level_db',
+                            timeout=LAUNCH_TIMEOUT_S)
+        value = float(level.split()[0])
+        assert math.isfinite(value), level  # L of a running dynamics (-inf before any sample)
+    finally:
+        os.killpg(p.pid, signal.SIGINT)
+        p.wait(timeout=60)
