@@ -14,7 +14,7 @@
 #include "bearing_sim/core/flexible_dynamics.hpp"
 #include "bearing_sim/core/simd_info.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
-#include "bearing_sim/ros/triaxial_sensor.hpp"
+#include "bearing_sim/runtime/triaxial_sensor.hpp"
 #include "reference_cases.hpp"
 
 namespace {
@@ -105,7 +105,7 @@ void BM_SimulateCtGantryWithDefectsAndSensor(benchmark::State& state, Integratio
   const bearing_sim::BearingModel model(ct_gantry_with_defects());
   bearing_sim::BearingDynamics dynamics(model, ct_load(), 180.0 * bearing_sim::kTwoPi / 60.0,
                                         {10000.0, 0, true, method});
-  bearing_sim::ros_node::TriaxialSensor sensor(
+  bearing_sim::runtime::TriaxialSensor sensor(
       bearing_sim::load_accelerometer_config(std::string(BEARING_SIM_SOURCE_DIR) +
                                              "/config/sensors/ct_gantry_housing_accelerometer.yaml"),
       dynamics.sample_rate_hz());

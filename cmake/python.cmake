@@ -1,7 +1,7 @@
 # The Python package bearing_sim (docs/python.md): python/bearing_sim (campaigns, the
 # re-export) through catkin_python_setup, and the compiled core bearing_sim._core (pybind11,
 # Debian's pybind11-dev) beside the generated messages in the devel and install space.
-# Included after the core and pipeline object libraries, whose objects it links.
+# Included after the core and runtime object libraries, whose objects it links.
 # catkin_python_setup() is called in CMakeLists.txt, before generate_messages() as catkin requires.
 
 # Python3 is already found (Interpreter only) by a ROS package, which sends pybind11 to
@@ -10,8 +10,9 @@ find_package(Python3 REQUIRED COMPONENTS Interpreter Development.Module)
 find_package(pybind11 CONFIG REQUIRED)
 # The module carries the core's objects itself (the same position-independent objects as
 # libbearing_sim_core.so, compiled once): that library is installed in lib/bearing_sim, where
-# an installed module would not find it. Scenario generation reuses bearing_tool generate's
-# ScenarioSimulation and the node's ROS-free per-sample pipeline, the same way.
+# an installed module would not find it. Scenario generation is the runtime's
+# ScenarioSimulation (bearing_tool generate's, through the node's per-sample pipeline), linked
+# the same way: the module needs no ROS.
 # A plain MODULE library with pybind11's extension naming (no link-time optimisation, so
 # the module builds in the time of its objects; and a target catkin_lint can follow).
 add_library(bearing_sim_python MODULE
@@ -20,16 +21,10 @@ add_library(bearing_sim_python MODULE
   src/python/scenario_binding.cpp
   src/python/analysis_binding.cpp
   $<TARGET_OBJECTS:bearing_sim_core_objects>
-  $<TARGET_OBJECTS:bearing_sim_pipeline_objects>
-  $<TARGET_OBJECTS:bearing_sim_scenario_simulation_objects>
-  $<TARGET_OBJECTS:bearing_sim_message_conversion_objects>
+  $<TARGET_OBJECTS:bearing_sim_runtime_objects>
 )
 pybind11_extension(bearing_sim_python)
-target_include_directories(bearing_sim_python PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/tools)
-target_link_libraries(bearing_sim_python PRIVATE pybind11::module Eigen3::Eigen yaml-cpp hwy::hwy
-  ${rostime_LIBRARIES})
-# message_conversion.cpp includes the generated message headers.
-add_dependencies(bearing_sim_python bearing_sim_generate_messages_cpp)
+target_link_libraries(bearing_sim_python PRIVATE pybind11::module Eigen3::Eigen yaml-cpp hwy::hwy Threads::Threads)
 bearing_sim_optimize(bearing_sim_python)
 set_target_properties(bearing_sim_python PROPERTIES OUTPUT_NAME _core
   LIBRARY_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_PYTHON_DESTINATION}/${PROJECT_NAME})

@@ -12,7 +12,7 @@
 
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/ros/scenario_player.hpp"
-#include "bearing_sim/ros/scenario_timeline.hpp"
+#include "bearing_sim/runtime/scenario_timeline.hpp"
 
 namespace {
 
@@ -23,7 +23,7 @@ int print_parameter(int argc, char** argv) {
   }
   try {
     const bearing_sim::Scenario scenario = bearing_sim::Scenario::load(argv[3]);
-    std::cout << bearing_sim::ros_node::scenario_node_parameter(scenario, argv[2]);
+    std::cout << bearing_sim::runtime::scenario_node_parameter(scenario, argv[2]);
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "scenario_player: " << e.what() << "\n";

@@ -7,29 +7,29 @@
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/scenario.hpp"
+#include "bearing_sim/runtime/scenario_simulation.hpp"
 #include "binding_common.hpp"
-#include "scenario_simulation.hpp"
 
 namespace bearing_sim::python {
 namespace {
 
 // Keeps what a dataset writer would write: both vibration channels and the labels.
-class MemorySink : public tool::DatasetSink {
+class MemorySink : public runtime::DatasetSink {
  public:
-  void begin(const tool::DatasetInfo& info) override {
+  void begin(const runtime::DatasetInfo& info) override {
     measured_.reserve(3 * info.measured_samples);
     ideal_.reserve(3 * info.ideal_samples);
   }
-  void ideal_chunk(const ros_node::SampleChunk& c) override { append(ideal_, c); }
-  void measured_chunk(const ros_node::SampleChunk& c) override { append(measured_, c); }
-  void label(const tool::LabelState& s) override { labels_.push_back(s); }
+  void ideal_chunk(const runtime::SampleChunk& c) override { append(ideal_, c); }
+  void measured_chunk(const runtime::SampleChunk& c) override { append(measured_, c); }
+  void label(const runtime::LabelState& s) override { labels_.push_back(s); }
   void end() override {}
 
   std::vector<float> measured_, ideal_;
-  std::vector<tool::LabelState> labels_;
+  std::vector<runtime::LabelState> labels_;
 
  private:
-  static void append(std::vector<float>& out, const ros_node::SampleChunk& c) {
+  static void append(std::vector<float>& out, const runtime::SampleChunk& c) {
     for (std::size_t i = 0; i < c.size(); ++i) {
       out.push_back(c.accel_x[i]);
       out.push_back(c.accel_y[i]);
@@ -42,7 +42,7 @@ py::array_t<float> rows3(const std::vector<float>& v) {
   return py::array_t<float>({static_cast<py::ssize_t>(v.size() / 3), py::ssize_t{3}}, v.data());
 }
 
-py::dict info_dict(const tool::DatasetInfo& i) {
+py::dict info_dict(const runtime::DatasetInfo& i) {
   py::dict d;
   d["scenario"] = i.scenario;
   d["description"] = i.description;
@@ -63,19 +63,19 @@ py::dict info_dict(const tool::DatasetInfo& i) {
   return d;
 }
 
-py::dict labels_dict(const std::vector<tool::LabelState>& labels) {
+py::dict labels_dict(const std::vector<runtime::LabelState>& labels) {
   const auto n = static_cast<py::ssize_t>(labels.size());
   py::array_t<double> time(n), speed(n), angle(n), load({n, py::ssize_t{5}});
   py::list phase, defects;
   for (py::ssize_t k = 0; k < n; ++k) {
-    const tool::LabelState& s = labels[static_cast<std::size_t>(k)];
+    const runtime::LabelState& s = labels[static_cast<std::size_t>(k)];
     time.mutable_at(k) = s.time_s;
     speed.mutable_at(k) = s.inputs.ring_speed_rad_s;
     angle.mutable_at(k) = s.inputs.ring_angle_rad;
     for (int j = 0; j < 5; ++j) load.mutable_at(k, j) = s.inputs.load[j];
     phase.append(s.inputs.phase);
     py::list now;
-    for (const ros_node::DefectNow& d : s.defects) {
+    for (const runtime::DefectNow& d : s.defects) {
       py::dict e;
       e["surface"] = surface_name(d.spall.surface);
       e["position_rad"] = d.spall.position_rad;
@@ -102,14 +102,14 @@ py::dict labels_dict(const std::vector<tool::LabelState>& labels) {
 // most 1 MiB; what is not YAML is a ConfigError naming it).
 py::dict generate(const std::optional<std::string>& text, const std::string& source, std::optional<std::uint64_t> seed,
                   std::optional<double> duration_s, double label_rate_hz, bool allow_long_run) {
-  tool::GenerateSettings settings;
+  runtime::GenerateSettings settings;
   settings.seed = seed;
   settings.duration_s = duration_s;
   settings.label_rate_hz = label_rate_hz;
   settings.health_rate_hz = 0.0;  // the memory sink takes no health reports
   MemorySink sink;
-  tool::RunStats stats;
-  std::optional<tool::ScenarioSimulation> simulation;
+  runtime::RunStats stats;
+  std::optional<runtime::ScenarioSimulation> simulation;
   double samples = 0.0, per_sample = 0.0;
   {
     py::gil_scoped_release release;
@@ -117,7 +117,7 @@ py::dict generate(const std::optional<std::string>& text, const std::string& sou
     // bearing_tool generate's estimate: the dynamics alone at half time, for runs over 1000 samples
     // (the duration is at most kMaxScenarioDurationS, checked by ScenarioSimulation).
     const Scenario& sc = simulation->scenario();
-    const tool::DatasetInfo& info = simulation->info();
+    const runtime::DatasetInfo& info = simulation->info();
     samples = static_cast<double>(info.ideal_samples);
     if (samples > 1000.0) {
       const BearingModel model(load_bearing_config(sc.bearing_file()));
@@ -145,10 +145,10 @@ py::dict generate(const std::optional<std::string>& text, const std::string& sou
 }
 
 py::dict check(const std::string& text, const std::string& source) {
-  std::optional<tool::ScenarioSimulation> simulation;
+  std::optional<runtime::ScenarioSimulation> simulation;
   {
     py::gil_scoped_release release;
-    simulation.emplace(Scenario::from_string(text, source), source, tool::GenerateSettings{});
+    simulation.emplace(Scenario::from_string(text, source), source, runtime::GenerateSettings{});
   }
   return info_dict(simulation->info());
 }

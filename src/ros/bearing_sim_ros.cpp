@@ -29,8 +29,8 @@
 #include "bearing_sim/core/virtual_accelerometer.hpp"
 #include "bearing_sim/ros/message_conversion.hpp"
 #include "bearing_sim/ros/private_parameters.hpp"
-#include "bearing_sim/ros/realtime_pacer.hpp"
 #include "bearing_sim/ros/sim_node_parameters.hpp"
+#include "bearing_sim/runtime/realtime_pacer.hpp"
 
 namespace bearing_sim {
 namespace ros_node {
@@ -87,7 +87,7 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
     throw std::runtime_error("bearing file " + bearing_file + " has no rotating_mass_kg: no dynamics possible");
 
   sample_rate_hz_ = params.sample_rate_hz;
-  load_ramp_ = LoadRamp(static_cast<std::uint64_t>(std::llround(params.load_ramp_s * sample_rate_hz_)));
+  load_ramp_ = runtime::LoadRamp(static_cast<std::uint64_t>(std::llround(params.load_ramp_s * sample_rate_hz_)));
   const int substeps = params.substeps;
   const IntegrationMethod method = params.integrator;
   real_time_ = params.real_time;
@@ -109,13 +109,13 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
   const Vector5 load = params.initial_load;
   const double speed = params.initial_speed_rad_s;
   // The initial inputs obey the same rules as the topics, but a bad one stops the node.
-  const InputCheck load_check = check_load(load, limits_, &model);
+  const runtime::InputCheck load_check = runtime::check_load(load, limits_, &model);
   if (!load_check.accepted) throw std::runtime_error("initial load: " + load_check.reason);
-  const InputCheck speed_check = check_speed(speed, limits_, &model);
+  const runtime::InputCheck speed_check = runtime::check_speed(speed, limits_, &model);
   if (!speed_check.accepted) throw std::runtime_error("initial speed: " + speed_check.reason);
   // A bearing value that makes a mode no bearing has would stall the automatic step.
   if (substeps == 0) {
-    const InputCheck work_check = check_integrator_work(model, load);
+    const runtime::InputCheck work_check = runtime::check_integrator_work(model, load);
     if (!work_check.accepted) throw std::runtime_error("bearing file " + bearing_file + ": " + work_check.reason);
   }
   accepted_load_ = load;
@@ -135,12 +135,12 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
 
   // Virtual sensor: `vibration` carries what it records, at its output rate.
   const std::string& sensor_file = params.sensor_file;
-  std::unique_ptr<TriaxialSensor> sensor;
+  std::unique_ptr<runtime::TriaxialSensor> sensor;
   measured_rate_hz_ = sample_rate_hz_;
   sensor_description_ = "ideal ring acceleration";
   if (!sensor_file.empty()) {
     try {
-      sensor = std::make_unique<TriaxialSensor>(load_accelerometer_config(sensor_file), sample_rate_hz_);
+      sensor = std::make_unique<runtime::TriaxialSensor>(load_accelerometer_config(sensor_file), sample_rate_hz_);
     } catch (const InvalidInputError& e) {
       throw std::runtime_error("sensor file " + sensor_file + " at ~sample_rate_hz " + fmt(sample_rate_hz_, 1) +
                                " Hz: " + e.what());
@@ -165,7 +165,7 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
   diagnostics_ = std::make_unique<NodeDiagnostics>(nh_, pnh_, "bearing_sim: " + model.config().name, diag);
 
   // Health: analysed on a worker thread (HealthMonitor), never in the simulation thread.
-  HealthSettings health;
+  runtime::HealthSettings health;
   health.sample_rate_hz = measured_rate_hz_;
   health.window_s = params.health_window_s;
   health.life.dynamic_load_rating_N = params.dynamic_load_rating_N;
@@ -175,10 +175,10 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
   health.analysis.envelope_band_width_hz = params.envelope_band_width_hz;
   health.analysis.thresholds.fault_snr_db = params.fault_snr_db;
   const double health_rate_hz = params.health_rate_hz;
-  health_ =
-      std::make_unique<HealthMonitor>(model, load, speed, health, [this](const HealthReport& r) { publish_health(r); });
-  pipeline_ =
-      std::make_unique<SamplePipeline>(std::move(dynamics), std::move(sensor), OutputSettings{}, health_rate_hz);
+  health_ = std::make_unique<runtime::HealthMonitor>(model, load, speed, health,
+                                                     [this](const runtime::HealthReport& r) { publish_health(r); });
+  pipeline_ = std::make_unique<runtime::SamplePipeline>(std::move(dynamics), std::move(sensor),
+                                                        runtime::OutputSettings{}, health_rate_hz);
   publish_model_state();
   diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(diagnostic_period_s),
                                            [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
@@ -223,10 +223,11 @@ void BearingSimRos::start() {
   start_health_worker();
   // Real time: stamps on the ROS clock, sample 0 at start. Otherwise simulated time itself
   // is the clock (published on /clock).
-  wall_start_ = RealtimePacer::Clock::now();
+  wall_start_ = runtime::RealtimePacer::Clock::now();
   ros_start_ = real_time_ ? ros::Time::now() : ros::Time(0, 0);
-  const auto lead = std::chrono::duration_cast<RealtimePacer::Clock::duration>(std::chrono::duration<double>(lead_s_));
-  scheduler_.emplace(RealtimePacer(sample_rate_hz_, wall_start_), lead);
+  const auto lead =
+      std::chrono::duration_cast<runtime::RealtimePacer::Clock::duration>(std::chrono::duration<double>(lead_s_));
+  scheduler_.emplace(runtime::RealtimePacer(sample_rate_hz_, wall_start_), lead);
   if (!real_time_ && max_real_time_factor_ > 0.0)
     bounded_pacer_.emplace(sample_rate_hz_ * max_real_time_factor_, wall_start_);
   // Speed figures mean little without the CPU and the SIMD code path that produced them.
@@ -284,7 +285,7 @@ void BearingSimRos::reject_input(const std::string& input, const std::string& re
 
 void BearingSimRos::on_load(const geometry_msgs::WrenchStamped::ConstPtr& msg) {
   const Vector5 load = load_from_wrench(msg->wrench);
-  const InputCheck check = check_load(load, limits_, validation_model_.get());
+  const runtime::InputCheck check = runtime::check_load(load, limits_, validation_model_.get());
   if (!check.accepted) return reject_input("load", check.reason, msg->header.stamp);
   if (check.max_contact_pressure_Pa > kPermissibleContactPressurePa)
     ROS_WARN_THROTTLE(5.0, "bearing_sim_node: static contact pressure %.0f MPa exceeds the ISO 76 limit of 4200 MPa",
@@ -292,7 +293,7 @@ void BearingSimRos::on_load(const geometry_msgs::WrenchStamped::ConstPtr& msg) {
   accepted_load_ = load;
   accepted_max_pressure_Pa_ = check.max_contact_pressure_Pa;
   {
-    std::lock_guard<PriorityInheritanceMutex> lock(pending_mutex_);
+    std::lock_guard<runtime::PriorityInheritanceMutex> lock(pending_mutex_);
     pending_.load = load;
   }
   pending_flag_ = true;
@@ -300,11 +301,11 @@ void BearingSimRos::on_load(const geometry_msgs::WrenchStamped::ConstPtr& msg) {
 }
 
 void BearingSimRos::on_speed(const std_msgs::Float64::ConstPtr& msg) {
-  const InputCheck check = check_speed(msg->data, limits_, validation_model_.get());
+  const runtime::InputCheck check = runtime::check_speed(msg->data, limits_, validation_model_.get());
   if (!check.accepted) return reject_input("speed", check.reason);
   accepted_speed_rad_s_ = msg->data;
   {
-    std::lock_guard<PriorityInheritanceMutex> lock(pending_mutex_);
+    std::lock_guard<runtime::PriorityInheritanceMutex> lock(pending_mutex_);
     pending_.ring_speed_rad_s = msg->data;
   }
   pending_flag_ = true;
@@ -333,7 +334,7 @@ bool BearingSimRos::on_inject_defect(InjectDefect::Request& req, InjectDefect::R
     return true;
   }
   {
-    std::lock_guard<PriorityInheritanceMutex> lock(pending_mutex_);
+    std::lock_guard<runtime::PriorityInheritanceMutex> lock(pending_mutex_);
     pending_.defect_commands.emplace_back(spall);
   }
   pending_flag_ = true;
@@ -348,7 +349,7 @@ bool BearingSimRos::on_clear_defects(std_srvs::Trigger::Request& /*req*/, std_sr
   const std::size_t n = validation_model_->imperfections().spalls().size();
   validation_model_->clear_spalls();
   {
-    std::lock_guard<PriorityInheritanceMutex> lock(pending_mutex_);
+    std::lock_guard<runtime::PriorityInheritanceMutex> lock(pending_mutex_);
     pending_.defect_commands.emplace_back(std::nullopt);
   }
   pending_flag_ = true;
@@ -362,19 +363,22 @@ void BearingSimRos::on_reconfigure(BearingSimConfig& config, std::uint32_t /*lev
   const BearingConfig& old = validation_model_->config();
   // Every value checked here (the server's clamp lets NaN through) so that the sim thread never
   // sees a bad one; a refused value reverts to the last good one, which the server publishes back.
-  const auto refuse = [this](const InputCheck& c) {
+  const auto refuse = [this](const runtime::InputCheck& c) {
     if (!c.accepted) reject_input("dynamic_reconfigure", c.reason);
     return !c.accepted;
   };
-  if (refuse(check_setting(config.clearance_um, kClearanceUm))) config.clearance_um = old.clearance_m * 1e6;
-  if (refuse(check_setting(config.contact_damping_Ns_per_m, kContactDampingNsPerM)))
+  if (refuse(runtime::check_setting(config.clearance_um, runtime::kClearanceUm)))
+    config.clearance_um = old.clearance_m * 1e6;
+  if (refuse(runtime::check_setting(config.contact_damping_Ns_per_m, runtime::kContactDampingNsPerM)))
     config.contact_damping_Ns_per_m = old.contact_damping_Ns_per_m;
-  const OutputSettings good = accepted_settings_.value_or(OutputSettings{});
-  if (refuse(check_setting(config.chunk_samples, kChunkSamples)))
+  const runtime::OutputSettings good = accepted_settings_.value_or(runtime::OutputSettings{});
+  if (refuse(runtime::check_setting(config.chunk_samples, runtime::kChunkSamples)))
     config.chunk_samples = static_cast<int>(good.chunk_samples);
-  if (refuse(check_setting(config.level_window_s, kLevelWindowS))) config.level_window_s = good.level_window_s;
-  if (refuse(check_setting(config.level_rate_hz, kLevelRateHz))) config.level_rate_hz = good.level_rate_hz;
-  if (refuse(check_setting(config.ball_loads_rate_hz, kBallLoadsRateHz)))
+  if (refuse(runtime::check_setting(config.level_window_s, runtime::kLevelWindowS)))
+    config.level_window_s = good.level_window_s;
+  if (refuse(runtime::check_setting(config.level_rate_hz, runtime::kLevelRateHz)))
+    config.level_rate_hz = good.level_rate_hz;
+  if (refuse(runtime::check_setting(config.ball_loads_rate_hz, runtime::kBallLoadsRateHz)))
     config.ball_loads_rate_hz = good.ball_loads_rate_hz;
 
   const double clearance_m = config.clearance_um * 1e-6;
@@ -391,7 +395,7 @@ void BearingSimRos::on_reconfigure(BearingSimConfig& config, std::uint32_t /*lev
       config.contact_damping_Ns_per_m = old.contact_damping_Ns_per_m;
     }
   }
-  OutputSettings settings;
+  runtime::OutputSettings settings;
   settings.chunk_samples = static_cast<std::size_t>(config.chunk_samples);
   settings.level_window_s = config.level_window_s;
   settings.level_rate_hz = config.level_rate_hz;
@@ -399,7 +403,7 @@ void BearingSimRos::on_reconfigure(BearingSimConfig& config, std::uint32_t /*lev
   accepted_settings_ = settings;
   if (new_model) *validation_model_ = *new_model;
   {
-    std::lock_guard<PriorityInheritanceMutex> lock(pending_mutex_);
+    std::lock_guard<runtime::PriorityInheritanceMutex> lock(pending_mutex_);
     if (new_model) pending_.model = std::move(new_model);
     pending_.settings = settings;
   }
@@ -415,9 +419,9 @@ std::optional<BearingModel> BearingSimRos::validated_model(const BearingConfig& 
     // The spalls present now, not only those of the file (the sim thread re-times them).
     model.clear_spalls();
     for (const Spall& sp : validation_model_->imperfections().spalls()) model.add_spall(sp);
-    InputCheck check = check_load(accepted_load_, limits_, &model);
+    runtime::InputCheck check = runtime::check_load(accepted_load_, limits_, &model);
     if (check.accepted) {
-      const InputCheck work = check_integrator_work(model, accepted_load_);  // would stall the step
+      const runtime::InputCheck work = runtime::check_integrator_work(model, accepted_load_);  // would stall the step
       if (!work.accepted) check = work;
     }
     if (!check.accepted) {
@@ -444,7 +448,7 @@ void BearingSimRos::on_ring_temperature(const std_msgs::Float64::ConstPtr& msg) 
   if (!model) return;
   *validation_model_ = *model;
   {
-    std::lock_guard<PriorityInheritanceMutex> lock(pending_mutex_);
+    std::lock_guard<runtime::PriorityInheritanceMutex> lock(pending_mutex_);
     pending_.model = std::move(model);
   }
   pending_flag_ = true;
@@ -473,7 +477,7 @@ void BearingSimRos::publish_model_state() {
 void BearingSimRos::apply_pending() {
   Pending p;
   {
-    std::lock_guard<PriorityInheritanceMutex> lock(pending_mutex_);
+    std::lock_guard<runtime::PriorityInheritanceMutex> lock(pending_mutex_);
     p = std::move(pending_);
     pending_ = Pending{};
     pending_flag_ = false;
@@ -517,7 +521,7 @@ ros::Time BearingSimRos::stamp_of(std::uint64_t sample_index) const {
   return ros_start_ + offset;
 }
 
-void BearingSimRos::level(const SampleSource::Sample& sample, double accel_rms, double window_s) {
+void BearingSimRos::level(const runtime::SampleSource::Sample& sample, double accel_rms, double window_s) {
   auto msg = boost::make_shared<VibrationLevel>();
   msg->header.stamp = stamp_of(sample.index);
   msg->header.frame_id = frame_id_;
@@ -534,7 +538,7 @@ bool BearingSimRos::wants_ball_loads() const {
   return ball_loads_pub_.getNumSubscribers() > 0;  // per-ball states cost a few microseconds per ball
 }
 
-void BearingSimRos::ball_loads(const SampleSource::Sample& sample, const BearingModel& model,
+void BearingSimRos::ball_loads(const runtime::SampleSource::Sample& sample, const BearingModel& model,
                                const std::vector<BallState>& balls) {
   auto msg = boost::make_shared<BallLoads>();
   msg->header.stamp = stamp_of(sample.index);
@@ -546,7 +550,7 @@ void BearingSimRos::ball_loads(const SampleSource::Sample& sample, const Bearing
   });
 }
 
-void BearingSimRos::measured_chunk(SampleChunk&& chunk) {
+void BearingSimRos::measured_chunk(runtime::SampleChunk&& chunk) {
   // Sensor sample k is the output at dynamics sample (k + 1) R - 1 (docs/sensor.md).
   const std::uint64_t r = static_cast<std::uint64_t>(pipeline_->sensor()->decimation_ratio());
   const ros::Time first_stamp = stamp_of((chunk.first_sample + 1) * r - 1);
@@ -558,7 +562,7 @@ void BearingSimRos::measured_chunk(SampleChunk&& chunk) {
   });
 }
 
-void BearingSimRos::ideal_chunk(SampleChunk&& chunk) {
+void BearingSimRos::ideal_chunk(runtime::SampleChunk&& chunk) {
   bundle_->samples = chunk.size();
   bundle_->last_index = chunk.first_sample + chunk.size() - 1;
   const ros::Time first_stamp = stamp_of(chunk.first_sample);
@@ -598,7 +602,7 @@ void BearingSimRos::divergence(const std::string& message) {
   diagnostics_->record_divergence(message);
 }
 
-void BearingSimRos::publish_health(const HealthReport& report) {
+void BearingSimRos::publish_health(const runtime::HealthReport& report) {
   const auto shared = boost::make_shared<BearingHealth>();
   BearingHealth& msg = *shared;
   msg.header.stamp = ros_start_ + ros::Duration(report.end_time_s);
@@ -688,7 +692,7 @@ void BearingSimRos::lock_memory() {
 BearingSimRos::ChunkBundle BearingSimRos::compute_chunk() {
   ChunkBundle bundle;
   bundle_ = &bundle;
-  SampleSource& source = pipeline_->source();
+  runtime::SampleSource& source = pipeline_->source();
   bool full = false;
   while (!full) {
     // New inputs take effect from the next sample not yet computed.
@@ -702,7 +706,7 @@ BearingSimRos::ChunkBundle BearingSimRos::compute_chunk() {
 
 void BearingSimRos::publish_bundle(ChunkBundle& bundle) {
   for (auto& action : bundle.actions) action();
-  const RealtimePacer::Clock::time_point now = RealtimePacer::Clock::now();
+  const runtime::RealtimePacer::Clock::time_point now = runtime::RealtimePacer::Clock::now();
   const double lateness_s = scheduler_->pacer().lateness_s(bundle.last_index, now);
   const double chunk_period_s = static_cast<double>(bundle.samples) / sample_rate_hz_;
   diagnostics_->record_chunk(lateness_s, real_time_ && lateness_s > chunk_period_s, bundle.last_index + 1,
@@ -711,11 +715,11 @@ void BearingSimRos::publish_bundle(ChunkBundle& bundle) {
 }
 
 void BearingSimRos::run() {
-  using Clock = RealtimePacer::Clock;
+  using Clock = runtime::RealtimePacer::Clock;
   // Below the publisher: publishing on time matters more than computing ahead.
   diagnostics_->set_scheduling(set_thread_scheduling(realtime_priority_ > 0 ? std::max(1, realtime_priority_ - 1) : 0));
   apply_pending();  // the initial dynamic_reconfigure settings
-  const LeadScheduler& scheduler = *scheduler_;
+  const runtime::LeadScheduler& scheduler = *scheduler_;
   while (!stop_ && ros::ok()) {
     if (pending_flag_.load(std::memory_order_acquire)) apply_pending();
     if (!real_time_) {  // as fast as possible: publish each chunk as soon as computed
@@ -750,7 +754,7 @@ void BearingSimRos::run() {
 
 void BearingSimRos::run_publisher() {
   diagnostics_->set_realtime_value("publisher thread scheduling", set_thread_scheduling(realtime_priority_));
-  const RealtimePacer& pacer = scheduler_->pacer();
+  const runtime::RealtimePacer& pacer = scheduler_->pacer();
   while (!stop_ && ros::ok()) {
     std::uint64_t last_index = 0;
     {

@@ -13,8 +13,8 @@ Vector5 load_from_wrench(const geometry_msgs::Wrench& wrench) {
   return load;
 }
 
-void fill_vibration_chunk(SampleChunk&& chunk, const ros::Time& first_sample_stamp, const std::string& frame_id,
-                          double sample_rate_hz, VibrationChunk* msg) {
+void fill_vibration_chunk(runtime::SampleChunk&& chunk, const ros::Time& first_sample_stamp,
+                          const std::string& frame_id, double sample_rate_hz, VibrationChunk* msg) {
   msg->header.stamp = first_sample_stamp;
   msg->header.frame_id = frame_id;
   msg->first_sample = chunk.first_sample;
@@ -29,7 +29,8 @@ void fill_vibration_chunk(SampleChunk&& chunk, const ros::Time& first_sample_sta
   msg->tilt_y = std::move(chunk.tilt_y);
 }
 
-void fill_bearing_health(const HealthReport& r, const std::string& signal, double sample_rate_hz, BearingHealth* msg) {
+void fill_bearing_health(const runtime::HealthReport& r, const std::string& signal, double sample_rate_hz,
+                         BearingHealth* msg) {
   const ConditionIndicators& c = r.indicators;
   msg->signal = signal;
   msg->sample_rate = sample_rate_hz;
@@ -74,7 +75,7 @@ void fill_bearing_health(const HealthReport& r, const std::string& signal, doubl
     msg->level = r.error.rfind("collecting", 0) == 0 ? BearingHealth::OK : BearingHealth::WARN;
     msg->reason = r.error;
   }
-  for (const DefectNow& d : r.defects) fill_defect_state(d, &msg->defects.emplace_back());
+  for (const runtime::DefectNow& d : r.defects) fill_defect_state(d, &msg->defects.emplace_back());
   msg->ring_speed_rad_s = r.ring_speed_rad_s;
   msg->radial_force_N = std::hypot(r.load[0], r.load[1]);
   msg->axial_force_N = std::abs(r.load[2]);
@@ -90,7 +91,7 @@ void fill_bearing_health(const HealthReport& r, const std::string& signal, doubl
   msg->revolutions = r.revolutions;
 }
 
-void fill_defect_state(const DefectNow& d, DefectState* s) {
+void fill_defect_state(const runtime::DefectNow& d, DefectState* s) {
   s->surface = surface_name(d.spall.surface);
   s->position_rad = d.spall.position_rad;
   s->ball = d.spall.surface == Surface::Ball ? d.spall.ball : -1;
@@ -102,16 +103,9 @@ void fill_defect_state(const DefectNow& d, DefectState* s) {
   s->age_s = d.age_s;
 }
 
-std::vector<DefectNow> scenario_defects_at(const Scenario& scenario, double time_s) {
-  std::vector<DefectNow> defects;
-  for (const Spall& spall : scenario.spalls_at(time_s))
-    defects.push_back(DefectNow{spall, Scenario::spall_width_at(spall, time_s), Scenario::spall_depth_at(spall, time_s),
-                                time_s - spall.created_at_s});
-  return defects;
-}
-
 void fill_scenario_state(const std::string& scenario, const std::string& bearing, std::uint64_t seed, double time_s,
-                         const ScenarioInputs& inputs, const std::vector<DefectNow>& defects, ScenarioState* msg) {
+                         const ScenarioInputs& inputs, const std::vector<runtime::DefectNow>& defects,
+                         ScenarioState* msg) {
   msg->scenario = scenario;
   msg->bearing = bearing;
   msg->seed = seed;
@@ -120,7 +114,7 @@ void fill_scenario_state(const std::string& scenario, const std::string& bearing
   msg->ring_speed_rad_s = inputs.ring_speed_rad_s;
   for (int i = 0; i < 5; ++i) msg->load[static_cast<std::size_t>(i)] = inputs.load[i];
   msg->defects.clear();
-  for (const DefectNow& d : defects) fill_defect_state(d, &msg->defects.emplace_back());
+  for (const runtime::DefectNow& d : defects) fill_defect_state(d, &msg->defects.emplace_back());
 }
 
 void fill_ball_loads(const std::vector<BallState>& balls, int rows, int balls_per_row, double cage_angle_rad,

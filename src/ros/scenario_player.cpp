@@ -67,7 +67,7 @@ ScenarioPlayer::ScenarioPlayer(ros::NodeHandle nh, ros::NodeHandle pnh)
   if (wait_for_subscribers_ < 0)
     throw std::runtime_error("~wait_for_subscribers must be >= 0, got " + std::to_string(wait_for_subscribers_));
   try {
-    ScenarioTimeline check(scenario_, settings_);  // rates
+    runtime::ScenarioTimeline check(scenario_, settings_);  // rates
   } catch (const InvalidInputError& e) {
     throw std::runtime_error(e.what());
   }
@@ -113,11 +113,11 @@ bool ScenarioPlayer::wait_for_node() {
   // The node's input limits, parameters it has read by now (unset: the defaults it uses too). An
   // input beyond them the node would refuse and run on at its last good one, while
   // scenario_state said the scenario's: refuse the scenario before its first sample instead.
-  InputLimits limits;
+  runtime::InputLimits limits;
   nh_.getParam(node_name_ + "/max_force_N", limits.max_force_N);
   nh_.getParam(node_name_ + "/max_moment_Nm", limits.max_moment_Nm);
   nh_.getParam(node_name_ + "/max_speed_rad_s", limits.max_speed_rad_s);
-  const std::string refusal = scenario_limit_refusal(scenario_, limits);
+  const std::string refusal = runtime::scenario_limit_refusal(scenario_, limits);
   if (!refusal.empty()) {
     ROS_FATAL(
         "scenario_player: scenario %s refused: %s (parameters of %s): the node would refuse that input and run "
@@ -180,7 +180,7 @@ void ScenarioPlayer::start() {
   // Refusals of inputs sent before the scenario (by others) are not the scenario's: handled
   // (ignored: no time line yet) before it starts.
   ros::getGlobalCallbackQueue()->callAvailable();
-  timeline_ = std::make_unique<ScenarioTimeline>(scenario_, settings_);
+  timeline_ = std::make_unique<runtime::ScenarioTimeline>(scenario_, settings_);
   start_ = ros::Time::now();
   ROS_INFO("scenario_player: '%s' starts at %.3f s on the node's clock (%s)", scenario_.name().c_str(), start_.toSec(),
            ros::Time::isSimTime() ? "/clock" : "wall time");
@@ -202,7 +202,7 @@ void ScenarioPlayer::start() {
 
 void ScenarioPlayer::tick(const ros::Time& now) {
   if (!timeline_ || timeline_->finished() || failed_) return;
-  for (const TimelineCommand& c : timeline_->advance((now - start_).toSec())) {
+  for (const runtime::TimelineCommand& c : timeline_->advance((now - start_).toSec())) {
     execute(c);
     if (failed_) return;  // nothing after a refusal: no label claiming what the node refused
   }
@@ -231,12 +231,12 @@ void ScenarioPlayer::on_rejected(const InputRejection::ConstPtr& m) {
        " would say the scenario's; the labels published since that input was sent do not hold");
 }
 
-ros::Time ScenarioPlayer::stamp_of(const TimelineCommand& c) const {
+ros::Time ScenarioPlayer::stamp_of(const runtime::TimelineCommand& c) const {
   return start_ + ros::Duration(static_cast<double>(c.pass) * scenario_.duration_s() + c.scenario_time_s);
 }
 
-void ScenarioPlayer::execute(const TimelineCommand& c) {
-  using Kind = TimelineCommand::Kind;
+void ScenarioPlayer::execute(const runtime::TimelineCommand& c) {
+  using Kind = runtime::TimelineCommand::Kind;
   switch (c.kind) {
     case Kind::ClearDefects:
       ROS_INFO("scenario_player: pass %llu of '%s' begins", static_cast<unsigned long long>(c.pass + 1),
@@ -281,7 +281,7 @@ void ScenarioPlayer::execute(const TimelineCommand& c) {
   }
 }
 
-void ScenarioPlayer::inject(const TimelineCommand& c) {
+void ScenarioPlayer::inject(const runtime::TimelineCommand& c) {
   const Spall& s = c.event.spall;
   InjectDefect srv;
   srv.request.surface = surface_name(s.surface);
@@ -307,7 +307,7 @@ void ScenarioPlayer::inject(const TimelineCommand& c) {
              srv.response.message.c_str());
 }
 
-void ScenarioPlayer::clear(const TimelineCommand& c) {
+void ScenarioPlayer::clear(const runtime::TimelineCommand& c) {
   std_srvs::Trigger srv;
   if (!clear_client_.isValid()) clear_client_ = nh_.serviceClient<std_srvs::Trigger>("clear_defects", true);
   if (!clear_client_.call(srv)) {
@@ -318,13 +318,14 @@ void ScenarioPlayer::clear(const TimelineCommand& c) {
   } else ROS_INFO("scenario_player: t = %.3f s: %s", c.scenario_time_s, srv.response.message.c_str());
 }
 
-void ScenarioPlayer::publish_state(const TimelineCommand& c) {
+void ScenarioPlayer::publish_state(const runtime::TimelineCommand& c) {
   const double t = c.scenario_time_s;
   const ScenarioInputs in = scenario_.inputs_at(t);
   ScenarioState m;
   m.header.stamp = stamp_of(c);
   m.header.frame_id = "bearing";
-  fill_scenario_state(scenario_.name(), bearing_name_, scenario_.seed(), t, in, scenario_defects_at(scenario_, t), &m);
+  fill_scenario_state(scenario_.name(), bearing_name_, scenario_.seed(), t, in,
+                      runtime::scenario_defects_at(scenario_, t), &m);
   state_pub_.publish(m);
 }
 

@@ -76,15 +76,20 @@ SimNodeParameters read_sim_node_parameters(const XmlRpc::XmlRpcValue& private_pa
   p.fault_snr_db = r.number("fault_snr_db", p.fault_snr_db, kMinFaultSnrDb, kMaxFaultSnrDb, "dB");
 
   // dynamic_reconfigure's parameters: the cfg's ranges (the server would clamp them silently).
-  p.clearance_um = r.optional_number(kClearanceUm.name, kClearanceUm.min, kClearanceUm.max, "um");
+  p.clearance_um =
+      r.optional_number(runtime::kClearanceUm.name, runtime::kClearanceUm.min, runtime::kClearanceUm.max, "um");
   p.contact_damping_Ns_per_m =
-      r.optional_number(kContactDampingNsPerM.name, kContactDampingNsPerM.min, kContactDampingNsPerM.max, "N*s/m");
-  if (r.has(kChunkSamples.name))
-    p.chunk_samples =
-        r.integer(kChunkSamples.name, 0, static_cast<int>(kChunkSamples.min), static_cast<int>(kChunkSamples.max));
-  p.level_window_s = r.optional_number(kLevelWindowS.name, kLevelWindowS.min, kLevelWindowS.max, "s");
-  p.level_rate_hz = r.optional_number(kLevelRateHz.name, kLevelRateHz.min, kLevelRateHz.max, "Hz");
-  p.ball_loads_rate_hz = r.optional_number(kBallLoadsRateHz.name, kBallLoadsRateHz.min, kBallLoadsRateHz.max, "Hz");
+      r.optional_number(runtime::kContactDampingNsPerM.name, runtime::kContactDampingNsPerM.min,
+                        runtime::kContactDampingNsPerM.max, "N*s/m");
+  if (r.has(runtime::kChunkSamples.name))
+    p.chunk_samples = r.integer(runtime::kChunkSamples.name, 0, static_cast<int>(runtime::kChunkSamples.min),
+                                static_cast<int>(runtime::kChunkSamples.max));
+  p.level_window_s =
+      r.optional_number(runtime::kLevelWindowS.name, runtime::kLevelWindowS.min, runtime::kLevelWindowS.max, "s");
+  p.level_rate_hz =
+      r.optional_number(runtime::kLevelRateHz.name, runtime::kLevelRateHz.min, runtime::kLevelRateHz.max, "Hz");
+  p.ball_loads_rate_hz = r.optional_number(runtime::kBallLoadsRateHz.name, runtime::kBallLoadsRateHz.min,
+                                           runtime::kBallLoadsRateHz.max, "Hz");
 
   r.reject_unknown({"diagnostic_period"});
   return p;

@@ -18,12 +18,12 @@
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/scenario.hpp"
+#include "bearing_sim/runtime/scenario_simulation.hpp"
 #include "commands.hpp"
 #include "dataset_bag_writer.hpp"
 #include "dataset_plain_writer.hpp"
 #include "finite_data_guard.hpp"
 #include "job_size.hpp"
-#include "scenario_simulation.hpp"
 #include "tool_common.hpp"
 
 namespace bearing_sim::tool {
@@ -47,9 +47,9 @@ struct GenerateOptions {
 
 struct Job {
   std::string file;
-  std::unique_ptr<ScenarioSimulation> simulation;
+  std::unique_ptr<runtime::ScenarioSimulation> simulation;
   std::vector<std::string> outputs;
-  RunStats stats;
+  runtime::RunStats stats;
   double wall_s = 0.0;
   std::string error;
 };
@@ -73,7 +73,7 @@ void prepare_out_dir(const std::string& dir) {
 
 void run_job(Job& job, const GenerateOptions& o, std::mutex& print_mutex) {
   const std::string stem = o.out_dir + "/" + file_stem(job.simulation->info().scenario);
-  std::vector<std::unique_ptr<DatasetSink>> sinks;
+  std::vector<std::unique_ptr<runtime::DatasetSink>> sinks;
   sinks.push_back(std::make_unique<FiniteDataGuard>(job.simulation->info().scenario));  // before any writer
   for (const std::string& f : o.formats) {
     if (f == "bag") {
@@ -88,7 +88,7 @@ void run_job(Job& job, const GenerateOptions& o, std::mutex& print_mutex) {
       sinks.push_back(std::move(w));
     }
   }
-  std::vector<DatasetSink*> raw;
+  std::vector<runtime::DatasetSink*> raw;
   for (auto& s : sinks) raw.push_back(s.get());
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = Clock::now();
@@ -116,7 +116,7 @@ void run_job(Job& job, const GenerateOptions& o, std::mutex& print_mutex) {
 void run(const GenerateOptions& o) {
   for (const std::string& f : o.formats)
     if (f != "bag" && f != "npy" && f != "csv") throw InputError("--format: '" + f + "' is not bag, npy or csv");
-  GenerateSettings settings;
+  runtime::GenerateSettings settings;
   if (o.seed >= 0) settings.seed = static_cast<std::uint64_t>(o.seed);
   if (o.duration_s > 0.0) settings.duration_s = o.duration_s;
   if (o.ring_temperature_given) settings.ring_temperature_difference_K = o.ring_temperature_difference_K;
@@ -131,7 +131,7 @@ void run(const GenerateOptions& o) {
     jobs[i].file = o.scenarios[i];
     try {
       jobs[i].simulation =
-          std::make_unique<ScenarioSimulation>(Scenario::load(o.scenarios[i]), o.scenarios[i], settings);
+          std::make_unique<runtime::ScenarioSimulation>(Scenario::load(o.scenarios[i]), o.scenarios[i], settings);
     } catch (const ConfigError& e) {
       throw InputError(std::string("bad scenario: ") + e.what());
     } catch (const InvalidInputError& e) {
@@ -147,7 +147,7 @@ void run(const GenerateOptions& o) {
   double total_samples = 0.0, total_estimate_s = 0.0;
   for (const Job& job : jobs) {
     const Scenario& sc = job.simulation->scenario();
-    const DatasetInfo& info = job.simulation->info();
+    const runtime::DatasetInfo& info = job.simulation->info();
     const BearingModel model(load_bearing_config(sc.bearing_file()));
     const double samples = static_cast<double>(info.ideal_samples);
     total_samples += samples;
@@ -184,7 +184,7 @@ void run(const GenerateOptions& o) {
   std::cout << "scenario                         seed  simulated s  samples (measured)  RT factor per core  "
                "output  health\n";
   for (const Job& j : jobs) {
-    const DatasetInfo& info = j.simulation->info();
+    const runtime::DatasetInfo& info = j.simulation->info();
     if (!j.error.empty()) {
       ++failed;
       std::cerr << "bearing_tool: generate: scenario '" << info.scenario << "' (" << j.file << ") failed: " << j.error

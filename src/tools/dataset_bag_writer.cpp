@@ -47,7 +47,7 @@ ros::Time stamp_of(std::uint64_t index, double rate_hz) {
 ros::Time record_time(const ros::Time& stamp) { return std::max(stamp, ros::TIME_MIN); }
 }  // namespace
 
-void DatasetBagWriter::begin(const DatasetInfo& info) {
+void DatasetBagWriter::begin(const runtime::DatasetInfo& info) {
   info_ = info;
   {
     // A rosbag::Bag loads its encryption plugins through pluginlib (a package crawl, ~30 ms)
@@ -71,19 +71,19 @@ void DatasetBagWriter::begin(const DatasetInfo& info) {
   bag_->write(kDatasetInfo, ros::TIME_MIN, description, header);
 }
 
-void DatasetBagWriter::ideal_chunk(const ros_node::SampleChunk& chunk) {
+void DatasetBagWriter::ideal_chunk(const runtime::SampleChunk& chunk) {
   VibrationChunk msg;
   const ros::Time stamp = stamp_of(chunk.first_sample, info_.sample_rate_hz);
-  ros_node::fill_vibration_chunk(ros_node::SampleChunk(chunk), stamp, info_.frame_id, info_.sample_rate_hz, &msg);
+  ros_node::fill_vibration_chunk(runtime::SampleChunk(chunk), stamp, info_.frame_id, info_.sample_rate_hz, &msg);
   bag_->write(kVibrationIdeal, record_time(stamp), msg);
 }
 
-void DatasetBagWriter::measured_chunk(const ros_node::SampleChunk& chunk) {
+void DatasetBagWriter::measured_chunk(const runtime::SampleChunk& chunk) {
   VibrationChunk msg;
   // Sensor sample k is the output at dynamics sample (k + 1) R - 1 (docs/sensor.md).
   const std::uint64_t r = static_cast<std::uint64_t>(info_.decimation_ratio);
   const ros::Time stamp = stamp_of((chunk.first_sample + 1) * r - 1, info_.sample_rate_hz);
-  ros_node::fill_vibration_chunk(ros_node::SampleChunk(chunk), stamp, info_.frame_id, info_.measured_rate_hz, &msg);
+  ros_node::fill_vibration_chunk(runtime::SampleChunk(chunk), stamp, info_.frame_id, info_.measured_rate_hz, &msg);
   bag_->write(kVibration, record_time(stamp), msg);
 }
 
@@ -106,7 +106,7 @@ void DatasetBagWriter::ball_loads(std::uint64_t index, const std::vector<BallSta
   bag_->write(kBallLoads, record_time(msg.header.stamp), msg);
 }
 
-void DatasetBagWriter::health(const ros_node::HealthReport& report) {
+void DatasetBagWriter::health(const runtime::HealthReport& report) {
   BearingHealth msg;
   msg.header.stamp = from_ns(static_cast<std::int64_t>(std::llround(report.end_time_s * 1e9)));
   msg.header.frame_id = info_.frame_id;
@@ -115,7 +115,7 @@ void DatasetBagWriter::health(const ros_node::HealthReport& report) {
   bag_->write(kHealth, record_time(msg.header.stamp), msg);
 }
 
-void DatasetBagWriter::label(const LabelState& state) {
+void DatasetBagWriter::label(const runtime::LabelState& state) {
   ScenarioState msg;
   msg.header.stamp = stamp_of(state.index, info_.sample_rate_hz);
   msg.header.frame_id = info_.bearing_frame_id;

@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "dataset_sink.hpp"
+#include "bearing_sim/runtime/dataset_sink.hpp"
 
 namespace rosbag {
 class Bag;
@@ -13,28 +13,28 @@ class Bag;
 
 namespace bearing_sim::tool {
 
-class DatasetBagWriter : public DatasetSink {
+class DatasetBagWriter : public runtime::DatasetSink {
  public:
   explicit DatasetBagWriter(std::string path);
   ~DatasetBagWriter() override;
 
-  void begin(const DatasetInfo& info) override;
-  void ideal_chunk(const ros_node::SampleChunk& chunk) override;
-  void measured_chunk(const ros_node::SampleChunk& chunk) override;
+  void begin(const runtime::DatasetInfo& info) override;
+  void ideal_chunk(const runtime::SampleChunk& chunk) override;
+  void measured_chunk(const runtime::SampleChunk& chunk) override;
   void level(std::uint64_t index, double accel_rms, double window_s) override;
   bool wants_ball_loads() const override { return true; }
   void ball_loads(std::uint64_t index, const std::vector<BallState>& balls, int rows, int balls_per_row,
                   double cage_angle_rad) override;
   bool wants_health() const override { return true; }
-  void health(const ros_node::HealthReport& report) override;
-  void label(const LabelState& state) override;
+  void health(const runtime::HealthReport& report) override;
+  void label(const runtime::LabelState& state) override;
   void end() override;
 
   const std::string& path() const { return path_; }
 
  private:
   std::string path_;
-  DatasetInfo info_;
+  runtime::DatasetInfo info_;
   std::unique_ptr<rosbag::Bag> bag_;
 };
 

@@ -2,7 +2,7 @@
 
 namespace bearing_sim::tool {
 
-nlohmann::json dataset_info_json(const DatasetInfo& info) {
+nlohmann::json dataset_info_json(const runtime::DatasetInfo& info) {
   nlohmann::json j;
   j["generator"] = "bearing_tool generate";
   j["scenario"] = {{"name", info.scenario}, {"description", info.description}, {"file", info.scenario_file}};

@@ -3,10 +3,10 @@
 // header of the NPY/CSV sidecar carry the same text.
 #include <nlohmann/json.hpp>
 
-#include "dataset_sink.hpp"
+#include "bearing_sim/runtime/dataset_sink.hpp"
 
 namespace bearing_sim::tool {
 
-nlohmann::json dataset_info_json(const DatasetInfo& info);
+nlohmann::json dataset_info_json(const runtime::DatasetInfo& info);
 
 }  // namespace bearing_sim::tool

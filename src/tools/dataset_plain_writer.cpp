@@ -29,7 +29,7 @@ void DatasetPlainWriter::open(Channel& c, const std::string& suffix, std::uint64
   std::fprintf(c.csv, "sample,time_s,accel_x,accel_y,accel_z\n");
 }
 
-void DatasetPlainWriter::begin(const DatasetInfo& info) {
+void DatasetPlainWriter::begin(const runtime::DatasetInfo& info) {
   info_ = info;
   open(measured_, "_vibration", info.measured_samples);
   measured_.rate_hz = info.measured_rate_hz;
@@ -44,7 +44,7 @@ void DatasetPlainWriter::begin(const DatasetInfo& info) {
              {"defects", nlohmann::json::array()}};
 }
 
-void DatasetPlainWriter::write(Channel& c, const ros_node::SampleChunk& chunk) {
+void DatasetPlainWriter::write(Channel& c, const runtime::SampleChunk& chunk) {
   for (std::size_t i = 0; i < chunk.size(); ++i) {
     const float row[3] = {chunk.accel_x[i], chunk.accel_y[i], chunk.accel_z[i]};
     if (c.npy) {
@@ -59,17 +59,17 @@ void DatasetPlainWriter::write(Channel& c, const ros_node::SampleChunk& chunk) {
   c.rows += chunk.size();
 }
 
-void DatasetPlainWriter::ideal_chunk(const ros_node::SampleChunk& chunk) { write(ideal_, chunk); }
-void DatasetPlainWriter::measured_chunk(const ros_node::SampleChunk& chunk) { write(measured_, chunk); }
+void DatasetPlainWriter::ideal_chunk(const runtime::SampleChunk& chunk) { write(ideal_, chunk); }
+void DatasetPlainWriter::measured_chunk(const runtime::SampleChunk& chunk) { write(measured_, chunk); }
 
-void DatasetPlainWriter::label(const LabelState& s) {
+void DatasetPlainWriter::label(const runtime::LabelState& s) {
   labels_["time_s"].push_back(s.time_s);
   labels_["phase"].push_back(s.inputs.phase);
   labels_["ring_speed_rad_s"].push_back(s.inputs.ring_speed_rad_s);
   labels_["ring_angle_rad"].push_back(s.inputs.ring_angle_rad);
   labels_["load"].push_back(std::vector<double>(s.inputs.load.data(), s.inputs.load.data() + 5));
   nlohmann::json defects = nlohmann::json::array();
-  for (const ros_node::DefectNow& d : s.defects)
+  for (const runtime::DefectNow& d : s.defects)
     defects.push_back({{"surface", surface_name(d.spall.surface)},
                        {"position_rad", d.spall.position_rad},
                        {"ball", d.spall.surface == Surface::Ball ? d.spall.ball : -1},

@@ -9,12 +9,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "dataset_sink.hpp"
+#include "bearing_sim/runtime/dataset_sink.hpp"
 #include "npy_file.hpp"
 
 namespace bearing_sim::tool {
 
-class DatasetPlainWriter : public DatasetSink {
+class DatasetPlainWriter : public runtime::DatasetSink {
  public:
   enum class Format { Npy, Csv };
   // Files `<stem>_vibration.<ext>`, `<stem>_vibration_ideal.<ext>` and `<stem>.json` (or
@@ -22,10 +22,10 @@ class DatasetPlainWriter : public DatasetSink {
   DatasetPlainWriter(std::string stem, Format format);
   ~DatasetPlainWriter() override;
 
-  void begin(const DatasetInfo& info) override;
-  void ideal_chunk(const ros_node::SampleChunk& chunk) override;
-  void measured_chunk(const ros_node::SampleChunk& chunk) override;
-  void label(const LabelState& state) override;
+  void begin(const runtime::DatasetInfo& info) override;
+  void ideal_chunk(const runtime::SampleChunk& chunk) override;
+  void measured_chunk(const runtime::SampleChunk& chunk) override;
+  void label(const runtime::LabelState& state) override;
   void end() override;
 
   std::string sidecar_path() const;
@@ -39,12 +39,12 @@ class DatasetPlainWriter : public DatasetSink {
     std::uint64_t rows = 0;
   };
   void open(Channel& c, const std::string& suffix, std::uint64_t rows);
-  void write(Channel& c, const ros_node::SampleChunk& chunk);
+  void write(Channel& c, const runtime::SampleChunk& chunk);
   void close(Channel& c);
 
   std::string stem_;
   Format format_;
-  DatasetInfo info_;
+  runtime::DatasetInfo info_;
   Channel measured_, ideal_;
   nlohmann::json labels_;
 };

@@ -8,26 +8,26 @@
 #include <utility>
 #include <vector>
 
-#include "dataset_sink.hpp"
+#include "bearing_sim/runtime/dataset_sink.hpp"
 
 namespace bearing_sim::tool {
 
-class FiniteDataGuard : public DatasetSink {
+class FiniteDataGuard : public runtime::DatasetSink {
  public:
   explicit FiniteDataGuard(std::string scenario) : scenario_(std::move(scenario)) {}
 
-  void begin(const DatasetInfo&) override {}
-  void ideal_chunk(const ros_node::SampleChunk& chunk) override { check(chunk, "vibration_ideal"); }
-  void measured_chunk(const ros_node::SampleChunk& chunk) override { check(chunk, "vibration"); }
+  void begin(const runtime::DatasetInfo&) override {}
+  void ideal_chunk(const runtime::SampleChunk& chunk) override { check(chunk, "vibration_ideal"); }
+  void measured_chunk(const runtime::SampleChunk& chunk) override { check(chunk, "vibration"); }
   void level(std::uint64_t index, double accel_rms, double) override {
     if (!std::isfinite(accel_rms))
       fail("the vibration level at dynamics sample " + std::to_string(index) + " is not finite");
   }
-  void label(const LabelState&) override {}
+  void label(const runtime::LabelState&) override {}
   void end() override {}
 
  private:
-  void check(const ros_node::SampleChunk& c, const char* stream) const {
+  void check(const runtime::SampleChunk& c, const char* stream) const {
     const std::pair<const char*, const std::vector<float>*> channels[] = {{"accel_x", &c.accel_x},
                                                                           {"accel_y", &c.accel_y},
                                                                           {"accel_z", &c.accel_z},

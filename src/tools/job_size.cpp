@@ -9,7 +9,7 @@
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/ring_dynamics.hpp"
-#include "bearing_sim/ros/input_validator.hpp"
+#include "bearing_sim/runtime/input_validator.hpp"
 #include "tool_common.hpp"
 
 namespace bearing_sim::tool {
@@ -30,13 +30,13 @@ std::string duration_text(double s) {
 int check_integrator_work(const BearingModel& model, const Vector5& load, double sample_rate_hz,
                           const std::string& bearing_file, IntegrationMethod method) {
   double rate = 0.0;
-  const ros_node::InputCheck check = ros_node::check_integrator_work(model, load, &rate);
+  const runtime::InputCheck check = runtime::check_integrator_work(model, load, &rate);
   // As BearingDynamics::choose_substeps, in double: an absurd mode overflows an int.
   const double needed = std::max(1.0, std::ceil(rate / sample_rate_hz / BearingDynamics::step_times_omega_max(method)));
   if (check.accepted) return static_cast<int>(std::min(needed, 1e9));
   throw ConfigError(bearing_file + ": " + check.reason + "; the integrator would need " + general(needed, 3) +
                     " steps per sample at " + general(sample_rate_hz, 6) + " Hz; no bearing has a mode above " +
-                    ros_node::frequency_text(ros_node::kMaxStiffRateRadS / (2.0 * kPi)));
+                    runtime::frequency_text(runtime::kMaxStiffRateRadS / (2.0 * kPi)));
 }
 
 double measure_seconds_per_step(const std::function<void()>& step) {

@@ -17,7 +17,7 @@ SimulatedSensor::SimulatedSensor(const std::string& sensor_file, double rate_hz,
     : file_(sensor_file), csv_path_(csv), window_start_(window_start) {
   const AccelerometerConfig config = load_accelerometer_config(sensor_file);
   try {
-    sensor_ = std::make_unique<ros_node::TriaxialSensor>(config, rate_hz);
+    sensor_ = std::make_unique<runtime::TriaxialSensor>(config, rate_hz);
   } catch (const InvalidInputError& e) {
     throw InputError("--sensor '" + sensor_file + "' at --rate " + general(rate_hz, 6) + " Hz: " + e.what());
   }

@@ -12,7 +12,7 @@
 
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/signal_statistics.hpp"
-#include "bearing_sim/ros/triaxial_sensor.hpp"
+#include "bearing_sim/runtime/triaxial_sensor.hpp"
 
 namespace bearing_sim::tool {
 
@@ -36,7 +36,7 @@ class SimulatedSensor {
 
  private:
   std::string file_, csv_path_, unit_;
-  std::unique_ptr<ros_node::TriaxialSensor> sensor_;
+  std::unique_ptr<runtime::TriaxialSensor> sensor_;
   std::size_t window_start_, inputs_ = 0;
   std::array<StreamedStatistics, 3> stats_;
   std::FILE* csv_ = nullptr;

@@ -15,7 +15,7 @@
 
 #include "bearing_sim/VibrationChunk.h"
 #include "bearing_sim/core/scenario.hpp"
-#include "scenario_simulation.hpp"
+#include "bearing_sim/runtime/scenario_simulation.hpp"
 
 using namespace bearing_sim;
 
@@ -35,11 +35,11 @@ struct Received {
 };
 
 // Collects generate's chunks, flattened by sample index.
-class CollectSink : public tool::DatasetSink {
+class CollectSink : public runtime::DatasetSink {
  public:
   struct Samples {
     std::vector<float> ax, ay, az, dx, dy, dz;
-    void append(const ros_node::SampleChunk& c) {
+    void append(const runtime::SampleChunk& c) {
       ax.insert(ax.end(), c.accel_x.begin(), c.accel_x.end());
       ay.insert(ay.end(), c.accel_y.begin(), c.accel_y.end());
       az.insert(az.end(), c.accel_z.begin(), c.accel_z.end());
@@ -49,16 +49,16 @@ class CollectSink : public tool::DatasetSink {
     }
   };
   Samples ideal, measured;
-  void begin(const tool::DatasetInfo&) override {}
-  void ideal_chunk(const ros_node::SampleChunk& c) override {
+  void begin(const runtime::DatasetInfo&) override {}
+  void ideal_chunk(const runtime::SampleChunk& c) override {
     ASSERT_EQ(c.first_sample, ideal.ax.size());
     ideal.append(c);
   }
-  void measured_chunk(const ros_node::SampleChunk& c) override {
+  void measured_chunk(const runtime::SampleChunk& c) override {
     ASSERT_EQ(c.first_sample, measured.ax.size());
     measured.append(c);
   }
-  void label(const tool::LabelState&) override {}
+  void label(const runtime::LabelState&) override {}
   void end() override {}
 };
 
@@ -109,10 +109,10 @@ TEST(NodeGenerateEquivalence, SameSamplesForTheSameInputsAndSeed) {
   std::string scenario_file;
   ASSERT_TRUE(ros::param::get("~scenario_file", scenario_file));
   const Scenario scenario = Scenario::load(scenario_file);
-  tool::GenerateSettings settings;
+  runtime::GenerateSettings settings;
   settings.duration_s = static_cast<double>(end) / scenario.sample_rate_hz();
   settings.health_rate_hz = 0.0;
-  tool::ScenarioSimulation sim(scenario, scenario_file, settings);
+  runtime::ScenarioSimulation sim(scenario, scenario_file, settings);
   ASSERT_EQ(sim.info().ideal_samples, end);
   CollectSink sink;
   sim.run({&sink});

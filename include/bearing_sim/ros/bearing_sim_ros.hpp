@@ -23,17 +23,17 @@
 #include "bearing_sim/InjectDefect.h"
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
-#include "bearing_sim/ros/chunk_assembler.hpp"
-#include "bearing_sim/ros/health_monitor.hpp"
-#include "bearing_sim/ros/input_validator.hpp"
-#include "bearing_sim/ros/load_ramp.hpp"
 #include "bearing_sim/ros/node_diagnostics.hpp"
-#include "bearing_sim/ros/priority_inheritance_mutex.hpp"
-#include "bearing_sim/ros/realtime_pacer.hpp"
-#include "bearing_sim/ros/sample_divider.hpp"
-#include "bearing_sim/ros/sample_pipeline.hpp"
-#include "bearing_sim/ros/sample_source.hpp"
-#include "bearing_sim/ros/triaxial_sensor.hpp"
+#include "bearing_sim/runtime/chunk_assembler.hpp"
+#include "bearing_sim/runtime/health_monitor.hpp"
+#include "bearing_sim/runtime/input_validator.hpp"
+#include "bearing_sim/runtime/load_ramp.hpp"
+#include "bearing_sim/runtime/priority_inheritance_mutex.hpp"
+#include "bearing_sim/runtime/realtime_pacer.hpp"
+#include "bearing_sim/runtime/sample_divider.hpp"
+#include "bearing_sim/runtime/sample_pipeline.hpp"
+#include "bearing_sim/runtime/sample_source.hpp"
+#include "bearing_sim/runtime/triaxial_sensor.hpp"
 
 namespace bearing_sim {
 namespace ros_node {
@@ -46,7 +46,7 @@ enum class ThreadScope {
 
 // The sink of the per-sample pipeline (shared with `bearing_tool generate`): turns its
 // outputs into messages, queued per chunk for their due time.
-class BearingSimRos : private PipelineSink {
+class BearingSimRos : private runtime::PipelineSink {
  public:
   // Reads the parameters (read_sim_node_parameters) and the bearing file, builds the model
   // at the static equilibrium of the initial load. Throws (ParameterError, ConfigError,
@@ -62,7 +62,7 @@ class BearingSimRos : private PipelineSink {
     std::optional<Vector5> load;
     std::optional<double> ring_speed_rad_s;
     std::optional<BearingModel> model;
-    std::optional<OutputSettings> settings;
+    std::optional<runtime::OutputSettings> settings;
     // inject_defect / clear_defects in the order called: a spall to add, or nullopt to clear.
     std::vector<std::optional<Spall>> defect_commands;
   };
@@ -102,24 +102,24 @@ class BearingSimRos : private PipelineSink {
   void publish_bundle(ChunkBundle& bundle);
   void apply_pending();
   // PipelineSink (sim thread, inside compute_chunk): into *bundle_.
-  void ideal_chunk(SampleChunk&& chunk) override;
-  void measured_chunk(SampleChunk&& chunk) override;
-  void level(const SampleSource::Sample& sample, double accel_rms, double window_s) override;
+  void ideal_chunk(runtime::SampleChunk&& chunk) override;
+  void measured_chunk(runtime::SampleChunk&& chunk) override;
+  void level(const runtime::SampleSource::Sample& sample, double accel_rms, double window_s) override;
   bool wants_ball_loads() const override;
-  void ball_loads(const SampleSource::Sample& sample, const BearingModel& model,
+  void ball_loads(const runtime::SampleSource::Sample& sample, const BearingModel& model,
                   const std::vector<BallState>& balls) override;
   void health_samples(std::vector<float>&& x, std::optional<double> analysis_time_s) override;
   void chunk_end(std::uint64_t last_index, std::size_t samples, const Vector5& load, double ring_speed_rad_s) override;
   void divergence(const std::string& message) override;
   // Health worker thread.
-  void publish_health(const HealthReport& report);
+  void publish_health(const runtime::HealthReport& report);
   ros::Time stamp_of(std::uint64_t sample_index) const;
 
   ros::NodeHandle nh_, pnh_;
   ThreadScope thread_scope_;
   // Parameters (fixed after construction).
   double sample_rate_hz_ = 10000.0;
-  LoadRamp load_ramp_;  // sim thread: a new load over ~load_ramp_s (0: a step)
+  runtime::LoadRamp load_ramp_;  // sim thread: a new load over ~load_ramp_s (0: a step)
   bool real_time_ = true;
   bool publish_clock_ = false;
   double max_real_time_factor_ = 0.0;  // not real time: 0 unbounded
@@ -129,8 +129,8 @@ class BearingSimRos : private PipelineSink {
   std::string frame_id_, bearing_frame_id_;
   std::string sensor_description_;     // "sensor: <name>" or "ideal ring acceleration"
   double measured_rate_hz_ = 10000.0;  // of `vibration`, L and health: the sensor's output rate, or sample_rate_hz_
-  InputLimits limits_;
-  std::optional<OutputSettings> accepted_settings_;  // last good reconfigure output settings
+  runtime::InputLimits limits_;
+  std::optional<runtime::OutputSettings> accepted_settings_;  // last good reconfigure output settings
 
   // ROS side (spinner thread only): the latest accepted inputs and model, for validation.
   std::unique_ptr<BearingModel> validation_model_;
@@ -141,13 +141,13 @@ class BearingSimRos : private PipelineSink {
 
   // Priority inheritance: the ROS callbacks (normal priority) hold it while the SCHED_FIFO
   // simulation thread may wait for it.
-  PriorityInheritanceMutex pending_mutex_;
+  runtime::PriorityInheritanceMutex pending_mutex_;
   Pending pending_;
   std::atomic<bool> pending_flag_{false};
 
   // Sim thread state.
-  std::unique_ptr<SamplePipeline> pipeline_;  // its sensor null: `vibration` is the ideal acceleration
-  std::unique_ptr<HealthMonitor> health_;
+  std::unique_ptr<runtime::SamplePipeline> pipeline_;  // its sensor null: `vibration` is the ideal acceleration
+  std::unique_ptr<runtime::HealthMonitor> health_;
   ros::Time ros_start_;
 
   ros::Publisher vibration_pub_, ideal_pub_, level_pub_, ball_loads_pub_, clock_pub_, health_pub_;
@@ -164,9 +164,9 @@ class BearingSimRos : private PipelineSink {
   std::unique_ptr<dynamic_reconfigure::Server<BearingSimConfig>> reconfigure_server_;
 
   // Real time: chunks computed ahead (sim thread) waiting for their due time (publisher).
-  std::optional<LeadScheduler> scheduler_;
-  std::optional<RealtimePacer> bounded_pacer_;  // not real time with max_real_time_factor > 0
-  RealtimePacer::Clock::time_point wall_start_;
+  std::optional<runtime::LeadScheduler> scheduler_;
+  std::optional<runtime::RealtimePacer> bounded_pacer_;  // not real time with max_real_time_factor > 0
+  runtime::RealtimePacer::Clock::time_point wall_start_;
   std::mutex queue_mutex_;
   std::condition_variable queue_cv_;
   std::deque<ChunkBundle> ready_;

@@ -12,7 +12,7 @@
 #include <ros/ros.h>
 
 #include "bearing_sim/core/bearing_model.hpp"
-#include "bearing_sim/ros/timing_stats.hpp"
+#include "bearing_sim/runtime/timing_stats.hpp"
 
 namespace bearing_sim {
 namespace ros_node {
@@ -73,7 +73,7 @@ class NodeDiagnostics {
   DiagnosticsSettings settings_;
   diagnostic_updater::Updater updater_;
   std::mutex mutex_;
-  TimingStats lateness_;  // last minute of chunks at 100 Hz
+  runtime::TimingStats lateness_;  // last minute of chunks at 100 Hz
   // record_chunk's records not yet under mutex_ (only the recording thread touches them).
   std::vector<double> unrecorded_lateness_s_;
   std::uint64_t unrecorded_overruns_ = 0;

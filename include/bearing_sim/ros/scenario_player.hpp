@@ -19,7 +19,7 @@
 #include "bearing_sim/InputRejection.h"
 #include "bearing_sim/ScenarioState.h"
 #include "bearing_sim/core/scenario.hpp"
-#include "bearing_sim/ros/scenario_timeline.hpp"
+#include "bearing_sim/runtime/scenario_timeline.hpp"
 
 namespace bearing_sim {
 namespace ros_node {
@@ -47,11 +47,11 @@ class ScenarioPlayer {
 
  private:
   void tick(const ros::Time& now);
-  void execute(const TimelineCommand& c);
-  ros::Time stamp_of(const TimelineCommand& c) const;  // on the node's clock
-  void publish_state(const TimelineCommand& c);
-  void inject(const TimelineCommand& c);
-  void clear(const TimelineCommand& c);
+  void execute(const runtime::TimelineCommand& c);
+  ros::Time stamp_of(const runtime::TimelineCommand& c) const;  // on the node's clock
+  void publish_state(const runtime::TimelineCommand& c);
+  void inject(const runtime::TimelineCommand& c);
+  void clear(const runtime::TimelineCommand& c);
   void on_rejected(const InputRejection::ConstPtr& m);
   void stop(const std::string& reason);
 
@@ -60,10 +60,10 @@ class ScenarioPlayer {
   Scenario scenario_;
   std::string bearing_name_;
   std::string node_name_;
-  TimelineSettings settings_;
+  runtime::TimelineSettings settings_;
   double wait_timeout_s_ = 60.0;
   int wait_for_subscribers_ = 0;
-  std::unique_ptr<ScenarioTimeline> timeline_;
+  std::unique_ptr<runtime::ScenarioTimeline> timeline_;
   ros::Time start_;
 
   ros::Publisher speed_pub_, load_pub_, state_pub_;

@@ -7,7 +7,7 @@
 #include <xmlrpcpp/XmlRpcValue.h>
 
 #include "bearing_sim/core/bearing_dynamics.hpp"
-#include "bearing_sim/ros/input_validator.hpp"
+#include "bearing_sim/runtime/input_validator.hpp"
 
 namespace bearing_sim {
 namespace ros_node {
@@ -27,7 +27,7 @@ struct SimNodeParameters {
   double lead_s = 0.03;
   std::optional<std::string> frame_id;  // unset: the rotating ring's frame
   std::string bearing_frame_id = "bearing";
-  InputLimits limits;
+  runtime::InputLimits limits;
   double max_lag_s = 0.005;
   double diagnostic_hold_s = 5.0;
   double diagnostic_period_s = 1.0;

@@ -1,0 +1,74 @@
+"""The layers: core -> runtime -> {ROS nodes, bearing_tool, Python}. The core and the runtime
+include no ROS header (roscpp, messages, rosbag, nodelet, pluginlib, dynamic_reconfigure, tf2,
+the package's generated messages or its ROS side), and the core nothing of the runtime. Their
+libraries are also compiled without catkin's include directories (CMakeLists.txt), but Debian
+installs ROS headers in /usr/include, where the compiler finds them anyway: hence this scan."""
+import re
+
+from conftest import SOURCE
+
+INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.MULTILINE)
+
+# Directories and headers of ROS 1 packages (angle or quoted).
+ROS_PREFIXES = ('ros/', 'rosbag/', 'rosgraph_msgs/', 'roscpp/', 'rostime/', 'nodelet/', 'pluginlib/',
+                'dynamic_reconfigure/', 'tf/', 'tf2/', 'tf2_ros/', 'xmlrpcpp/', 'diagnostic_updater/',
+                'message_filters/', 'actionlib/', 'image_transport/', 'class_loader/', 'bearing_sim_lcm/', 'lcm/')
+ROS_HEADERS = ('ros.h', 'XmlRpc.h', 'XmlRpcValue.h')
+# The package's own headers a layer may include.
+ALLOWED_OWN = {
+    'core': ('bearing_sim/core/',),
+    'runtime': ('bearing_sim/core/', 'bearing_sim/runtime/'),
+}
+
+
+def ros_include(header):
+    """Why `header` is a ROS header, or '' if it is not."""
+    if header.startswith(ROS_PREFIXES) or header in ROS_HEADERS:
+        return 'a ROS package header'
+    if re.match(r'^[A-Za-z0-9_]+_msgs/', header) or re.match(r'^[A-Za-z0-9_]+_srvs/', header):
+        return 'a ROS message header'
+    return ''
+
+
+def violations(layer, text):
+    """(header, reason) of every include of `text` the layer may not have."""
+    found = []
+    for _, header in INCLUDE.findall(text):
+        reason = ros_include(header)
+        if not reason and header.startswith('bearing_sim/') and not header.startswith(ALLOWED_OWN[layer]):
+            # bearing_sim/Foo.h: a generated message; bearing_sim/ros, viz: the ROS side.
+            reason = 'not of the layer or below it (the core, the runtime)'
+        if reason:
+            found.append((header, reason))
+    return found
+
+
+def layer_files(layer):
+    files = []
+    for root in (SOURCE / 'include' / 'bearing_sim' / layer, SOURCE / 'src' / layer):
+        files += [p for p in root.rglob('*') if p.suffix in ('.h', '.hpp', '.cpp', '.cc')]
+    return sorted(files)
+
+
+def test_the_check_finds_a_ros_include_a_generated_message_and_an_upward_include():
+    text = ('#include <vector>\n#include <ros/ros.h>\n#include "bearing_sim/VibrationChunk.h"\n'
+            '#include <geometry_msgs/Wrench.h>\n#include "bearing_sim/ros/message_conversion.hpp"\n'
+            '#include "bearing_sim/core/scenario.hpp"\n#include "bearing_sim/runtime/sample_pipeline.hpp"\n'
+            '#include <rosbag/bag.h>\n#include <Eigen/Dense>\n')
+    assert [h for h, _ in violations('runtime', text)] == [
+        'ros/ros.h', 'bearing_sim/VibrationChunk.h', 'geometry_msgs/Wrench.h', 'bearing_sim/ros/message_conversion.hpp',
+        'rosbag/bag.h'
+    ]
+    # The core may not include the runtime, which is above it.
+    assert 'bearing_sim/runtime/sample_pipeline.hpp' in [h for h, _ in violations('core', text)]
+
+
+def test_core_and_runtime_include_no_ros_header():
+    problems = []
+    for layer in ('core', 'runtime'):
+        files = layer_files(layer)
+        assert len(files) > 10, f'{layer}: the layer\'s sources were not found under {SOURCE}'
+        for path in files:
+            for header, reason in violations(layer, path.read_text(encoding='utf-8')):
+                problems.append(f'{path.relative_to(SOURCE)} includes {header}: {reason}')
+    assert not problems, '\n'.join(problems)
