@@ -75,6 +75,23 @@ double FlexibleBearing::axial_displacement_m(const Eigen::VectorXd& x, double th
   return displacement_m(x, theta, RingModeDirection::Axial);
 }
 
+FlexibleBearing::Deformation FlexibleBearing::deformation(const Eigen::VectorXd& x, const RollingPhase& phase,
+                                                          int points) const {
+  if (points < 1) throw InvalidInputError("flexible ring deformation: points must be at least 1");
+  Deformation d;
+  d.ring_angle_rad = ring_angle_rad(phase);
+  d.azimuth_rad.resize(points);
+  d.radial_m.resize(points);
+  d.axial_m.resize(points);
+  for (int i = 0; i < points; ++i) {
+    const double phi = 2.0 * kPi * i / points;
+    d.azimuth_rad[i] = phi;
+    d.radial_m[i] = radial_displacement_m(x, phi - d.ring_angle_rad);
+    d.axial_m[i] = axial_displacement_m(x, phi - d.ring_angle_rad);
+  }
+  return d;
+}
+
 // One pass over the balls: the kinematics of docs/model.md section 5 with the ring's modal
 // displacement added to each groove centre's, u = G x with G = [rigid map | e_r cos n theta,
 // e_r sin n theta (radial modes) | e_z cos n theta, e_z sin n theta (axial modes)].

@@ -44,6 +44,43 @@ TEST(FlexibleRingStatics, AnUndeformedRingLoadsTheBallsAsTheRigidRing) {
   for (int i = 0; i < 5; ++i) EXPECT_NEAR(f[i], expected[i], 1e-9 * expected.norm()) << i;
 }
 
+TEST(FlexibleRingStatics, TheDisplayedDeformationIsTheModeTurningWithTheRing) {
+  // Only the n = 2 radial mode's cos coordinate set, a = 10 um, and an axial n = 3 sin one,
+  // 4 um: the centre line is a cos 2 (phi - psi) outwards and b sin 3 (phi - psi) along the
+  // axis, its ovality's long axis at the ring angle psi and turning with it.
+  const FlexibleBearing flexible{BearingModel(ct_flexible())};
+  const auto& modes = flexible.modes();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(flexible.size());
+  const double a = 10e-6, b = 4e-6;
+  int set = 0;
+  for (std::size_t i = 0; i < modes.size(); ++i) {
+    if (modes[i].order == 2 && modes[i].direction == RingModeDirection::Radial) {
+      x[5 + 2 * i] = a;
+      ++set;
+    }
+    if (modes[i].order == 3 && modes[i].direction == RingModeDirection::Axial) {
+      x[6 + 2 * i] = b;
+      ++set;
+    }
+  }
+  ASSERT_EQ(set, 2) << "ct_gantry_flexible.yaml has radial n = 2 and axial n = 3 modes";
+  for (const double psi : {0.0, 0.4, 2.5}) {
+    RollingPhase phase{};
+    phase.outer_ring = psi;  // the CT bearing's rotating ring
+    const FlexibleBearing::Deformation d = flexible.deformation(x, phase, 72);
+    EXPECT_DOUBLE_EQ(d.ring_angle_rad, psi);
+    ASSERT_EQ(d.azimuth_rad.size(), 72u);
+    for (int i = 0; i < 72; ++i) {
+      const double phi = 2.0 * test::kPi * i / 72;
+      EXPECT_NEAR(d.azimuth_rad[i], phi, 1e-15);
+      // The sums of cosines of other arguments: rounding of 1e-5 m.
+      EXPECT_NEAR(d.radial_m[i], a * std::cos(2.0 * (phi - psi)), 1e-18) << "psi " << psi << ", phi " << phi;
+      EXPECT_NEAR(d.axial_m[i], b * std::sin(3.0 * (phi - psi)), 1e-18) << "psi " << psi << ", phi " << phi;
+    }
+  }
+  EXPECT_THROW(flexible.deformation(x, RollingPhase{}, 0), InvalidInputError);
+}
+
 TEST(FlexibleRingStatics, TheAnalyticStiffnessIsTheForcesDerivative) {
   const FlexibleBearing flexible{BearingModel(ct_flexible())};
   const RollingPhase phase{0.2, 0.0, 0.7, 0.0, 0.0};

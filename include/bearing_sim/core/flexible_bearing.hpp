@@ -51,6 +51,14 @@ class FlexibleBearing {
   // Angle the flexible (rotating) ring has turned at a phase: ball azimuth phi sits at
   // theta = phi - ring_angle on the ring.
   double ring_angle_rad(const RollingPhase& phase) const;
+  // The centre line's displacement at `points` azimuths phi_i = 2 pi i / points of the bearing
+  // frame (the material angle theta = phi - ring_angle): what the display draws. Throws
+  // InvalidInputError for points < 1.
+  struct Deformation {
+    double ring_angle_rad = 0.0;
+    std::vector<double> azimuth_rad, radial_m, axial_m;
+  };
+  Deformation deformation(const Eigen::VectorXd& x, const RollingPhase& phase, int points) const;
 
  private:
   // The sum over the modes of one direction of their (cos, sin) coordinates at theta.
