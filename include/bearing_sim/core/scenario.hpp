@@ -16,6 +16,8 @@ namespace bearing_sim {
 // (bearing_tool generate --duration-s, bearing_sim.generate duration_s).
 constexpr double kMaxScenarioDurationS = 1e7;
 
+class ScenarioReader;
+
 // Inputs of the simulation at one scenario time.
 struct ScenarioInputs {
   Vector5 load = Vector5::Zero();  // Fx, Fy, Fz (N), Mx, My (N*m) on the rotating ring, unbalance included
@@ -116,6 +118,8 @@ class Scenario {
   static double spall_depth_at(const Spall& spall, double time_s);
 
  private:
+  friend class ScenarioReader;  // src/core/scenario_reader.cpp: fills the time lines from the file
+
   // Pieces of the piecewise time lines.
   struct SpeedPiece {
     enum class Kind { Hold, Ramp, Coast };
