@@ -6,6 +6,7 @@
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/seeded_gaussian.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
+#include "sensor_config_yaml.hpp"
 #include "yaml_reader.hpp"
 
 namespace bearing_sim {

@@ -7,6 +7,7 @@
 
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
+#include "sensor_config_yaml.hpp"
 #include "yaml_reader.hpp"
 
 namespace bearing_sim {

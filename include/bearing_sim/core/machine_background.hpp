@@ -10,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include <yaml-cpp/yaml.h>
 #include <Eigen/Dense>
 
 namespace bearing_sim {
@@ -44,12 +43,6 @@ struct InstallationProblem {
   std::string key, what;
 };
 InstallationProblem installation_problem(const InstallationConfig& c);
-
-// Reads the `installation:` mapping (the node given is the mapping itself); `prefix` is the
-// path of its keys in messages ("sensor.installation."). Unknown key, wrong type, non-finite
-// or out-of-range value: ConfigError naming `source` and the key.
-InstallationConfig parse_installation_config(const YAML::Node& node, const std::string& source,
-                                             const std::string& prefix);
 
 // The lines and the modulation, one input sample at a time; allocation-free per sample.
 class MachineBackground {

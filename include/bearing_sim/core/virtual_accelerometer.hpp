@@ -12,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include <yaml-cpp/yaml.h>
 #include <Eigen/Dense>
 
 #include "bearing_sim/core/bearing_dynamics.hpp"
@@ -67,11 +66,8 @@ struct AccelerometerConfig {
   SensorOutputUnit output_unit = SensorOutputUnit::Acceleration_m_s2;
 };
 
-// Reads the `sensor:` mapping (the node given is the mapping itself), with its `path_modes`
-// and `installation:`. Keys carry their units (docs/sensor.md); an unknown key, a wrong type
-// or a value out of range is a ConfigError naming `source` and the key.
-AccelerometerConfig parse_accelerometer_config(const YAML::Node& sensor, const std::string& source);
-// A sensor file whose only top-level key is `sensor:`.
+// A sensor file whose only top-level key is `sensor:` (read by src/core/sensor_config_yaml.hpp's
+// parse_accelerometer_config).
 AccelerometerConfig load_accelerometer_config(const std::string& path);
 AccelerometerConfig accelerometer_config_from_string(const std::string& yaml, const std::string& source);
 
