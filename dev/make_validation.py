@@ -841,9 +841,10 @@ def machine_text(ct, ct_m, cmp_, camp):
   that turn with the ring. Free, the ring bends at {ring[("out_of_plane", 2)]:.0f} Hz (n = 2 out of plane),
   {ring[("in_plane", 2)]:.0f} Hz (n = 2 in plane), {ring[("out_of_plane", 3)]:.0f} and {ring[("in_plane", 3)]:.0f} Hz (n = 3);
   coupled through the contacts to the rigid-body motion of ring and rotor the modes become
-  {", ".join(f"{m['f']:.0f}" for m in ff[:4])} Hz: the ring's bending adds compliance in series with the contacts,
-  so the rocking modes fall from {fm[0]['f']:.0f} and {fm[1]['f']:.0f} Hz to {ff[0]['f']:.0f} and {ff[1]['f']:.0f} Hz and the axial
-  mode moves from {f3:.0f} Hz ({100 * (zfc - f3) / f3:.1f} % below Z f_c) to {f3f:.0f} Hz ({100 * (f3f - zfc) / zfc:.1f} % above it).
+  {", ".join(f"{m['f']:.0f}" for m in ff[:4])} Hz (the tool reports their frequencies, not their
+  shapes): the ring's bending adds compliance in series with the contacts,
+  so the two lowest modes fall from {fm[0]['f']:.0f} and {fm[1]['f']:.0f} Hz to {ff[0]['f']:.0f} and {ff[1]['f']:.0f} Hz and the third
+  moves from {f3:.0f} Hz ({100 * (zfc - f3) / f3:.1f} % below Z f_c) to {f3f:.0f} Hz ({100 * (f3f - zfc) / zfc:.1f} % above it).
   Statically the ring bends (n = 2 by {F['ring']['modes'][0]['static_amplitude_m'] * 1e6:.1f} um in plane) and spreads the load over more
   balls: row 1 carries it on {F['dist'][0]['loaded']} balls instead of {Mc['dist'][0]['loaded']}, and the peak ball load falls from
   {Mc['static']['max_ball_load_N']:.1f} to {F['static']['max_ball_load_N']:.1f} N ({F['ring']['max_ball_load_change_percent']:.0f} %); the ring's centre moves further
@@ -992,7 +993,7 @@ not below 180 rpm):
   A gantry whose scan speed sits a few percent above a mode of ring and rotor is a design
   point to check against the real structure (its frame and housing, which this model leaves
   rigid, lower the modes further).
-- **The flexible ring**: the ball-pass frequency crosses the coupled rocking modes at
+- **The flexible ring**: the ball-pass frequency crosses the two lowest coupled modes at
   {ctxt('flexible', 1, 1)} and {ctxt('flexible', 1, 2)}; the third mode, {f3f:.0f} Hz, stays
   {100 * (f3f - zfc) / zfc:.1f} % above Z f_c at scan speed, so the scan runs just below it rather than above.
   The cycle's highest L, {camp['flexible']['L_max']:.1f} dB at {camp['flexible']['t_Lmax']:.2f} s, is
