@@ -19,9 +19,11 @@
 #include "bearing_sim/BallLoads.h"
 #include "bearing_sim/BearingHealth.h"
 #include "bearing_sim/InputRejection.h"
+#include "bearing_sim/RingDeformation.h"
 #include "bearing_sim/VibrationChunk.h"
 #include "bearing_sim/VibrationLevel.h"
 #include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
@@ -158,6 +160,7 @@ BearingSimRos::BearingSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, ThreadScop
   health_pub_ = nh_.advertise<BearingHealth>("health", 10 * depth);
   level_pub_ = nh_.advertise<VibrationLevel>("vibration_level", 100 * depth);
   ball_loads_pub_ = nh_.advertise<BallLoads>("ball_loads", 300 * depth);
+  deformation_pub_ = nh_.advertise<RingDeformation>("ring_deformation", 300 * depth);
   if (publish_clock_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 100);
   // Before the reconfigure server and the input subscribers, whose callbacks may refuse.
   rejected_pub_ = nh_.advertise<InputRejection>("rejected_inputs", 100);
@@ -547,6 +550,23 @@ void BearingSimRos::ball_loads(const runtime::SampleSource::Sample& sample, cons
   bundle_->actions.emplace_back([this, msg] {
     msg->header.seq = ball_loads_seq_++;
     ball_loads_pub_.publish(msg);
+  });
+}
+
+bool BearingSimRos::wants_ring_deformation() const { return deformation_pub_.getNumSubscribers() > 0; }
+
+void BearingSimRos::ring_deformation(const runtime::SampleSource::Sample& sample,
+                                     const FlexibleBearing::Deformation& deformation) {
+  auto msg = boost::make_shared<RingDeformation>();
+  msg->header.stamp = stamp_of(sample.index);
+  msg->header.frame_id = bearing_frame_id_;
+  msg->ring_angle = std::remainder(deformation.ring_angle_rad, 2.0 * kPi);
+  msg->azimuth.assign(deformation.azimuth_rad.begin(), deformation.azimuth_rad.end());
+  msg->radial.assign(deformation.radial_m.begin(), deformation.radial_m.end());
+  msg->axial.assign(deformation.axial_m.begin(), deformation.axial_m.end());
+  bundle_->actions.emplace_back([this, msg] {
+    msg->header.seq = deformation_seq_++;
+    deformation_pub_.publish(msg);
   });
 }
 

@@ -60,8 +60,13 @@ bool SamplePipeline::step(PipelineSink& sink) {
   }
   if (level_divider_.due(sample.index))
     sink.level(sample, level_rms_.rms(), static_cast<double>(level_rms_.size()) / measured_rate_hz_);
-  if (ball_loads_divider_.due(sample.index) && sink.wants_ball_loads())
-    sink.ball_loads(sample, source_.ring().model(), source_.ring().ball_states());
+  if (ball_loads_divider_.due(sample.index)) {
+    if (sink.wants_ball_loads()) sink.ball_loads(sample, source_.ring().model(), source_.ring().ball_states());
+    const FlexibleSample* flexible = source_.ring().flexible_state();
+    if (flexible && sink.wants_ring_deformation())
+      sink.ring_deformation(sample, source_.ring().flexible()->bearing().deformation(
+                                        flexible->coordinates, flexible->phase, kRingDeformationPoints));
+  }
   sink.sample_done(sample);
   if (health_divider_ && health_divider_->due(sample.index)) {
     std::vector<float> x = take_health_samples();

@@ -146,6 +146,21 @@ std::vector<Segment> ring_outline(const RingSection& s, int circle_segments, int
   return out;
 }
 
+std::vector<Eigen::Vector3d> deformation_curve(double centroid_radius_m, const std::vector<float>& azimuth_rad,
+                                               const std::vector<float>& radial_m, const std::vector<float>& axial_m,
+                                               double magnification) {
+  std::vector<Eigen::Vector3d> curve;
+  const std::size_t n = azimuth_rad.size();
+  if (n == 0 || radial_m.size() != n || axial_m.size() != n) return curve;
+  curve.reserve(n + 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double r = centroid_radius_m + magnification * radial_m[i];
+    curve.emplace_back(r * std::cos(azimuth_rad[i]), r * std::sin(azimuth_rad[i]), magnification * axial_m[i]);
+  }
+  curve.push_back(curve.front());
+  return curve;
+}
+
 Eigen::Isometry3d rotating_ring_pose(double ring_angle_rad, const Eigen::Vector3d& displacement_m,
                                      double exaggeration) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();

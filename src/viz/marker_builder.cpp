@@ -158,6 +158,22 @@ visualization_msgs::MarkerArray build_markers(const BearingScene& scene, const S
     out.markers.push_back(deleted(frames.bearing, stamp, "applied_load", 1));
   }
 
+  if (!extras.ring_deformation.empty()) {
+    // Above the balls (z) so that the line is not hidden by them.
+    Marker ring = base_marker(frames.bearing, stamp, "ring_deformation", 0, Marker::LINE_STRIP);
+    ring.scale.x = 2.0 * line_width;
+    ring.color = colour(Rgba{1.0f, 0.2f, 0.8f, 1.0f});
+    for (const auto& p : extras.ring_deformation) ring.points.push_back(point(p));
+    out.markers.push_back(ring);
+    Marker label = base_marker(frames.bearing, stamp, "ring_deformation", 1, Marker::TEXT_VIEW_FACING);
+    label.pose.position.x = 0.0;
+    label.pose.position.y = 1.25 * ro;
+    label.scale.z = 0.05 * ro;
+    label.color = ring.color;
+    label.text = extras.ring_deformation_label;
+    out.markers.push_back(label);
+  }
+
   Marker text = base_marker(frames.bearing, stamp, "status_text", 0, Marker::TEXT_VIEW_FACING);
   // Beyond the far side of the bearing (+y), clear of the rings and the polar curves.
   text.pose.position.x = 0.0;

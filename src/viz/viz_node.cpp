@@ -1,6 +1,8 @@
 #include "bearing_sim/viz/viz_node.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
@@ -49,6 +51,7 @@ VizNode::VizNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   const double rate_hz = params.update_rate_hz;
   speed_rad_s_ = params.initial_speed_rad_s;
   exaggeration_ = params.displacement_exaggeration;
+  deformation_magnification_ = params.deformation_magnification;
   colour_full_scale_N_ = params.colour_full_scale_N;
   display_.ball_scale = params.ball_scale;
   display_.force_arrow_length_m = params.force_arrow_length_m;
@@ -63,6 +66,9 @@ VizNode::VizNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
 
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("ball_markers", 1);
   ball_loads_sub_ = nh_.subscribe("ball_loads", 1, &VizNode::on_ball_loads, this);
+  // Only a flexible ring deforms: no subscription (and nothing computed by the simulation) otherwise.
+  if (model_->config().flexible_ring.present)
+    deformation_sub_ = nh_.subscribe("ring_deformation", 1, &VizNode::on_ring_deformation, this);
   vibration_sub_ = nh_.subscribe("vibration", 10, &VizNode::on_vibration, this);
   level_sub_ = nh_.subscribe("vibration_level", 1, &VizNode::on_level, this);
   speed_sub_ = nh_.subscribe("speed", 1, &VizNode::on_speed, this);
@@ -101,6 +107,22 @@ void VizNode::on_ball_loads(const bearing_sim::BallLoads::ConstPtr& msg) {
   loads_received_ = ros::Time::now();
   if (std::isfinite(msg->cage_angle)) cage_angle_rad_ = msg->cage_angle;
   for (float q : loads_.load_N) running_max_load_N_ = std::max(running_max_load_N_, static_cast<double>(q));
+}
+
+void VizNode::on_ring_deformation(const bearing_sim::RingDeformation::ConstPtr& msg) {
+  extras_.ring_deformation = deformation_curve(model_->config().flexible_ring.centroid_radius_m, msg->azimuth,
+                                               msg->radial, msg->axial, deformation_magnification_);
+  if (extras_.ring_deformation.empty()) {
+    ROS_WARN_THROTTLE(5.0, "bearing_viz_node: ignoring RingDeformation: azimuth, radial and axial differ in length");
+    return;
+  }
+  float peak = 0.0f;
+  for (float w : msg->radial) peak = std::max(peak, std::abs(w));
+  // rviz's text font has no underscore or micro sign: plain symbols.
+  char text[96];
+  std::snprintf(text, sizeof text, "ring deformation x %.0f (peak radial %.1f um)", deformation_magnification_,
+                1e6 * peak);
+  extras_.ring_deformation_label = text;
 }
 
 void VizNode::on_vibration(const bearing_sim::VibrationChunk::ConstPtr& msg) {

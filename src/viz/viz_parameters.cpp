@@ -20,6 +20,8 @@ VizParameters read_viz_parameters(const XmlRpc::XmlRpcValue& private_params, con
   p.initial_speed_rad_s = r.number("initial_speed_rad_s", p.initial_speed_rad_s, -1.0e4, 1.0e4, "rad/s");
   // Micrometre displacements of a metre-sized ring: up to 1e6 x to see them at all.
   p.displacement_exaggeration = r.number("displacement_exaggeration", p.displacement_exaggeration, 0.0, 1.0e6, "");
+  // The flexible ring's bending: micrometres on a 0.6 m ring, drawn at millimetres.
+  p.deformation_magnification = r.number("deformation_magnification", p.deformation_magnification, 0.0, 1.0e7, "");
   p.colour_full_scale_N = r.number("colour_full_scale_N", p.colour_full_scale_N, 0.0, 1.0e8, "N (0: running maximum)");
   // Display / true ball diameter: visible, and not larger than the bearing.
   p.ball_scale = r.number("ball_scale", p.ball_scale, 0.1, 10.0, "");

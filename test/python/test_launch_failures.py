@@ -122,6 +122,25 @@ def ros_command(env, *args, timeout):
         time.sleep(1.0)
 
 
+def check_ring_deformation(text):
+    """A RingDeformation message (rostopic's YAML) is the CT ring's modal sum: 72 azimuths evenly
+    spaced, and radial and axial displacements made of the ring's orders n = 2..6 only (its
+    flexible_ring block's in_plane_max_order and out_of_plane_max_order), loaded: micrometres."""
+    import numpy
+    import yaml
+    msg = yaml.safe_load(text.split('---')[0])
+    azimuth = numpy.array(msg['azimuth'])
+    assert len(azimuth) == 72, text[:2000]
+    assert numpy.allclose(azimuth, 2 * numpy.pi * numpy.arange(72) / 72, atol=1e-6)
+    for key in ('radial', 'axial'):
+        w = numpy.array(msg[key])
+        spectrum = numpy.abs(numpy.fft.rfft(w)) / len(w)
+        in_orders = spectrum[2:7].max()
+        # Float32 values: other orders at rounding, 1e-6 of the ring's own with margin.
+        assert numpy.delete(spectrum, range(2, 7)).max() < 1e-6 * in_orders, (key, spectrum)
+    assert 1e-6 < numpy.abs(msg['radial']).max() < 1e-4, msg['radial']  # m: the loaded ring's micrometres
+
+
 @pytest.mark.parametrize('model, bearing_file', [('paper', 'ct_gantry_lyc.yaml'), ('rotor', 'ct_gantry_physical.yaml'),
                                                  ('flexible', 'ct_gantry_flexible.yaml')])
 def test_each_model_runs_its_bearing_file_and_publishes(tmp_path, model, bearing_file):
@@ -142,6 +161,9 @@ def test_each_model_runs_its_bearing_file_and_publishes(tmp_path, model, bearing
                             timeout=LAUNCH_TIMEOUT_S)
         value = float(level.split()[0])
         assert math.isfinite(value), level  # L of a running dynamics (-inf before any sample)
+        if model == 'flexible':
+            check_ring_deformation(ros_command(env, 'rostopic', 'echo', '-n', '1', '/bearing/ring_deformation',
+                                               timeout=LAUNCH_TIMEOUT_S))
     finally:
         os.killpg(p.pid, signal.SIGINT)
         p.wait(timeout=60)

@@ -218,6 +218,26 @@ TEST(RingPoses, RingSectionsComeFromTheEnvelope) {
   EXPECT_EQ(outline.size(), 4u * 100 + 12 + 2);
 }
 
+TEST(RingPoses, DeformationCurveIsTheCentroidCircleMovedByTheMagnifiedDisplacement) {
+  // An n = 2 ovality of 10 um and 3 um axial at four azimuths, magnified 5000: 50 mm out at 0
+  // and pi, in at pi/2 and 3 pi/2, 15 mm up; closed by the first point again.
+  const std::vector<float> azimuth = {0.0f, static_cast<float>(kPi / 2), static_cast<float>(kPi),
+                                      static_cast<float>(3 * kPi / 2)};
+  const std::vector<float> radial = {10e-6f, -10e-6f, 10e-6f, -10e-6f}, axial(4, 3e-6f);
+  const auto curve = deformation_curve(0.6, azimuth, radial, axial, 5000.0);
+  ASSERT_EQ(curve.size(), 5u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    const double r = 0.6 + 5000.0 * radial[i];
+    EXPECT_NEAR(curve[i].x(), r * std::cos(azimuth[i]), 1e-6) << i;
+    EXPECT_NEAR(curve[i].y(), r * std::sin(azimuth[i]), 1e-6) << i;
+    EXPECT_NEAR(curve[i].z(), 0.015, 1e-6) << i;
+  }
+  EXPECT_EQ(curve[4], curve[0]);
+  EXPECT_NEAR(curve[0].head<2>().norm(), 0.65, 1e-6);
+  EXPECT_NEAR(curve[1].head<2>().norm(), 0.55, 1e-6);
+  EXPECT_TRUE(deformation_curve(0.6, azimuth, radial, {0.0f}, 5000.0).empty());  // lengths differ
+}
+
 TEST(MarkerBuilder, StableIdsOneSpherePerBallConsistentArrays) {
   const BearingModel model = ct_model();
   SceneExtras extras;

@@ -106,6 +106,9 @@ class BearingSimRos : private runtime::PipelineSink {
   void measured_chunk(runtime::SampleChunk&& chunk) override;
   void level(const runtime::SampleSource::Sample& sample, double accel_rms, double window_s) override;
   bool wants_ball_loads() const override;
+  bool wants_ring_deformation() const override;
+  void ring_deformation(const runtime::SampleSource::Sample& sample,
+                        const FlexibleBearing::Deformation& deformation) override;
   void ball_loads(const runtime::SampleSource::Sample& sample, const BearingModel& model,
                   const std::vector<BallState>& balls) override;
   void health_samples(std::vector<float>&& x, std::optional<double> analysis_time_s) override;
@@ -150,12 +153,13 @@ class BearingSimRos : private runtime::PipelineSink {
   std::unique_ptr<runtime::HealthMonitor> health_;
   ros::Time ros_start_;
 
-  ros::Publisher vibration_pub_, ideal_pub_, level_pub_, ball_loads_pub_, clock_pub_, health_pub_;
+  ros::Publisher vibration_pub_, ideal_pub_, level_pub_, ball_loads_pub_, deformation_pub_, clock_pub_, health_pub_;
   ros::Publisher rejected_pub_;  // rejected_inputs (spinner thread)
   // header.seq of each topic, set here: roscpp numbers only the serialised copies, and a
   // subscriber in the same nodelet manager gets the message itself (publisher thread; health:
   // the health worker).
-  std::uint32_t vibration_seq_ = 0, ideal_seq_ = 0, level_seq_ = 0, ball_loads_seq_ = 0, health_seq_ = 0;
+  std::uint32_t vibration_seq_ = 0, ideal_seq_ = 0, level_seq_ = 0, ball_loads_seq_ = 0, deformation_seq_ = 0,
+                health_seq_ = 0;
   ros::ServiceServer inject_srv_, clear_srv_;
   ros::Subscriber load_sub_, speed_sub_, ring_temperature_sub_;
   std::unique_ptr<NodeDiagnostics> diagnostics_;

@@ -23,6 +23,10 @@
 namespace bearing_sim {
 namespace runtime {
 
+// Azimuths of a flexible ring's published deformation: 5 degrees, 12 points per wave of the
+// highest order the shipped rings have (6).
+inline constexpr int kRingDeformationPoints = 72;
+
 // Outputs that may change while running (the node's dynamic_reconfigure).
 struct OutputSettings {
   std::size_t chunk_samples = 100;
@@ -49,6 +53,11 @@ class PipelineSink {
   virtual void ball_loads(const SampleSource::Sample& sample, const BearingModel& model,
                           const std::vector<BallState>& balls) {
     (void)sample, (void)model, (void)balls;
+  }
+  // A flexible ring's deformation at the ball loads' samples, when wanted (docs/node.md).
+  virtual bool wants_ring_deformation() const { return false; }
+  virtual void ring_deformation(const SampleSource::Sample& sample, const FlexibleBearing::Deformation& deformation) {
+    (void)sample, (void)deformation;
   }
   // After the level and ball loads of every sample (generate's labels).
   virtual void sample_done(const SampleSource::Sample& sample) { (void)sample; }

@@ -87,6 +87,13 @@ RingSection inner_ring_section(const BearingModel& model);
 // of the rotating ring can be seen) and a long marker tick at azimuth 0.
 std::vector<Segment> ring_outline(const RingSection& section, int circle_segments, int tick_count, const Rgba& colour);
 
+// The flexible ring's deformed centre line (a RingDeformation message), magnified: at each
+// azimuth phi the point (R + m w) (cos phi, sin phi) and m u along the axis, R the ring's
+// centroid radius, w and u the radial and axial displacements, m the magnification. Closed
+// (the first point again at the end); empty when the arrays differ in length or are empty.
+std::vector<Eigen::Vector3d> deformation_curve(double centroid_radius_m, const std::vector<float>& azimuth_rad,
+                                               const std::vector<float>& radial_m, const std::vector<float>& axial_m,
+                                               double magnification);
 // Pose of the rotating ring in the bearing frame: turned by ring_angle_rad about z and
 // shifted by the (exaggerated) displacement of the moving ring.
 Eigen::Isometry3d rotating_ring_pose(double ring_angle_rad, const Eigen::Vector3d& displacement_m, double exaggeration);

@@ -9,6 +9,8 @@
 //   fixed_ring     id 0      LINE_LIST outline of the fixed ring, bearing frame
 //   rotating_ring  id 0      LINE_LIST outline of the rotating ring, rotating-ring frame
 //   applied_load   id 0, 1   ARROW along the applied radial force and its label (DELETE when none)
+//   ring_deformation id 0, 1 LINE_STRIP the flexible ring's magnified centre line and its label
+//                            (only with a flexible ring: nothing is sent otherwise)
 //   status_text    id 0      TEXT_VIEW_FACING: max ball load, L, speed, colour scale
 //   colour_bar     id 0      CUBE_LIST legend of the colour map; colour_bar_text id 0, 1
 #include <string>
@@ -33,6 +35,9 @@ struct SceneExtras {
   Eigen::Vector3d applied_moment_Nm = Eigen::Vector3d::Zero();
   double bearing_outer_radius_m = 0.5;  // places the text, legend and load arrow
   std::string status_text;
+  // The flexible ring's magnified centre line (deformation_curve) and its label; empty: none.
+  std::vector<Eigen::Vector3d> ring_deformation;
+  std::string ring_deformation_label;
 };
 
 // Status line shown above the bearing. level_db NaN: no VibrationLevel received yet.

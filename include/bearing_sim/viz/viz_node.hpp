@@ -6,6 +6,7 @@
 #include <string>
 
 #include <bearing_sim/BallLoads.h>
+#include <bearing_sim/RingDeformation.h>
 #include <bearing_sim/VibrationChunk.h>
 #include <bearing_sim/VibrationLevel.h>
 #include <geometry_msgs/WrenchStamped.h>
@@ -28,6 +29,7 @@ class VizNode {
 
  private:
   void on_ball_loads(const bearing_sim::BallLoads::ConstPtr& msg);
+  void on_ring_deformation(const bearing_sim::RingDeformation::ConstPtr& msg);
   void on_vibration(const bearing_sim::VibrationChunk::ConstPtr& msg);
   void on_level(const bearing_sim::VibrationLevel::ConstPtr& msg);
   void on_speed(const std_msgs::Float64::ConstPtr& msg);
@@ -39,11 +41,12 @@ class VizNode {
   std::unique_ptr<BearingModel> model_;
   std::string fixed_frame_, bearing_frame_, ring_frame_, cage_frame_;
   double exaggeration_ = 1000.0;
+  double deformation_magnification_ = 5000.0;
   double colour_full_scale_N_ = 0.0;  // <= 0: running maximum
   DisplayOptions display_;
   SceneExtras extras_;
 
-  ros::Subscriber ball_loads_sub_, vibration_sub_, level_sub_, speed_sub_, load_sub_;
+  ros::Subscriber ball_loads_sub_, deformation_sub_, vibration_sub_, level_sub_, speed_sub_, load_sub_;
   ros::Publisher markers_pub_;
   tf2_ros::TransformBroadcaster tf_;
   tf2_ros::StaticTransformBroadcaster static_tf_;

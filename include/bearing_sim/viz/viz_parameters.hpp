@@ -17,7 +17,8 @@ struct VizParameters {
   double update_rate_hz = 30.0;
   double initial_speed_rad_s = 0.0;
   double displacement_exaggeration = 1000.0;
-  double colour_full_scale_N = 0.0;  // 0: the running maximum
+  double deformation_magnification = 5000.0;  // of the flexible ring's deformation
+  double colour_full_scale_N = 0.0;           // 0: the running maximum
   double ball_scale = 1.3;
   double force_arrow_length_m = 0.08;
   double polar_curve_height_m = 0.15;
