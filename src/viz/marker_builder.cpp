@@ -167,7 +167,7 @@ visualization_msgs::MarkerArray build_markers(const BearingScene& scene, const S
     out.markers.push_back(ring);
     Marker label = base_marker(frames.bearing, stamp, "ring_deformation", 1, Marker::TEXT_VIEW_FACING);
     label.pose.position.x = 0.0;
-    label.pose.position.y = 1.25 * ro;
+    label.pose.position.y = 1.65 * ro;  // beyond the status text (1.4 ro, four lines)
     label.scale.z = 0.05 * ro;
     label.color = ring.color;
     label.text = extras.ring_deformation_label;
