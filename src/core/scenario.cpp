@@ -19,15 +19,7 @@
 #include "yaml_reader.hpp"
 
 namespace bearing_sim {
-namespace {
-// As the reader (scenario_reader.cpp) writes numbers in its messages.
-std::string format_number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-}  // namespace
+using detail::format_number;
 
 // --- speed ---------------------------------------------------------------------------
 

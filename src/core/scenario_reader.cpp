@@ -22,12 +22,7 @@ namespace {
 constexpr double kRpmToRadS = 2.0 * kPi / 60.0;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 namespace fs = std::filesystem;
-
-std::string format_number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
+using detail::format_number;
 
 std::string read_speed(const detail::Reader& r, const std::string& stem, double pitch_diameter_m, double* speed_rad_s) {
   const bool rpm = r.has(stem + "_rpm"), rad = r.has(stem + "_rad_s");

@@ -20,6 +20,13 @@
 namespace bearing_sim {
 namespace detail {
 
+// A number as the readers write it in their messages (shortest of "%g" kind: 0.5, 1e-06).
+inline std::string format_number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
 // The text of a configuration file. Only a regular file of at most 1 MiB (the shipped files
 // are a few kB): /dev/zero or a FIFO would otherwise be read until memory runs out.
 inline std::string read_config_file(const std::string& path, const std::string& what) {
