@@ -97,7 +97,8 @@ TEST(ContactKernel, SimdAndScalarKernelsAgreeOnRandomBallsWithEdgeCases) {
           const double width = 0.01 + 0.59 * std::abs(u(rng));
           const double centre = cage + std::atan2(sb[b], cb[b]) + 0.02 * u(rng);
           windows.push_back({std::cos(centre), std::sin(centre), std::sin(0.5 * width), 3.141592653589793 / width,
-                             2e-5 * std::abs(u(rng)), k, k == 0 ? row_z : -row_z});
+                             2e-5 * std::abs(u(rng)), /*sharp_edges=*/false, /*geometric_depth=*/0.0, k,
+                             k == 0 ? row_z : -row_z});
         }
         const detail::ContactKernelInput in{std::cos(cage),
                                             std::sin(cage),
