@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include <Eigen/Eigenvalues>
 
@@ -31,6 +32,21 @@ FlexibleBearing::FlexibleBearing(BearingModel model) : model_(std::move(model)) 
       base_cos_n_[static_cast<std::size_t>(k) * stride_ + b] = std::cos(k * beta[b]);
       base_sin_n_[static_cast<std::size_t>(k) * stride_ + b] = std::sin(k * beta[b]);
     }
+  radial_mode_of_order_.assign(static_cast<std::size_t>(max_order_ + 1), -1);
+  axial_mode_of_order_.assign(static_cast<std::size_t>(max_order_ + 1), -1);
+  for (std::size_t i = 0; i < modes_.size(); ++i) {
+    int& slot = (mode_radial_[i] ? radial_mode_of_order_ : axial_mode_of_order_)[static_cast<std::size_t>(mode_orders_[i])];
+    if (slot >= 0) throw std::logic_error("flexible bearing: two ring modes of one order and direction");
+    slot = static_cast<int>(i);
+  }
+  // Rows in phase without spacing scatter share their azimuths exactly (the CT bearing's two
+  // rows): the ring's displacement there is the same for both.
+  const int rows = model_.config().rows, per_row = model_.config().balls_per_row;
+  bool shared = rows == 2 && rows * per_row == nb;
+  for (int j = 0; shared && j < per_row; ++j) shared = beta[static_cast<std::size_t>(per_row + j)] == beta[j];
+  rows_sharing_ = shared ? rows : 1;
+  azimuths_ = nb / rows_sharing_;
+  row_stride_ = (azimuths_ + 63) / 64 * 64;
   groove_radius_ = model_.groove_centre_radius_m();
   cos_a0_ = std::cos(model_.config().contact_angle_rad);
 }
@@ -244,7 +260,7 @@ Eigen::VectorXd FlexibleBearing::contact_force_load_frame(const Eigen::VectorXd&
   const int nb = static_cast<int>(balls.size()), modes = static_cast<int>(modes_.size());
   std::vector<double> own;
   std::vector<double>& scratch = work ? *work : own;
-  scratch.resize(static_cast<std::size_t>(nb + detail::flexible_kernel_work_size(stride_, modes, max_order_)));
+  scratch.resize(static_cast<std::size_t>(nb + detail::flexible_kernel_work_size(rows_sharing_, row_stride_, modes, max_order_)));
   double* const offsets = scratch.data();
   std::copy(balls.deflection_offset.begin(), balls.deflection_offset.end(), offsets);
   model_.imperfections().add_offsets(phase, offsets);
@@ -264,6 +280,8 @@ Eigen::VectorXd FlexibleBearing::contact_force_load_frame(const Eigen::VectorXd&
   in.max_order = max_order_;
   in.order = mode_orders_.data();
   in.radial = mode_radial_.data();
+  in.radial_mode_of_order = radial_mode_of_order_.data();
+  in.axial_mode_of_order = axial_mode_of_order_.data();
   in.mode_position = z.data() + 5;
   in.mode_rate = rates.data() + 5;
   in.base_cos_n = base_cos_n_.data();
@@ -275,6 +293,9 @@ Eigen::VectorXd FlexibleBearing::contact_force_load_frame(const Eigen::VectorXd&
   in.normal_z = balls.normal_z.data();
   in.offset = offsets;
   in.n = nb;
+  in.rows_sharing = rows_sharing_;
+  in.azimuths = azimuths_;
+  in.row_stride = row_stride_;
   in.work = offsets + nb;
   Eigen::VectorXd f(n);
   if (simd) detail::flexible_contact_simd(in, f.data());

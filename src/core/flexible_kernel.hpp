@@ -18,6 +18,10 @@ struct FlexibleKernelInput {
   int modes, max_order;
   const int* order;
   const int* radial;
+  // Per order k = 0..max_order, the index of its radial mode and of its axial mode, -1 if
+  // none (the SIMD kernel loads each order's shapes once for both).
+  const int* radial_mode_of_order;
+  const int* axial_mode_of_order;
   const double* mode_position;  // 2 per mode
   const double* mode_rate;      // 2 per mode
   // cos k beta_b and sin k beta_b of the balls' azimuths at cage angle 0, k = 0..max_order,
@@ -33,13 +37,18 @@ struct FlexibleKernelInput {
   const double* normal_z;
   const double* offset;
   int n;
+  // Rows whose balls share azimuths (ball j of each row at row 0's ball j's azimuth: rows in
+  // phase, no spacing scatter), 1 or 2: the SIMD kernel takes the ring's displacement at an
+  // azimuth once for all of them. azimuths = n / rows_sharing; row_stride >= azimuths, a
+  // multiple of 64, the per-ball scratch's row.
+  int rows_sharing, azimuths, row_stride;
   // Scratch of flexible_kernel_work_size doubles, the caller's (no thread_local: the core is
   // built with the initial-exec TLS model, whose static block a dlopen'ed nodelet shares).
   double* work;
 };
 
-inline int flexible_kernel_work_size(int stride, int modes, int max_order) {
-  return 2 * stride + 4 * modes + 2 * (max_order + 1);
+inline int flexible_kernel_work_size(int rows_sharing, int row_stride, int modes, int max_order) {
+  return 2 * rows_sharing * row_stride + 4 * modes + 2 * (max_order + 1);
 }
 
 // force: 5 + 2 modes generalized forces (forces, moments, modal), overwritten.

@@ -9,6 +9,7 @@
 
 #include "small_products.hpp"
 
+#include <algorithm>
 #include <cstddef>
 
 HWY_BEFORE_NAMESPACE();
@@ -84,10 +85,45 @@ HWY_INLINE void MultiplyAddFixed(const double* HWY_RESTRICT m, const double* HWY
   }
 }
 
+#if !HWY_HAVE_SCALABLE
+// kCount blocks of `lanes` rows side by side (rows[k] their first rows), each x[j] broadcast
+// once for all of them: the same sums in the same order as one block at a time.
+template <int kCount>
+HWY_INLINE void MultiplyAddBlocks(int cols, int rows, const int* row, const double* HWY_RESTRICT m,
+                                  const double* HWY_RESTRICT x, const double* HWY_RESTRICT base,
+                                  double* HWY_RESTRICT out) {
+  const hn::ScalableTag<double> d;
+  using V = hn::Vec<decltype(d)>;
+  V even[kCount], odd[kCount];
+#pragma GCC unroll 4
+  for (int k = 0; k < kCount; ++k) {
+    even[k] = base ? hn::LoadU(d, base + row[k]) : hn::Zero(d);
+    odd[k] = hn::Zero(d);
+  }
+  int j = cols - 1;
+  for (; j > 0; j -= 2) {
+    const V xe = hn::Set(d, x[j]), xo = hn::Set(d, x[j - 1]);
+    const double* me = m + static_cast<std::size_t>(j) * rows;
+    const double* mo = me - rows;
+#pragma GCC unroll 4
+    for (int k = 0; k < kCount; ++k) {
+      even[k] = hn::MulAdd(hn::LoadU(d, me + row[k]), xe, even[k]);
+      odd[k] = hn::MulAdd(hn::LoadU(d, mo + row[k]), xo, odd[k]);
+    }
+  }
+  if (j == 0) {
+    const V x0 = hn::Set(d, x[0]);
+#pragma GCC unroll 4
+    for (int k = 0; k < kCount; ++k) even[k] = hn::MulAdd(hn::LoadU(d, m + row[k]), x0, even[k]);
+  }
+#pragma GCC unroll 4
+  for (int k = 0; k < kCount; ++k) hn::StoreU(hn::Add(even[k], odd[k]), d, out + row[k]);
+}
+#endif
+
 void MultiplyAddAnySize(int rows, int cols, const double* HWY_RESTRICT m, const double* HWY_RESTRICT x,
                         const double* HWY_RESTRICT base, double* HWY_RESTRICT out) {
   const hn::ScalableTag<double> d;
-  using V = hn::Vec<decltype(d)>;
   const int lanes = static_cast<int>(hn::Lanes(d));
   if (rows < lanes) {  // fewer rows than one vector: plain sums
     for (int i = 0; i < rows; ++i) {
@@ -97,6 +133,34 @@ void MultiplyAddAnySize(int rows, int cols, const double* HWY_RESTRICT m, const 
     }
     return;
   }
+#if !HWY_HAVE_SCALABLE
+  // Four blocks at a time (8 accumulators): the flexible ring's 50-row products were bound by
+  // their loads, a broadcast of x[j] per block and column.
+  const int blocks = (rows + lanes - 1) / lanes;
+  for (int first = 0; first < blocks; first += 4) {
+    int row[4] = {0, 0, 0, 0};
+    const int count = std::min(4, blocks - first);
+    for (int k = 0; k < count; ++k) {
+      const int block = (first + k) * lanes;
+      row[k] = block + lanes <= rows ? block : rows - lanes;
+    }
+    switch (count) {
+      case 4:
+        MultiplyAddBlocks<4>(cols, rows, row, m, x, base, out);
+        break;
+      case 3:
+        MultiplyAddBlocks<3>(cols, rows, row, m, x, base, out);
+        break;
+      case 2:
+        MultiplyAddBlocks<2>(cols, rows, row, m, x, base, out);
+        break;
+      default:
+        MultiplyAddBlocks<1>(cols, rows, row, m, x, base, out);
+        break;
+    }
+  }
+#else
+  using V = hn::Vec<decltype(d)>;
   for (int block = 0; block < rows; block += lanes) {
     const int r = block + lanes <= rows ? block : rows - lanes;
     V even = base ? hn::LoadU(d, base + r) : hn::Zero(d), odd = hn::Zero(d);
@@ -108,6 +172,7 @@ void MultiplyAddAnySize(int rows, int cols, const double* HWY_RESTRICT m, const 
     if (j == 0) even = hn::MulAdd(hn::LoadU(d, m + r), hn::Set(d, x[0]), even);
     hn::StoreU(hn::Add(even, odd), d, out + r);
   }
+#endif
 }
 
 void MultiplyAdd5x10(const double* m, const double* x, const double* base, double* out) {

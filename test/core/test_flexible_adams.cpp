@@ -91,7 +91,7 @@ TEST(FlexibleAdams, ItsMatrixProductsAreEigensOnEveryTarget) {
   std::mt19937_64 rng(3);
   std::normal_distribution<double> noise(0.0, 1.0);
   test::for_each_simd_target([&] {
-    for (const auto& [rows, cols] : {std::pair{50, 50}, {50, 100}, {25, 50}, {3, 5}, {13, 7}, {9, 1}}) {
+    for (const auto& [rows, cols] : {std::pair{50, 50}, {50, 100}, {25, 50}, {37, 9}, {3, 5}, {13, 7}, {9, 1}}) {
       const Eigen::MatrixXd m = Eigen::MatrixXd::NullaryExpr(rows, cols, [&] { return noise(rng); });
       const Eigen::VectorXd x = Eigen::VectorXd::NullaryExpr(cols, [&] { return noise(rng); });
       const Eigen::VectorXd base = Eigen::VectorXd::NullaryExpr(rows, [&] { return noise(rng); });
@@ -206,26 +206,40 @@ TEST(FlexibleBearing, LoadFrameForceIsTheRingFrameForceRotated) {
   for (int i = 0; i < n; ++i) EXPECT_NEAR(got[i], expected[i], 1e-10 * scale) << "coordinate " << i;
 }
 
+// The CT bearing's second row turned by half a degree: its balls no longer share the first
+// row's azimuths, so the SIMD kernel takes the ring's displacement at every ball.
+FlexibleBearing ct_ring_rows_out_of_phase() {
+  BearingConfig c = load_bearing_config(test::bearing_file("ct_gantry_flexible.yaml"));
+  c.row_phase_rad = 0.5 * kPi / 180.0;
+  return FlexibleBearing(BearingModel(c));
+}
+
 TEST(FlexibleBearing, SimdKernelGivesTheScalarLoopsForceOnEveryTarget) {
   const CtRing ct;
+  const FlexibleBearing out_of_phase = ct_ring_rows_out_of_phase();
   const int n = ct.bearing.size();
   std::mt19937_64 rng(11);
   std::normal_distribution<double> noise(0.0, 1.0);
   test::for_each_simd_target([&] {
-    for (int trial = 0; trial < 20; ++trial) {
-      RollingPhase phase;
-      phase.cage = noise(rng);
-      phase.outer_ring = noise(rng);
-      Eigen::VectorXd z = ct.equilibrium.coordinates, rates(n);
-      for (int i = 0; i < n; ++i) {
-        z[i] += 5e-7 * noise(rng) * (i == 3 || i == 4 ? 1.0 / 0.6 : 1.0);
-        rates[i] = 1e-3 * noise(rng);
+    for (const FlexibleBearing* bearing : {&ct.bearing, &out_of_phase}) {
+      for (int trial = 0; trial < 20; ++trial) {
+        RollingPhase phase;
+        phase.cage = noise(rng);
+        phase.outer_ring = noise(rng);
+        Eigen::VectorXd z = ct.equilibrium.coordinates, rates(n);
+        for (int i = 0; i < n; ++i) {
+          z[i] += 5e-7 * noise(rng) * (i == 3 || i == 4 ? 1.0 / 0.6 : 1.0);
+          rates[i] = 1e-3 * noise(rng);
+        }
+        const Eigen::VectorXd scalar = bearing->contact_force_load_frame(z, rates, phase, false);
+        const Eigen::VectorXd simd = bearing->contact_force_load_frame(z, rates, phase, true);
+        // Same formulas; fused multiply-adds and the order of the sums differ.
+        const double scale = scalar.lpNorm<Eigen::Infinity>();
+        ASSERT_GT(scale, 1000.0);  // the balls carry the 6800 N load
+        for (int i = 0; i < n; ++i)
+          EXPECT_NEAR(simd[i], scalar[i], 1e-11 * scale)
+              << "coordinate " << i << (bearing == &ct.bearing ? ", rows in phase" : ", rows out of phase");
       }
-      const Eigen::VectorXd scalar = ct.bearing.contact_force_load_frame(z, rates, phase, false);
-      const Eigen::VectorXd simd = ct.bearing.contact_force_load_frame(z, rates, phase, true);
-      // Same formulas; fused multiply-adds and the order of the sums differ.
-      const double scale = scalar.lpNorm<Eigen::Infinity>();
-      for (int i = 0; i < n; ++i) EXPECT_NEAR(simd[i], scalar[i], 1e-11 * scale) << "coordinate " << i;
     }
   });
 }

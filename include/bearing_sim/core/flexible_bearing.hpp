@@ -69,9 +69,12 @@ class FlexibleBearing {
   BearingModel model_;
   std::vector<RingMode> modes_;
   std::vector<int> mode_orders_, mode_radial_;  // for the load-frame kernel
+  std::vector<int> radial_mode_of_order_, axial_mode_of_order_;  // per order: its mode, -1 if none
   // cos k beta_b, sin k beta_b of the balls' base azimuths, k = 0..max order, rows of stride_.
   std::vector<double> base_cos_n_, base_sin_n_;
   int stride_ = 0;
+  // Rows whose balls share azimuths (1 or 2), balls per shared row, and their scratch row.
+  int rows_sharing_ = 1, azimuths_ = 0, row_stride_ = 0;
   int max_order_ = 0;
   double groove_radius_ = 0.0, cos_a0_ = 1.0;
 };
