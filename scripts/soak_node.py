@@ -19,7 +19,8 @@ build/devel/setup.bash, or the install space's setup.bash). Figures:
     after a warm-up;
   - resident memory (RSS) of the simulation's process (the nodelet manager when the launch
     runs nodelets) at the start and at the end, and its largest value: a leak shows as growth.
-The machine's CPU and load average are printed with the figures. Exit status 0 when the run
+The machine's CPU and load average are printed with the figures. Ctrl-C (SIGINT) or SIGTERM
+ends the soak early with the figures of the time measured so far. Exit status 0 when the run
 completed (whatever the figures); 1 when the launch failed or nothing was received.
 """
 import argparse
@@ -184,9 +185,13 @@ def main():
         with listener.lock:
             listener.recording = True
             overruns_before = int(listener.diag.get('overruns', 0))  # start-up is not the soak's
+        # Ctrl-C or SIGTERM ends the soak early with the figures of the time measured so far.
+        stop = threading.Event()
+        for number in (signal.SIGINT, signal.SIGTERM):
+            signal.signal(number, lambda *_: stop.set())
         t0 = time.time()
         next_print = t0 + 60.0
-        while time.time() - t0 < args.duration:
+        while time.time() - t0 < args.duration and not stop.is_set():
             if launch.poll() is not None:
                 sys.exit('the launch ended early (exit %s): %s' % (launch.returncode, launch.stderr.read().decode()[-2000:]))
             time.sleep(1.0)
