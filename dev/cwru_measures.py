@@ -116,3 +116,16 @@ def pass_scatter(signal, sample_rate_hz, fault_hz, shaft_hz, band_hz=PASS_BAND_H
         return float('nan'), float('nan')
     depth = 2.0 * abs(np.sum(s * np.exp(-2j * np.pi * shaft_hz * t))) / s.sum()
     return float(s.std() / s.mean()), float(depth)
+
+
+def spin_axis_wander_deg(snr_drop_db, half_width_deg):
+    """The balls' spin-axis wander (standard deviation of a ball spall's latitude from the
+    rolling track, deg) that lowers a ball spall's 2 x BSF envelope line by snr_drop_db: a
+    spall of half width h (deg of the ball's great circle) is struck the share
+    p = erf(h / (sigma sqrt 2)) of the time (docs/model.md 9.5), and the line's amplitude goes
+    with p against a floor that is the machine's, so the drop is -20 log10 p. 0 for no drop."""
+    from scipy.special import erfinv
+    share = 10.0 ** (-snr_drop_db / 20.0)
+    if share >= 1.0:
+        return 0.0
+    return float(half_width_deg / (np.sqrt(2.0) * erfinv(share)))

@@ -92,3 +92,17 @@ def test_pass_scatter_reads_a_shaft_rate_modulation_of_the_impacts():
     impacts[impacts > 0] = 1.0
     cv, depth = cwru_measures.pass_scatter(np.convolve(impacts, ring)[:n], FS, fault_hz, shaft_hz)
     assert cv < 0.04 and depth < 0.01
+
+
+def test_spin_axis_wander_that_halves_a_ball_line_is_the_half_width_over_the_normal_quartile():
+    # A line lowered by 20 log10 2 = 6.02 dB: the spall is struck half the time, so its latitude
+    # lies within the half width h half the time: h is the normal's quartile, 0.67449 sigma
+    # (sigma = 1.482602 h, the median absolute deviation's constant).
+    assert math.isclose(cwru_measures.spin_axis_wander_deg(20.0 * math.log10(2.0), 2.0), 2.0 * 1.482602,
+                        rel_tol=1e-6)
+    # 20 dB: struck a tenth of the time, erf(x) = 0.1 at x = 0.088856 (tables).
+    assert math.isclose(cwru_measures.spin_axis_wander_deg(20.0, 1.0), 1.0 / (math.sqrt(2.0) * 0.0888559),
+                        rel_tol=1e-5)
+    # No drop: always struck, no wander.
+    assert cwru_measures.spin_axis_wander_deg(0.0, 2.0) == 0.0
+    assert cwru_measures.spin_axis_wander_deg(-3.0, 2.0) == 0.0
