@@ -131,8 +131,9 @@ void BM_SimulateIns61822(benchmark::State& state, IntegrationMethod method) {
 // 1797 rpm) with a 1 mm x 20 um spall on the fixed outer race in the load zone.
 void BM_SimulateDeepGroove6205WithSpall(benchmark::State& state, IntegrationMethod method) {
   bearing_sim::BearingConfig config = bearing("deep_groove_6205.yaml");
-  config.imperfections = bearing_sim::parse_imperfections(
-      YAML::Load("{}"), YAML::Load("[{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 20}]"), "bench");
+  config.imperfections = bearing_sim::imperfections_from_string(
+      "imperfections: {}\ndefects: [{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 20}]", "bench",
+      config.rows);
   Vector5 load;
   load << 1000.0, 0.0, 0.0, 0.0, 0.0;
   simulate(state, config, load, 1797.0 * bearing_sim::kTwoPi / 60.0, method);

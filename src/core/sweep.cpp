@@ -13,6 +13,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "bearing_config_reader.hpp"
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/flexible_bearing.hpp"

@@ -3,8 +3,6 @@
 // their figures are of the same bearing. Paths are relative to the package's source folder.
 #include <string>
 
-#include <yaml-cpp/yaml.h>
-
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/imperfections.hpp"
 
@@ -15,8 +13,7 @@ namespace bearing_sim::test {
 inline BearingConfig ct_gantry_with_defects(const std::string& source_dir) {
   BearingConfig config = load_bearing_config(source_dir + "/config/bearings/ct_gantry_lyc.yaml");
   const std::string file = source_dir + "/config/imperfections/ct_gantry_waviness_and_spall.yaml";
-  const YAML::Node spec = YAML::LoadFile(file);
-  config.imperfections = parse_imperfections(spec["imperfections"], spec["defects"], file, config.rows);
+  config.imperfections = load_imperfections(file, config.rows);
   return config;
 }
 

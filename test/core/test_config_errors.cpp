@@ -4,8 +4,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bearing_sim/core/bearing_config.hpp"
@@ -228,4 +231,56 @@ TEST(ConfigErrors, NonRegularOrHugeFilesAreRefusedNamingTheFile) {
     EXPECT_NE(std::string(e.what()).find("1 MiB"), std::string::npos) << e.what();
   }
   std::remove(big.c_str());
+}
+
+// An imperfections file (config/imperfections/) is read as the same sections of a bearing
+// file: the shipped one holds four waviness components and one inner-race spall, and gives
+// the spec a bearing file with its text appended gives.
+TEST(ConfigErrors, AnImperfectionsFileReadsAsTheSameSectionsOfABearingFile) {
+  const std::string file = config_path("imperfections/ct_gantry_waviness_and_spall.yaml");
+  const ImperfectionSpec alone = load_imperfections(file, 1);
+  ASSERT_EQ(alone.waviness.size(), 4u);
+  EXPECT_EQ(alone.waviness[0].surface, Surface::InnerRace);
+  EXPECT_EQ(alone.waviness[0].order, 206);
+  EXPECT_EQ(alone.waviness[2].surface, Surface::OuterRace);
+  EXPECT_EQ(alone.waviness[2].order, 8);
+  EXPECT_NEAR(alone.waviness[2].amplitude_m, 0.5e-6, 1e-18);
+  EXPECT_EQ(alone.waviness[3].surface, Surface::Ball);
+  ASSERT_EQ(alone.spalls.size(), 1u);
+  EXPECT_EQ(alone.spalls[0].surface, Surface::InnerRace);
+  EXPECT_NEAR(alone.spalls[0].position_rad, kPi, 1e-15);
+  EXPECT_NEAR(alone.spalls[0].width_m, 2e-3, 1e-18);
+  EXPECT_NEAR(alone.spalls[0].depth_m, 20e-6, 1e-18);
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  const ImperfectionSpec in_bearing = bearing_config_from_string(yaml() + text.str(), kSource).imperfections;
+  ASSERT_EQ(in_bearing.waviness.size(), alone.waviness.size());
+  for (std::size_t i = 0; i < alone.waviness.size(); ++i) {
+    EXPECT_EQ(in_bearing.waviness[i].order, alone.waviness[i].order);
+    EXPECT_EQ(in_bearing.waviness[i].amplitude_m, alone.waviness[i].amplitude_m);
+  }
+  ASSERT_EQ(in_bearing.spalls.size(), 1u);
+  EXPECT_EQ(in_bearing.spalls[0].width_m, alone.spalls[0].width_m);
+  EXPECT_EQ(in_bearing.spalls[0].row, alone.spalls[0].row);
+}
+
+// Its keys are checked as a bearing file's, and a key of neither section is refused by name.
+TEST(ConfigErrors, AnImperfectionsTextWithABadKeyIsRefusedNamingIt) {
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"imperfections: {}\ndefect: []\n", {"key 'defect'", "unknown key"}},
+      {"defects: [{surface: outer_race, width_mm: 0, depth_um: 5}]\n", {"key 'defects[0].width_mm'", "must be > 0"}},
+      {"imperfections: {roughness_row: 1}\n", {"key 'imperfections.roughness_row'", "one row"}},
+      {"- a list\n", {"expected a YAML mapping"}}};
+  for (const auto& [text, words] : cases) {
+    SCOPED_TRACE(text);
+    try {
+      imperfections_from_string(text, kSource, 1);
+      ADD_FAILURE() << "no ConfigError";
+    } catch (const ConfigError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(kSource), std::string::npos) << msg;
+      for (const auto& w : words) EXPECT_NE(msg.find(w), std::string::npos) << "'" << w << "' not in: " << msg;
+    }
+  }
 }

@@ -10,8 +10,6 @@
 #include <utility>
 #include <vector>
 
-#include <yaml-cpp/yaml.h>
-
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "bearing_sim/core/simulation_run.hpp"
@@ -101,8 +99,9 @@ TEST(ExponentialIntegrator, AdamsPecOnTheShippedDeepGrooveBearingWithADeepSpall)
   // The case that sets the Adams step limit: 1 mm x 20 um, deep enough for hard impacts at
   // both edges, still deterministic (RK4 with 16 and 32 steps per sample agree to 5 digits).
   BearingConfig config = load_bearing_config(config_path("bearings/deep_groove_6205.yaml"));
-  config.imperfections = parse_imperfections(
-      YAML::Load("{}"), YAML::Load("[{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 20}]"), "test");
+  config.imperfections = imperfections_from_string(
+      "imperfections: {}\ndefects: [{surface: outer_race, position_deg: 0, width_mm: 1.0, depth_um: 20}]", "test",
+      config.rows);
   expect_agrees_with_reference(BearingModel(config), load5(1000.0, 0.0, 0.0, 0.0, 0.0), 1797.0 * 2.0 * kPi / 60.0,
                                IntegrationMethod::ExponentialAdamsPec);
 }

@@ -3,8 +3,6 @@
 #include <array>
 #include <string>
 
-#include <yaml-cpp/yaml.h>
-
 #include "bearing_sim/core/flexible_ring_spec.hpp"
 #include "bearing_sim/core/imperfections.hpp"
 
@@ -76,8 +74,8 @@ struct BearingConfig {
   bool has_dynamics() const { return rotating_mass_kg > 0.0; }
 };
 
-// Parses and validates; throws ConfigError naming `source` (a file name) and the key.
-BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& source);
+// Reads and validates a bearing file (src/core/bearing_config_reader.cpp); throws ConfigError
+// naming `source` (a file name) and the key.
 BearingConfig load_bearing_config(const std::string& path);
 BearingConfig bearing_config_from_string(const std::string& yaml_text, const std::string& source = "<string>");
 

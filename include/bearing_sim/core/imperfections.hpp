@@ -5,8 +5,6 @@
 #include <string>
 #include <vector>
 
-#include <yaml-cpp/yaml.h>
-
 namespace bearing_sim {
 
 enum class Surface { OuterRace, InnerRace, Ball };
@@ -95,11 +93,12 @@ struct ImperfectionSpec {
   }
 };
 
-// Parses the `imperfections:` and `defects:` sections of a bearing file (either may be
-// a null node) for a bearing of `rows` rows (the `row:` keys must name one of them).
-// Throws ConfigError naming the source and key.
-ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML::Node& defects,
-                                     const std::string& source, int rows = 2);
+// A YAML text (or file) whose keys are a bearing file's `imperfections:` and `defects:`
+// sections (either may be absent; config/imperfections/), for a bearing of `rows` rows (the
+// `row:` keys must name one of them). A bearing file's own sections are read with it
+// (bearing_config.hpp). Throws ConfigError naming `source` (the path) and the key.
+ImperfectionSpec imperfections_from_string(const std::string& yaml_text, const std::string& source, int rows);
+ImperfectionSpec load_imperfections(const std::string& path, int rows);
 
 // Angles of the moving parts at one instant, rad.
 struct RollingPhase {

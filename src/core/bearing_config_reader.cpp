@@ -1,4 +1,5 @@
-#include "bearing_sim/core/bearing_config.hpp"
+// Reading of the bearing file (bearing_config.hpp, bearing_config_reader.hpp).
+#include "bearing_config_reader.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -10,6 +11,7 @@
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/modal_damping.hpp"
 #include "flexible_ring_config.hpp"
+#include "imperfections_reader.hpp"
 #include "yaml_reader.hpp"
 
 namespace bearing_sim {
