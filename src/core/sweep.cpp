@@ -252,19 +252,14 @@ const std::vector<SweepParameterInfo>& sweep_parameters() {
   return list;
 }
 
-SweepDefinition load_sweep_definition(const std::string& path) {
-  YAML::Node root;
-  try {
-    root = detail::load_yaml(detail::read_config_file(path, "sweep definition"), path);
-  } catch (const ConfigError& e) {  // not a readable regular file, malformed, a key twice
-    throw InvalidInputError(std::string("sweep definition ") + e.what());
-  }
-  try {
-    return parse_sweep_definition(root, path, dirname_of(path));
-  } catch (const YAML::Exception& e) {  // a mapping where a name or number belongs, ...
-    throw InvalidInputError("sweep definition " + path + ": a value of the wrong type: " + e.what());
-  }
-}
+namespace {
+
+// The YAML text of a node, emitted once; read back for each case (reloaded_yaml). Empty: none.
+std::string emitted_yaml(const YAML::Node& node) { return node ? YAML::Dump(node) : std::string(); }
+
+// The node of such a text, without the marks of its lines, as a copy of the definition's
+// node has them (YAML::Clone): an error a case's node throws reads as before.
+YAML::Node reloaded_yaml(const std::string& text) { return YAML::Clone(YAML::Load(text)); }
 
 SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string& source, const std::string& base_dir) {
   if (!root || !root.IsMap()) fail(source, "", "expected a YAML mapping");
@@ -278,14 +273,16 @@ SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string
   if (!root["bearing"] || !root["bearing"].IsScalar()) fail(source, "bearing", "required: the base bearing file");
   const std::string b = root["bearing"].as<std::string>();
   d.bearing_path = (!b.empty() && b[0] == '/') ? b : base_dir + "/" + b;
+  YAML::Node bearing;
   try {
-    d.bearing = detail::load_yaml(detail::read_config_file(d.bearing_path, "bearing file"), d.bearing_path);
+    d.bearing_yaml = detail::read_config_file(d.bearing_path, "bearing file");
+    bearing = detail::load_yaml(d.bearing_yaml, d.bearing_path);
   } catch (const ConfigError& e) {
     fail(source, "bearing", std::string("cannot read the base bearing file: ") + e.what());
   }
   // The base file must be valid on its own.
   try {
-    parse_bearing_config(d.bearing, d.bearing_path);
+    parse_bearing_config(bearing, d.bearing_path);
   } catch (const ConfigError& e) {
     fail(source, "bearing", std::string("the base bearing file is invalid: ") + e.what());
   }
@@ -334,15 +331,15 @@ SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string
       check_keys(sets[i], source, key + ".", {"name", "imperfections"});
       SweepImperfectionSet s;
       s.name = sets[i]["name"] ? sets[i]["name"].as<std::string>() : "set" + std::to_string(i + 1);
-      s.imperfections = sets[i]["imperfections"] ? YAML::Clone(sets[i]["imperfections"]) : YAML::Node();
+      s.imperfections_yaml = emitted_yaml(sets[i]["imperfections"]);
       d.imperfection_sets.push_back(s);
     }
   } else if (root["imperfections"]) {
-    d.imperfection_sets.push_back({"imperfections", YAML::Clone(root["imperfections"]), false});
+    d.imperfection_sets.push_back({"imperfections", emitted_yaml(root["imperfections"]), false});
   } else {
     SweepImperfectionSet s;
     s.name = "bearing_file";
-    s.imperfections = d.bearing["imperfections"] ? YAML::Clone(d.bearing["imperfections"]) : YAML::Node();
+    s.imperfections_yaml = emitted_yaml(bearing["imperfections"]);
     s.from_bearing_file = true;
     d.imperfection_sets.push_back(s);
   }
@@ -379,6 +376,33 @@ SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string
   return d;
 }
 
+}  // namespace
+
+SweepDefinition load_sweep_definition(const std::string& path) {
+  std::string text;
+  try {
+    text = detail::read_config_file(path, "sweep definition");
+  } catch (const ConfigError& e) {  // not a readable regular file
+    throw InvalidInputError(std::string("sweep definition ") + e.what());
+  }
+  return sweep_definition_from_string(text, path, dirname_of(path));
+}
+
+SweepDefinition sweep_definition_from_string(const std::string& yaml_text, const std::string& source,
+                                             const std::string& base_dir) {
+  YAML::Node root;
+  try {
+    root = detail::load_yaml(yaml_text, source);
+  } catch (const ConfigError& e) {  // malformed, a key twice
+    throw InvalidInputError(std::string("sweep definition ") + e.what());
+  }
+  try {
+    return parse_sweep_definition(root, source, base_dir);
+  } catch (const YAML::Exception& e) {  // a mapping where a name or number belongs, ...
+    throw InvalidInputError("sweep definition " + source + ": a value of the wrong type: " + e.what());
+  }
+}
+
 std::vector<SweepCase> sweep_cases(const SweepDefinition& d) {
   std::vector<SweepCase> cases;
   for (std::size_t si = 0; si < d.studies.size(); ++si) {
@@ -397,7 +421,7 @@ std::vector<SweepCase> sweep_cases(const SweepDefinition& d) {
         c.imperfection_set = static_cast<int>(ii);
         c.imperfection_set_name = set.name;
         c.operating_point = d.operating_point;
-        YAML::Node bearing = YAML::Clone(d.bearing);
+        YAML::Node bearing = reloaded_yaml(d.bearing_yaml);
         double scale = 1.0;
         Vector5& load = c.operating_point.load;
         switch (p->target) {
@@ -428,7 +452,7 @@ std::vector<SweepCase> sweep_cases(const SweepDefinition& d) {
             break;
         }
         const int z = bearing["balls_per_row"].as<int>();
-        YAML::Node imp = resolve_imperfections(set.imperfections, z, scale, where);
+        YAML::Node imp = resolve_imperfections(reloaded_yaml(set.imperfections_yaml), z, scale, where);
         if (imp && !imp.IsNull()) bearing["imperfections"] = imp;
         else bearing.remove("imperfections");
         try {

@@ -166,8 +166,7 @@ TEST(FlexibleRingStatics, ASweepsStaticCaseIsTheFlexibleRingsEquilibrium) {
   const std::string yaml =
       "bearing: ct_gantry_flexible.yaml\nanalysis: static\noperating_point: {force_N: [6800, 0, 0], "
       "moment_Nm: [0, 2100]}\nstudies:\n  - parameter: radial_load_N\n    values: [6800]\n";
-  const SweepDefinition d =
-      parse_sweep_definition(YAML::Load(yaml), "flexible_sweep.yaml", test::config_path("bearings"));
+  const SweepDefinition d = sweep_definition_from_string(yaml, "flexible_sweep.yaml", test::config_path("bearings"));
   const std::vector<SweepCase> cases = sweep_cases(d);
   ASSERT_EQ(cases.size(), 1u);
   const SweepResult r = run_sweep_case(cases[0], false);

@@ -13,7 +13,7 @@ namespace {
 
 const std::string kBearings = std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings";
 
-SweepDefinition parse(const std::string& yaml) { return parse_sweep_definition(YAML::Load(yaml), "<test>", kBearings); }
+SweepDefinition parse(const std::string& yaml) { return sweep_definition_from_string(yaml, "<test>", kBearings); }
 
 std::string error_of(const std::string& yaml) {
   try {

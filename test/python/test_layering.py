@@ -72,3 +72,32 @@ def test_core_and_runtime_include_no_ros_header():
             for header, reason in violations(layer, path.read_text(encoding='utf-8')):
                 problems.append(f'{path.relative_to(SOURCE)} includes {header}: {reason}')
     assert not problems, '\n'.join(problems)
+
+
+# The public core headers are the physics and the types of its inputs: the YAML readers behind
+# them (bearing file, imperfections, sensor, scenario, sweep) are private to src/core.
+YAML_TYPE = re.compile(r'\bYAML::')
+LINE_COMMENT = re.compile(r'//[^\n]*')
+
+
+def yaml_exposures(text):
+    """Every yaml-cpp include of a header's text, and 'YAML::' if its code names a yaml-cpp type."""
+    found = [h for _, h in INCLUDE.findall(text) if h.startswith('yaml-cpp/')]
+    if YAML_TYPE.search(LINE_COMMENT.sub('', text)):
+        found.append('YAML::')
+    return found
+
+
+def test_the_yaml_check_finds_an_include_and_a_type_but_not_a_comment():
+    assert yaml_exposures('#include <string>\n#include <yaml-cpp/yaml.h>\n') == ['yaml-cpp/yaml.h']
+    assert yaml_exposures('#include "yaml-cpp/node/node.h"\n') == ['yaml-cpp/node/node.h']
+    assert yaml_exposures('Config parse(const YAML::Node& root);\n') == ['YAML::']
+    assert yaml_exposures('// read from a YAML file (see YAML::Node in src/core)\nint rows = 1;\n') == []
+
+
+def test_public_core_headers_expose_no_yaml():
+    headers = sorted((SOURCE / 'include' / 'bearing_sim' / 'core').glob('*.hpp'))
+    assert len(headers) > 10, f'the core\'s public headers were not found under {SOURCE}'
+    problems = [f'{path.relative_to(SOURCE)}: {found}' for path in headers
+                for found in yaml_exposures(path.read_text(encoding='utf-8'))]
+    assert not problems, 'a public core header exposes yaml-cpp:\n' + '\n'.join(problems)

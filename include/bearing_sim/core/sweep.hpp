@@ -10,8 +10,6 @@
 #include <string>
 #include <vector>
 
-#include <yaml-cpp/yaml.h>
-
 #include "bearing_sim/core/quasi_static.hpp"
 #include "bearing_sim/core/simulation_run.hpp"
 
@@ -26,7 +24,9 @@ struct SweepOperatingPoint {
 
 struct SweepImperfectionSet {
   std::string name;
-  YAML::Node imperfections;  // as in a bearing file; `order` may be "Z", "Z-1", "2Z+1", ...; null: none
+  // The `imperfections:` mapping as YAML text, as in a bearing file but `order` may be "Z",
+  // "Z-1", "2Z+1", ... (resolved for each case); empty or null: none.
+  std::string imperfections_yaml;
   bool from_bearing_file = false;
 };
 
@@ -39,7 +39,7 @@ struct SweepDefinition {
   std::string name;
   std::string source;        // the definition file, for messages
   std::string bearing_path;  // resolved
-  YAML::Node bearing;        // the base bearing file
+  std::string bearing_yaml;  // the base bearing file's text (each case varies its keys)
   SweepOperatingPoint operating_point;
   bool dynamic = true;  // false: quasi-static only (stiffness against load)
   std::vector<SweepImperfectionSet> imperfection_sets;
@@ -76,11 +76,13 @@ struct SweepParameterInfo {
 };
 const std::vector<SweepParameterInfo>& sweep_parameters();
 
-// Reads and checks a definition; the bearing path is relative to the definition file.
-// Throws InvalidInputError naming the file and key (also for a value of a study that
-// makes the bearing file invalid, e.g. a groove curvature <= 0.5).
+// Reads and checks a definition; the bearing path is relative to the definition file
+// (from_string: to base_dir). Throws InvalidInputError naming the file (source) and key
+// (also for a value of a study that makes the bearing file invalid, e.g. a groove
+// curvature <= 0.5).
 SweepDefinition load_sweep_definition(const std::string& path);
-SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string& source, const std::string& base_dir);
+SweepDefinition sweep_definition_from_string(const std::string& yaml_text, const std::string& source,
+                                             const std::string& base_dir);
 
 // All cases, study by study, imperfection set by set, value by value (validated).
 std::vector<SweepCase> sweep_cases(const SweepDefinition& definition);
