@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -16,7 +17,7 @@
 #include "bearing_sim/core/quasi_static.hpp"
 #include "bearing_sim/core/thermal_clearance.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
-#include "yaml_reader.hpp"
+#include "number_text.hpp"
 
 namespace bearing_sim {
 using detail::format_number;

@@ -16,16 +16,10 @@
 #include <yaml-cpp/yaml.h>
 
 #include "bearing_sim/core/errors.hpp"
+#include "number_text.hpp"  // format_number, for the readers' messages
 
 namespace bearing_sim {
 namespace detail {
-
-// A number as the readers write it in their messages (shortest of "%g" kind: 0.5, 1e-06).
-inline std::string format_number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 // The text of a configuration file. Only a regular file of at most 1 MiB (the shipped files
 // are a few kB): /dev/zero or a FIFO would otherwise be read until memory runs out.
