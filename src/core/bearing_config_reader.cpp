@@ -60,8 +60,6 @@ void read_damping(const Reader& dr, const YAML::Node& map, BearingConfig* c) {
   dr.require(c->has_dynamics(), "modal_damping_ratio", "needs rotating_mass_kg (the ratio is of a mode of the ring)");
 }
 
-// c_n from the ratio at the reference load, once, when the file is read: c_n is then a fixed
-// property of the contacts, and the ratio follows the load as a real bearing's does.
 // carried_body: {mass_kg, centre_of_gravity_axial_mm, transverse_inertia_kg_m2, polar_inertia_kg_m2}.
 void read_carried_body(const Reader& br, BearingConfig* c) {
   br.check_keys({"mass_kg", "centre_of_gravity_axial_mm", "transverse_inertia_kg_m2", "polar_inertia_kg_m2"});
@@ -79,6 +77,8 @@ void read_carried_body(const Reader& br, BearingConfig* c) {
   br.require(b.polar_inertia_kg_m2 >= 0.0, "polar_inertia_kg_m2", "must be >= 0");
 }
 
+// c_n from the ratio at the reference load, once, when the file is read: c_n is then a fixed
+// property of the contacts, and the ratio follows the load as a real bearing's does.
 void resolve_modal_damping(const Reader& dr, BearingConfig* c) {
   Vector5 load;
   for (int i = 0; i < 5; ++i) load[i] = c->damping_reference_load[i];
@@ -92,39 +92,15 @@ void resolve_modal_damping(const Reader& dr, BearingConfig* c) {
   }
 }
 
-}  // namespace
+// The ball and pitch diameters and the row spacing as the file gives them, mm: the envelope's
+// defaults are made of them.
+struct SizesMm {
+  double d = 0.0, dm = 0.0, s = 0.0;
+};
 
-BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& source) {
-  if (!root || !root.IsMap()) throw ConfigError(source + ": expected a YAML mapping of bearing keys");
-  Reader r(root, source, "");
-  r.check_keys({"name",
-                "rows",
-                "arrangement",
-                "balls_per_row",
-                "ball_diameter_mm",
-                "pitch_diameter_mm",
-                "row_spacing_mm",
-                "row_phase_deg",
-                "contact_angle_deg",
-                "inner_groove_curvature",
-                "outer_groove_curvature",
-                "clearance_um",
-                "outer_diameter_mm",
-                "inner_diameter_mm",
-                "width_mm",
-                "rotating_ring",
-                "material",
-                "rotating_mass_kg",
-                "tilt_inertia_kg_m2",
-                "carried_body",
-                "damping",
-                "imperfections",
-                "defects",
-                "flexible_ring"});
-
-  BearingConfig c;
-  c.name = r.text("name", "unnamed bearing");
-
+// Rows, arrangement, balls, pitch circle, row spacing and phase, contact angle, grooves, clearance.
+SizesMm read_geometry(const Reader& r, BearingConfig* out) {
+  BearingConfig& c = *out;
   c.rows = r.integer("rows", 1);
   r.require(c.rows == 1 || c.rows == 2, "rows", "must be 1 or 2, got " + std::to_string(c.rows));
 
@@ -173,8 +149,14 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
   r.require(std::abs(g0_um * 1e-6) < 0.05 * c.ball_diameter_m, "clearance_um",
             "magnitude must be below 5% of the ball diameter");
   c.clearance_m = g0_um * 1e-6;
+  return {d_mm, dm_mm, s_mm};
+}
 
-  // Envelope defaults: a ring section two ball diameters deep and 1.5 wide.
+// Outer and inner diameter and width; by default a ring section two ball diameters deep and
+// 1.5 wide.
+void read_envelope(const Reader& r, const SizesMm& mm, BearingConfig* out) {
+  BearingConfig& c = *out;
+  const double d_mm = mm.d, dm_mm = mm.dm, s_mm = mm.s;
   c.outer_diameter_m = r.number("outer_diameter_mm", dm_mm + 2.0 * d_mm) * 1e-3;
   c.inner_diameter_m = r.number("inner_diameter_mm", dm_mm - 2.0 * d_mm) * 1e-3;
   c.width_m = r.number("width_mm", std::max(1.5 * d_mm, 1.5 * d_mm + s_mm)) * 1e-3;
@@ -182,14 +164,19 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
   r.require(c.inner_diameter_m > 0.0 && c.inner_diameter_m < c.pitch_diameter_m, "inner_diameter_mm",
             "must be > 0 and below pitch_diameter_mm");
   r.require(c.width_m > 0.0, "width_mm", "must be > 0");
+}
 
+// The rotating ring: which one, its material, mass and tilt inertia (given, or derived from
+// the envelope).
+void read_rotating_ring(const Reader& r, BearingConfig* out) {
+  BearingConfig& c = *out;
   const std::string ring = r.text("rotating_ring", "outer");
   if (ring == "outer") c.rotating_ring = RotatingRing::Outer;
   else if (ring == "inner") c.rotating_ring = RotatingRing::Inner;
   else r.fail("rotating_ring", "must be outer or inner, got '" + ring + "'");
 
   if (const YAML::Node m = r.map("material")) {
-    Reader mr(m, source, "material.");
+    Reader mr(m, r.source(), "material.");
     mr.check_keys({"youngs_modulus_GPa", "poisson_ratio", "density_kg_m3"});
     c.material.youngs_modulus_Pa = mr.number("youngs_modulus_GPa", 208.0) * 1e9;
     mr.require(c.material.youngs_modulus_Pa > 0.0, "youngs_modulus_GPa", "must be > 0");
@@ -213,6 +200,44 @@ BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& so
     const double ri = c.rotating_ring == RotatingRing::Outer ? c.pitch_diameter_m / 2 : c.inner_diameter_m / 2;
     c.tilt_inertia_kg_m2 = c.rotating_mass_kg * (3.0 * (ro * ro + ri * ri) + c.width_m * c.width_m) / 12.0;
   }
+}
+
+}  // namespace
+
+BearingConfig parse_bearing_config(const YAML::Node& root, const std::string& source) {
+  if (!root || !root.IsMap()) throw ConfigError(source + ": expected a YAML mapping of bearing keys");
+  Reader r(root, source, "");
+  r.check_keys({"name",
+                "rows",
+                "arrangement",
+                "balls_per_row",
+                "ball_diameter_mm",
+                "pitch_diameter_mm",
+                "row_spacing_mm",
+                "row_phase_deg",
+                "contact_angle_deg",
+                "inner_groove_curvature",
+                "outer_groove_curvature",
+                "clearance_um",
+                "outer_diameter_mm",
+                "inner_diameter_mm",
+                "width_mm",
+                "rotating_ring",
+                "material",
+                "rotating_mass_kg",
+                "tilt_inertia_kg_m2",
+                "carried_body",
+                "damping",
+                "imperfections",
+                "defects",
+                "flexible_ring"});
+
+  BearingConfig c;
+  c.name = r.text("name", "unnamed bearing");
+
+  const SizesMm mm = read_geometry(r, &c);
+  read_envelope(r, mm, &c);
+  read_rotating_ring(r, &c);
 
   if (const YAML::Node body = r.map("carried_body")) read_carried_body(Reader(body, source, "carried_body."), &c);
   if (const YAML::Node flexible = r.map("flexible_ring"))

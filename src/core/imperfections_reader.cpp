@@ -10,24 +10,120 @@
 
 namespace bearing_sim {
 
+namespace {
+
+// The surface named under `key` (default outer_race).
+Surface surface_of(const detail::Reader& r, const std::string& key) {
+  try {
+    return parse_surface(r.text(key, "outer_race"));
+  } catch (const InvalidInputError& e) {
+    r.fail(key, e.what());
+  }
+}
+
+// A row index of a bearing of `rows` rows, or `fallback` when the key is absent.
+int row_of(const detail::Reader& r, const std::string& key, int fallback, int rows) {
+  const int row = r.integer(key, fallback);
+  if (r.has(key))
+    r.require(row >= 0 && row < rows, key,
+              rows == 1 ? "must be 0 (the bearing has one row)" : "must be 0 or 1 (the bearing has two rows)");
+  return row;
+}
+
+// The scalar keys of `imperfections:` (all but the waviness list).
+void read_imperfection_keys(const detail::Reader& r, int rows, ImperfectionSpec* out) {
+  ImperfectionSpec& spec = *out;
+  const int seed = r.integer("seed", 1);
+  r.require(seed >= 0, "seed", "must be >= 0");
+  spec.seed = static_cast<std::uint64_t>(seed);
+  spec.ball_diameter_variation_m = r.number("ball_diameter_variation_um", 0.0) * 1e-6;
+  r.require(spec.ball_diameter_variation_m >= 0.0, "ball_diameter_variation_um", "must be >= 0");
+  spec.roughness_rms_m = r.number("roughness_rms_um", 0.0) * 1e-6;
+  r.require(spec.roughness_rms_m >= 0.0, "roughness_rms_um", "must be >= 0");
+  spec.roughness_row = row_of(r, "roughness_row", -1, rows);
+  spec.ball_spacing_jitter_m = r.number("ball_spacing_jitter_mm", 0.0) * 1e-3;
+  r.require(spec.ball_spacing_jitter_m >= 0.0, "ball_spacing_jitter_mm", "must be >= 0");
+  spec.cage_slip = r.number("cage_slip_percent", 0.0) / 100.0;
+  r.require(spec.cage_slip >= 0.0 && spec.cage_slip < 0.2, "cage_slip_percent", "must be in [0, 20)");
+  spec.cage_slip_variation = r.number("cage_slip_variation_percent", 0.0) / 100.0;
+  r.require(spec.cage_slip_variation >= 0.0 && spec.cage_slip_variation < 0.05, "cage_slip_variation_percent",
+            "must be in [0, 5)");
+  spec.cage_slip_correlation_s = r.number("cage_slip_correlation_s", 0.05);
+  r.require(spec.cage_slip_correlation_s > 0.0, "cage_slip_correlation_s", "must be > 0");
+  // A pocket clearance is a fraction of a millimetre; 2 mm is past any cage.
+  spec.ball_place_wander_m = r.number("ball_place_wander_mm", 0.0) * 1e-3;
+  r.require(spec.ball_place_wander_m >= 0.0 && spec.ball_place_wander_m < 2e-3, "ball_place_wander_mm",
+            "must be in [0, 2) mm");
+  spec.ball_place_wander_correlation_s = r.number("ball_place_wander_correlation_s", 0.05);
+  r.require(spec.ball_place_wander_correlation_s >= 1e-4 && spec.ball_place_wander_correlation_s <= 1e3,
+            "ball_place_wander_correlation_s", "must be in [1e-4, 1e3] s");
+  spec.ball_spin_axis_wander_rad = r.number("ball_spin_axis_wander_deg", 0.0) * kPi / 180.0;
+  r.require(spec.ball_spin_axis_wander_rad >= 0.0 && spec.ball_spin_axis_wander_rad < 0.5 * kPi,
+            "ball_spin_axis_wander_deg", "must be in [0, 90) deg");
+  spec.ball_spin_axis_wander_correlation_s = r.number("ball_spin_axis_wander_correlation_s", 0.1);
+  r.require(spec.ball_spin_axis_wander_correlation_s >= 1e-4 && spec.ball_spin_axis_wander_correlation_s <= 1e3,
+            "ball_spin_axis_wander_correlation_s", "must be in [1e-4, 1e3] s");
+  const std::string edges = r.text("spall_edges", "rounded");
+  r.require(edges == "rounded" || edges == "sharp", "spall_edges", "must be 'rounded' or 'sharp'");
+  spec.spall_sharp_edges = edges == "sharp";
+}
+
+// `imperfections.waviness`: a list of {surface, order, amplitude_um, phase_deg, row}.
+void read_waviness(const detail::Reader& r, const YAML::Node& list, const std::string& source, int rows,
+                   ImperfectionSpec* out) {
+  if (!list.IsSequence()) r.fail("waviness", "expected a list of {surface, order, amplitude_um, phase_deg}");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    if (!list[i].IsMap()) r.fail("waviness[" + std::to_string(i) + "]", "expected a mapping");
+    detail::Reader w(list[i], source, "imperfections.waviness[" + std::to_string(i) + "].");
+    w.check_keys({"surface", "order", "amplitude_um", "phase_deg", "row"});
+    Waviness wv;
+    wv.surface = surface_of(w, "surface");
+    wv.order = w.integer("order", 0, true);
+    w.require(wv.order >= 1 && wv.order <= 2000, "order", "must be between 1 and 2000");
+    wv.amplitude_m = w.number("amplitude_um", 0.0, true) * 1e-6;
+    w.require(wv.amplitude_m >= 0.0 && wv.amplitude_m < 50e-6, "amplitude_um", "must be in [0, 50) um");
+    wv.phase_rad = w.number("phase_deg", 0.0) * kPi / 180.0;
+    wv.row = row_of(w, "row", -1, rows);
+    out->waviness.push_back(wv);
+  }
+}
+
+// `defects:`: a list of spalls {surface, position_deg, ball, row, width_mm, depth_um, growth}.
+void read_defects(const YAML::Node& defects, const std::string& source, int rows, ImperfectionSpec* out) {
+  if (!defects.IsSequence())
+    throw ConfigError(source + ": key 'defects': expected a list of {surface, position_deg, width_mm, depth_um, ...}");
+  for (std::size_t i = 0; i < defects.size(); ++i) {
+    const std::string prefix = "defects[" + std::to_string(i) + "].";
+    if (!defects[i].IsMap()) throw ConfigError(source + ": key '" + prefix + "': expected a mapping");
+    detail::Reader d(defects[i], source, prefix);
+    d.check_keys({"surface", "position_deg", "ball", "row", "width_mm", "depth_um", "width_growth_mm_per_hour",
+                  "depth_growth_um_per_hour"});
+    Spall s;
+    s.surface = surface_of(d, "surface");
+    if (s.surface == Surface::Ball && d.has("row"))
+      d.fail("row", "not for a ball spall: the ball index (row-major) gives the row");
+    s.row = row_of(d, "row", 0, rows);
+    s.position_rad = d.number("position_deg", 0.0) * kPi / 180.0;
+    s.ball = d.integer("ball", 0);
+    s.width_m = d.number("width_mm", 0.0, true) * 1e-3;
+    s.depth_m = d.number("depth_um", 0.0, true) * 1e-6;
+    s.width_growth_m_per_s = d.number("width_growth_mm_per_hour", 0.0) * 1e-3 / 3600.0;
+    s.depth_growth_m_per_s = d.number("depth_growth_um_per_hour", 0.0) * 1e-6 / 3600.0;
+    d.require(s.width_m > 0.0, "width_mm", "must be > 0");
+    d.require(s.depth_m > 0.0, "depth_um", "must be > 0");
+    d.require(s.width_growth_m_per_s >= 0.0 && std::isfinite(s.width_growth_m_per_s), "width_growth_mm_per_hour",
+              "must be finite and >= 0");
+    d.require(s.depth_growth_m_per_s >= 0.0 && std::isfinite(s.depth_growth_m_per_s), "depth_growth_um_per_hour",
+              "must be finite and >= 0");
+    out->spalls.push_back(s);
+  }
+}
+
+}  // namespace
+
 ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML::Node& defects,
                                      const std::string& source, int rows) {
   ImperfectionSpec spec;
-  auto surface_of = [&](const detail::Reader& r, const std::string& key) {
-    try {
-      return parse_surface(r.text(key, "outer_race"));
-    } catch (const InvalidInputError& e) {
-      r.fail(key, e.what());
-    }
-  };
-  // A row index of this bearing, or `fallback` when the key is absent.
-  auto row_of = [&](const detail::Reader& r, const std::string& key, int fallback) {
-    const int row = r.integer(key, fallback);
-    if (r.has(key))
-      r.require(row >= 0 && row < rows, key,
-                rows == 1 ? "must be 0 (the bearing has one row)" : "must be 0 or 1 (the bearing has two rows)");
-    return row;
-  };
   if (imperfections) {
     if (!imperfections.IsMap()) throw ConfigError(source + ": key 'imperfections': expected a mapping");
     detail::Reader r(imperfections, source, "imperfections.");
@@ -35,88 +131,11 @@ ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML
                   "ball_spacing_jitter_mm", "cage_slip_percent", "cage_slip_variation_percent",
                   "cage_slip_correlation_s", "ball_place_wander_mm", "ball_place_wander_correlation_s",
                   "ball_spin_axis_wander_deg", "ball_spin_axis_wander_correlation_s", "spall_edges"});
-    const int seed = r.integer("seed", 1);
-    r.require(seed >= 0, "seed", "must be >= 0");
-    spec.seed = static_cast<std::uint64_t>(seed);
-    spec.ball_diameter_variation_m = r.number("ball_diameter_variation_um", 0.0) * 1e-6;
-    r.require(spec.ball_diameter_variation_m >= 0.0, "ball_diameter_variation_um", "must be >= 0");
-    spec.roughness_rms_m = r.number("roughness_rms_um", 0.0) * 1e-6;
-    r.require(spec.roughness_rms_m >= 0.0, "roughness_rms_um", "must be >= 0");
-    spec.roughness_row = row_of(r, "roughness_row", -1);
-    spec.ball_spacing_jitter_m = r.number("ball_spacing_jitter_mm", 0.0) * 1e-3;
-    r.require(spec.ball_spacing_jitter_m >= 0.0, "ball_spacing_jitter_mm", "must be >= 0");
-    spec.cage_slip = r.number("cage_slip_percent", 0.0) / 100.0;
-    r.require(spec.cage_slip >= 0.0 && spec.cage_slip < 0.2, "cage_slip_percent", "must be in [0, 20)");
-    spec.cage_slip_variation = r.number("cage_slip_variation_percent", 0.0) / 100.0;
-    r.require(spec.cage_slip_variation >= 0.0 && spec.cage_slip_variation < 0.05, "cage_slip_variation_percent",
-              "must be in [0, 5)");
-    spec.cage_slip_correlation_s = r.number("cage_slip_correlation_s", 0.05);
-    r.require(spec.cage_slip_correlation_s > 0.0, "cage_slip_correlation_s", "must be > 0");
-    // A pocket clearance is a fraction of a millimetre; 2 mm is past any cage.
-    spec.ball_place_wander_m = r.number("ball_place_wander_mm", 0.0) * 1e-3;
-    r.require(spec.ball_place_wander_m >= 0.0 && spec.ball_place_wander_m < 2e-3, "ball_place_wander_mm",
-              "must be in [0, 2) mm");
-    spec.ball_place_wander_correlation_s = r.number("ball_place_wander_correlation_s", 0.05);
-    r.require(spec.ball_place_wander_correlation_s >= 1e-4 && spec.ball_place_wander_correlation_s <= 1e3,
-              "ball_place_wander_correlation_s", "must be in [1e-4, 1e3] s");
-    spec.ball_spin_axis_wander_rad = r.number("ball_spin_axis_wander_deg", 0.0) * kPi / 180.0;
-    r.require(spec.ball_spin_axis_wander_rad >= 0.0 && spec.ball_spin_axis_wander_rad < 0.5 * kPi,
-              "ball_spin_axis_wander_deg", "must be in [0, 90) deg");
-    spec.ball_spin_axis_wander_correlation_s = r.number("ball_spin_axis_wander_correlation_s", 0.1);
-    r.require(spec.ball_spin_axis_wander_correlation_s >= 1e-4 && spec.ball_spin_axis_wander_correlation_s <= 1e3,
-              "ball_spin_axis_wander_correlation_s", "must be in [1e-4, 1e3] s");
-    const std::string edges = r.text("spall_edges", "rounded");
-    r.require(edges == "rounded" || edges == "sharp", "spall_edges", "must be 'rounded' or 'sharp'");
-    spec.spall_sharp_edges = edges == "sharp";
+    read_imperfection_keys(r, rows, &spec);
     const YAML::Node list = imperfections["waviness"];
-    if (list) {
-      if (!list.IsSequence()) r.fail("waviness", "expected a list of {surface, order, amplitude_um, phase_deg}");
-      for (std::size_t i = 0; i < list.size(); ++i) {
-        if (!list[i].IsMap()) r.fail("waviness[" + std::to_string(i) + "]", "expected a mapping");
-        detail::Reader w(list[i], source, "imperfections.waviness[" + std::to_string(i) + "].");
-        w.check_keys({"surface", "order", "amplitude_um", "phase_deg", "row"});
-        Waviness wv;
-        wv.surface = surface_of(w, "surface");
-        wv.order = w.integer("order", 0, true);
-        w.require(wv.order >= 1 && wv.order <= 2000, "order", "must be between 1 and 2000");
-        wv.amplitude_m = w.number("amplitude_um", 0.0, true) * 1e-6;
-        w.require(wv.amplitude_m >= 0.0 && wv.amplitude_m < 50e-6, "amplitude_um", "must be in [0, 50) um");
-        wv.phase_rad = w.number("phase_deg", 0.0) * kPi / 180.0;
-        wv.row = row_of(w, "row", -1);
-        spec.waviness.push_back(wv);
-      }
-    }
+    if (list) read_waviness(r, list, source, rows, &spec);
   }
-  if (defects) {
-    if (!defects.IsSequence())
-      throw ConfigError(source +
-                        ": key 'defects': expected a list of {surface, position_deg, width_mm, depth_um, ...}");
-    for (std::size_t i = 0; i < defects.size(); ++i) {
-      const std::string prefix = "defects[" + std::to_string(i) + "].";
-      if (!defects[i].IsMap()) throw ConfigError(source + ": key '" + prefix + "': expected a mapping");
-      detail::Reader d(defects[i], source, prefix);
-      d.check_keys({"surface", "position_deg", "ball", "row", "width_mm", "depth_um", "width_growth_mm_per_hour",
-                    "depth_growth_um_per_hour"});
-      Spall s;
-      s.surface = surface_of(d, "surface");
-      if (s.surface == Surface::Ball && d.has("row"))
-        d.fail("row", "not for a ball spall: the ball index (row-major) gives the row");
-      s.row = row_of(d, "row", 0);
-      s.position_rad = d.number("position_deg", 0.0) * kPi / 180.0;
-      s.ball = d.integer("ball", 0);
-      s.width_m = d.number("width_mm", 0.0, true) * 1e-3;
-      s.depth_m = d.number("depth_um", 0.0, true) * 1e-6;
-      s.width_growth_m_per_s = d.number("width_growth_mm_per_hour", 0.0) * 1e-3 / 3600.0;
-      s.depth_growth_m_per_s = d.number("depth_growth_um_per_hour", 0.0) * 1e-6 / 3600.0;
-      d.require(s.width_m > 0.0, "width_mm", "must be > 0");
-      d.require(s.depth_m > 0.0, "depth_um", "must be > 0");
-      d.require(s.width_growth_m_per_s >= 0.0 && std::isfinite(s.width_growth_m_per_s), "width_growth_mm_per_hour",
-                "must be finite and >= 0");
-      d.require(s.depth_growth_m_per_s >= 0.0 && std::isfinite(s.depth_growth_m_per_s), "depth_growth_um_per_hour",
-                "must be finite and >= 0");
-      spec.spalls.push_back(s);
-    }
-  }
+  if (defects) read_defects(defects, source, rows, &spec);
   return spec;
 }
 

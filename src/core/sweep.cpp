@@ -261,64 +261,60 @@ std::string emitted_yaml(const YAML::Node& node) { return node ? YAML::Dump(node
 // node has them (YAML::Clone): an error a case's node throws reads as before.
 YAML::Node reloaded_yaml(const std::string& text) { return YAML::Clone(YAML::Load(text)); }
 
-SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string& source, const std::string& base_dir) {
-  if (!root || !root.IsMap()) fail(source, "", "expected a YAML mapping");
-  check_keys(root, source, "",
-             {"name", "bearing", "analysis", "operating_point", "imperfections", "imperfection_sets", "studies",
-              "parameter", "values", "range"});
-  SweepDefinition d;
-  d.source = source;
-  d.name = root["name"] ? root["name"].as<std::string>() : source;
-
+// `bearing:`: the base bearing file (relative to base_dir), valid on its own. Its path and
+// text go into the definition; its node is returned.
+YAML::Node read_base_bearing(const YAML::Node& root, const std::string& source, const std::string& base_dir,
+                             SweepDefinition* d) {
   if (!root["bearing"] || !root["bearing"].IsScalar()) fail(source, "bearing", "required: the base bearing file");
   const std::string b = root["bearing"].as<std::string>();
-  d.bearing_path = (!b.empty() && b[0] == '/') ? b : base_dir + "/" + b;
+  d->bearing_path = (!b.empty() && b[0] == '/') ? b : base_dir + "/" + b;
   YAML::Node bearing;
   try {
-    d.bearing_yaml = detail::read_config_file(d.bearing_path, "bearing file");
-    bearing = detail::load_yaml(d.bearing_yaml, d.bearing_path);
+    d->bearing_yaml = detail::read_config_file(d->bearing_path, "bearing file");
+    bearing = detail::load_yaml(d->bearing_yaml, d->bearing_path);
   } catch (const ConfigError& e) {
     fail(source, "bearing", std::string("cannot read the base bearing file: ") + e.what());
   }
   // The base file must be valid on its own.
   try {
-    parse_bearing_config(bearing, d.bearing_path);
+    parse_bearing_config(bearing, d->bearing_path);
   } catch (const ConfigError& e) {
     fail(source, "bearing", std::string("the base bearing file is invalid: ") + e.what());
   }
+  return bearing;
+}
 
-  const std::string analysis = root["analysis"] ? root["analysis"].as<std::string>() : "dynamic";
-  if (analysis == "dynamic") d.dynamic = true;
-  else if (analysis == "static") d.dynamic = false;
-  else fail(source, "analysis", "must be dynamic or static, got '" + analysis + "'");
-
-  const YAML::Node op = root["operating_point"];
+// `operating_point:` (optional), and a dynamic sweep's duration and sample rate in range.
+void read_operating_point(const YAML::Node& op, const std::string& source, SweepDefinition* d) {
   if (op) {
     if (!op.IsMap()) fail(source, "operating_point", "expected a mapping");
     check_keys(op, source, "operating_point.", {"force_N", "moment_Nm", "speed_rpm", "duration_s", "sample_rate_hz"});
     if (op["force_N"]) {
       const auto f = read_vector(op["force_N"], 3, source, "operating_point.force_N");
-      d.operating_point.load.head<3>() << f[0], f[1], f[2];
+      d->operating_point.load.head<3>() << f[0], f[1], f[2];
     }
     if (op["moment_Nm"]) {
       const auto m = read_vector(op["moment_Nm"], 2, source, "operating_point.moment_Nm");
-      d.operating_point.load.tail<2>() << m[0], m[1];
+      d->operating_point.load.tail<2>() << m[0], m[1];
     }
     if (op["speed_rpm"])
-      d.operating_point.speed_rpm = read_number(op["speed_rpm"], source, "operating_point.speed_rpm");
+      d->operating_point.speed_rpm = read_number(op["speed_rpm"], source, "operating_point.speed_rpm");
     if (op["duration_s"])
-      d.operating_point.duration_s = read_number(op["duration_s"], source, "operating_point.duration_s");
+      d->operating_point.duration_s = read_number(op["duration_s"], source, "operating_point.duration_s");
     if (op["sample_rate_hz"])
-      d.operating_point.sample_rate_hz = read_number(op["sample_rate_hz"], source, "operating_point.sample_rate_hz");
+      d->operating_point.sample_rate_hz = read_number(op["sample_rate_hz"], source, "operating_point.sample_rate_hz");
   }
-  if (d.dynamic) {
-    if (!(d.operating_point.duration_s > 0.0 && d.operating_point.duration_s <= 100.0))
+  if (d->dynamic) {
+    if (!(d->operating_point.duration_s > 0.0 && d->operating_point.duration_s <= 100.0))
       fail(source, "operating_point.duration_s", "must be in (0, 100] s");
-    if (!(d.operating_point.sample_rate_hz >= 100.0 && d.operating_point.sample_rate_hz <= 1e6))
+    if (!(d->operating_point.sample_rate_hz >= 100.0 && d->operating_point.sample_rate_hz <= 1e6))
       fail(source, "operating_point.sample_rate_hz", "must be in [100, 1e6] Hz");
   }
+}
 
-  // Imperfection sets.
+// `imperfection_sets:`, or a single `imperfections:`, or else the base bearing file's own.
+void read_imperfection_sets(const YAML::Node& root, const YAML::Node& bearing, const std::string& source,
+                            SweepDefinition* d) {
   if (root["imperfections"] && root["imperfection_sets"])
     fail(source, "imperfections", "give either 'imperfections' or 'imperfection_sets', not both");
   if (root["imperfection_sets"]) {
@@ -332,28 +328,32 @@ SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string
       SweepImperfectionSet s;
       s.name = sets[i]["name"] ? sets[i]["name"].as<std::string>() : "set" + std::to_string(i + 1);
       s.imperfections_yaml = emitted_yaml(sets[i]["imperfections"]);
-      d.imperfection_sets.push_back(s);
+      d->imperfection_sets.push_back(s);
     }
   } else if (root["imperfections"]) {
-    d.imperfection_sets.push_back({"imperfections", emitted_yaml(root["imperfections"]), false});
+    d->imperfection_sets.push_back({"imperfections", emitted_yaml(root["imperfections"]), false});
   } else {
     SweepImperfectionSet s;
     s.name = "bearing_file";
     s.imperfections_yaml = emitted_yaml(bearing["imperfections"]);
     s.from_bearing_file = true;
-    d.imperfection_sets.push_back(s);
+    d->imperfection_sets.push_back(s);
   }
+}
 
-  // Studies.
-  auto read_study = [&](const YAML::Node& n, const std::string& prefix) {
-    if (!n["parameter"] || !n["parameter"].IsScalar()) fail(source, prefix + "parameter", "required");
-    SweepStudy s;
-    s.parameter = n["parameter"].as<std::string>();
-    if (!find_parameter(s.parameter))
-      fail(source, prefix + "parameter", "unknown parameter '" + s.parameter + "' (known: " + known_parameters() + ")");
-    s.values = read_values(n, source, prefix);
-    return s;
-  };
+// One study: a parameter of the table and its values.
+SweepStudy read_study(const YAML::Node& n, const std::string& source, const std::string& prefix) {
+  if (!n["parameter"] || !n["parameter"].IsScalar()) fail(source, prefix + "parameter", "required");
+  SweepStudy s;
+  s.parameter = n["parameter"].as<std::string>();
+  if (!find_parameter(s.parameter))
+    fail(source, prefix + "parameter", "unknown parameter '" + s.parameter + "' (known: " + known_parameters() + ")");
+  s.values = read_values(n, source, prefix);
+  return s;
+}
+
+// `studies:`, or a single top-level `parameter:` with `values:` or `range:`.
+void read_studies(const YAML::Node& root, const std::string& source, SweepDefinition* d) {
   if (root["studies"]) {
     if (root["parameter"] || root["values"] || root["range"])
       fail(source, "studies", "give either 'studies' or a single 'parameter' with 'values'/'range'");
@@ -364,14 +364,32 @@ SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string
       const std::string prefix = "studies[" + std::to_string(i) + "].";
       if (!studies[i].IsMap()) fail(source, prefix, "expected {parameter, values | range}");
       check_keys(studies[i], source, prefix, {"parameter", "values", "range"});
-      d.studies.push_back(read_study(studies[i], prefix));
+      d->studies.push_back(read_study(studies[i], source, prefix));
     }
   } else if (root["parameter"]) {
-    d.studies.push_back(read_study(root, ""));
+    d->studies.push_back(read_study(root, source, ""));
   } else {
     fail(source, "studies", "required: a list of {parameter, values | range} (or a top-level 'parameter')");
   }
+}
 
+SweepDefinition parse_sweep_definition(const YAML::Node& root, const std::string& source, const std::string& base_dir) {
+  if (!root || !root.IsMap()) fail(source, "", "expected a YAML mapping");
+  check_keys(root, source, "",
+             {"name", "bearing", "analysis", "operating_point", "imperfections", "imperfection_sets", "studies",
+              "parameter", "values", "range"});
+  SweepDefinition d;
+  d.source = source;
+  d.name = root["name"] ? root["name"].as<std::string>() : source;
+  const YAML::Node bearing = read_base_bearing(root, source, base_dir, &d);
+  const std::string analysis = root["analysis"] ? root["analysis"].as<std::string>() : "dynamic";
+  if (analysis == "dynamic") d.dynamic = true;
+  else if (analysis == "static") d.dynamic = false;
+  else fail(source, "analysis", "must be dynamic or static, got '" + analysis + "'");
+
+  read_operating_point(root["operating_point"], source, &d);
+  read_imperfection_sets(root, bearing, source, &d);
+  read_studies(root, source, &d);
   sweep_cases(d);  // validates every case (throws naming the study and value)
   return d;
 }
