@@ -132,20 +132,20 @@ BearingDynamics::StepRatio BearingDynamics::choose_step_ratio(const BearingModel
 void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
   Matrix5 stiffness, damping;
   model_.contact_force_and_stiffness(q, phase, &stiffness, &damping);
-  q_lin_ = q;
-  load_lin_ = load_line_.load;
-  lin_accel_.leftCols<5>() = -(inverse_mass_ * stiffness);
-  lin_accel_.rightCols<5>() = -(inverse_mass_ * damping);
+  etd_.q_lin = q;
+  etd_.load_lin = load_line_.load;
+  etd_.lin_accel.leftCols<5>() = -(inverse_mass_ * stiffness);
+  etd_.lin_accel.rightCols<5>() = -(inverse_mass_ * damping);
   // The exponential of [hL I 0 0; 0 0 I 0; 0 0 0 I; 0 0 0 0] holds e^{hL} and
   // phi_1..phi_3(hL) in its first block row (phi_k(z) = (e^z - sum_{j<k} z^j/j!) / z^k);
   // of [hL I; 0 0], e^{hL} and phi_1(hL). In SI units L is far from normal (|M^-1 K| ~ 1e8
   // next to 1), which costs the scaling and squaring many squarings: it works on the
   // balanced D L D^-1, D = diag(w I, I) with w^2 = |M^-1 K|, and f(L) = D^-1 f(D L D^-1) D.
-  const double w = std::max(1.0, std::sqrt(lin_accel_.leftCols<5>().lpNorm<Eigen::Infinity>()));
+  const double w = std::max(1.0, std::sqrt(etd_.lin_accel.leftCols<5>().lpNorm<Eigen::Infinity>()));
   Matrix10 balanced = Matrix10::Zero();
   balanced.topRightCorner<5, 5>() = w * Matrix5::Identity();
-  balanced.bottomLeftCorner<5, 5>() = lin_accel_.leftCols<5>() / w;
-  balanced.bottomRightCorner<5, 5>() = lin_accel_.rightCols<5>();
+  balanced.bottomLeftCorner<5, 5>() = etd_.lin_accel.leftCols<5>() / w;
+  balanced.bottomRightCorner<5, 5>() = etd_.lin_accel.rightCols<5>();
   Eigen::Matrix<double, 10, 1> d;
   d << Vector5::Constant(w), Vector5::Ones();
   const auto unbalance = [&d](const Matrix10& f) -> Matrix10 {
@@ -159,8 +159,8 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
     x.block<10, 10>(0, 0) = 0.5 * h_etd * balanced;
     x.block<10, 10>(0, 10).setIdentity();
     const Eigen::Matrix<double, 20, 20> e = x.exp();
-    exp_half_ = unbalance(e.block<10, 10>(0, 0));
-    phi_half_ = 0.5 * h_etd * unbalance(e.block<10, 10>(0, 10)).rightCols<5>();
+    etd_.exp_half = unbalance(e.block<10, 10>(0, 0));
+    etd_.phi_half = 0.5 * h_etd * unbalance(e.block<10, 10>(0, 10)).rightCols<5>();
   }
   if (adams()) {
     // phi_4 as well, from the same construction one block larger, W = [hL I 0 0 0; 0 0 I 0 0;
@@ -198,16 +198,16 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
       Matrix10 predictor = Matrix10::Zero();
       for (int j = i; j < 4; ++j) predictor += kBinomial[j][i] * ab[j];
       const double sign = i % 2 ? -1.0 : 1.0;
-      adams_step_.block<10, 5>(0, 10 + 5 * i) = sign * h * predictor.rightCols<5>();
+      adams_weights_.step.block<10, 5>(0, 10 + 5 * i) = sign * h * predictor.rightCols<5>();
     }
     // The corrector's weight of r_{n+1}: sum of the AM4 weights (every nabla^j holds r_{n+1}
     // once). The corrector's cubic is the predictor's plus (nabla^4 r_{n+1}) times the cubic
     // that is 1 at t_{n+1} and 0 at t_n, t_{n-1}, t_{n-2}, so y_c = y_p + C0 nabla^4 r_{n+1}.
-    adams_corrector_ = h * (am[0] + am[1] + am[2] + am[3]).rightCols<5>();
+    adams_weights_.corrector = h * (am[0] + am[1] + am[2] + am[3]).rightCols<5>();
     // (y_p, A y_p) = [E P; A E  A P] (y, r, r_-1, r_-2, r_-3): the predicted end's linear
     // part comes with the predictor, one product per step instead of three.
-    adams_step_.topLeftCorner<10, 10>() = e_h;
-    adams_step_.bottomRows<5>() = lin_accel_ * adams_step_.topRows<10>();
+    adams_weights_.step.topLeftCorner<10, 10>() = e_h;
+    adams_weights_.step.bottomRows<5>() = etd_.lin_accel * adams_weights_.step.topRows<10>();
     // A sample at theta of a step: y(theta) = e^{theta h L} y_n + h int_0^theta
     // e^{(theta - s) h L} p(s) ds with p the corrector's cubic through the remainders at
     // s = 1, 0, -1, -2; for p = s^k the integral is k! theta^(k+1) phi_{k+1}(theta h L). Its
@@ -219,7 +219,7 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
     for (int lead = 1; lead < step_ratio_.samples; ++lead) {
       const double theta = 1.0 - static_cast<double>(lead) / m;
       const std::array<Matrix10, 5>& f = phi_at[m - lead - 1];
-      Eigen::Matrix<double, 15, 30>& sample_map = adams_sample_within_step_[lead - 1];
+      Eigen::Matrix<double, 15, 30>& sample_map = adams_weights_.sample_within_step[lead - 1];
       sample_map.setZero();
       sample_map.topLeftCorner<10, 10>() = f[0];
       for (int i = 0; i < 4; ++i) {
@@ -234,7 +234,7 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
         sample_map.block<10, 5>(0, 10 + 5 * i) = h * weight.rightCols<5>();
         sample_map.block<5, 5>(10, 10 + 5 * i) = basis * Matrix5::Identity();
       }
-      sample_map.bottomRows<5>() += lin_accel_ * sample_map.topRows<10>();
+      sample_map.bottomRows<5>() += etd_.lin_accel * sample_map.topRows<10>();
     }
   }
   // ETDRK4 (backward with the Adams methods, for their history): Cox-Matthews weights of the
@@ -245,16 +245,16 @@ void BearingDynamics::linearize(const Vector5& q, const RollingPhase& phase) {
     x.block<10, 10>(0, 0) = h_etd * balanced;
     for (int k = 0; k < 3; ++k) x.block<10, 10>(10 * k, 10 * (k + 1)).setIdentity();
     const Eigen::Matrix<double, 40, 40> e = x.exp();
-    exp_full_ = unbalance(e.block<10, 10>(0, 0));
+    etd_.exp_full = unbalance(e.block<10, 10>(0, 0));
     const Matrix10 phi1 = unbalance(e.block<10, 10>(0, 10)), phi2 = unbalance(e.block<10, 10>(0, 20)),
                    phi3 = unbalance(e.block<10, 10>(0, 30));
-    w1_ = h_etd * (phi1 - 3.0 * phi2 + 4.0 * phi3).rightCols<5>();
-    w2_ = 2.0 * h_etd * (phi2 - 2.0 * phi3).rightCols<5>();
-    w3_ = h_etd * (4.0 * phi3 - phi2).rightCols<5>();
+    etd_.w1 = h_etd * (phi1 - 3.0 * phi2 + 4.0 * phi3).rightCols<5>();
+    etd_.w2 = 2.0 * h_etd * (phi2 - 2.0 * phi3).rightCols<5>();
+    etd_.w3 = h_etd * (4.0 * phi3 - phi2).rightCols<5>();
   }
-  linearized_step_s_ = h;
-  samples_since_linearization_ = 0;
-  ++linearizations_;
+  etd_.step_s = h;
+  etd_.samples_since_linearization = 0;
+  ++etd_.linearizations;
   adams_.started = false;  // the remainder is relative to the linearization
 }
 
@@ -302,7 +302,7 @@ void BearingDynamics::change_load(const LoadLine& line) {
   if (substeps_load_norm_ > 0.0 &&
       (load_line_.load.norm() > 1.5 * substeps_load_norm_ || load_line_.load.norm() < substeps_load_norm_ / 1.5)) {
     update_substeps();
-    samples_since_split_ = 0;
+    split_.samples_since = 0;
   }
 }
 
@@ -341,10 +341,10 @@ void BearingDynamics::set_model(BearingModel model) {
   set_inverse_mass(inverse_mass);
   displacement_limit_m_ = 0.25 * model_.config().ball_diameter_m + std::abs(model_.clearance_m());
   update_cage_speed();
-  update_substeps();         // clearance and damping change the fastest mode
-  linearized_step_s_ = 0.0;  // and the linearized contacts: again before the next sample
+  update_substeps();  // clearance and damping change the fastest mode
+  etd_.step_s = 0.0;  // and the linearized contacts: again before the next sample
   acceleration_current_ = false;
-  samples_since_split_ = 0;  // the contact margin depends on the inputs
+  split_.samples_since = 0;  // the contact margin depends on the inputs
 }
 
 void BearingDynamics::add_spall(Spall spall) {
@@ -352,7 +352,7 @@ void BearingDynamics::add_spall(Spall spall) {
   model_.add_spall(spall);
   acceleration_current_ = false;
   adams_.started = false;  // the remainder jumps: start again
-  samples_since_split_ = 0;
+  split_.samples_since = 0;
   update_substeps();  // the Adams step is shorter with a spall
 }
 
@@ -360,7 +360,7 @@ void BearingDynamics::clear_spalls() {
   model_.clear_spalls();
   acceleration_current_ = false;
   adams_.started = false;
-  samples_since_split_ = 0;
+  split_.samples_since = 0;
   update_substeps();
 }
 
@@ -373,7 +373,7 @@ void BearingDynamics::reset_to_equilibrium() {
   current_.acceleration = acceleration(current_.displacement, current_.velocity, phase_, model_.balls());
   load_in_current_acceleration_ = load_line_.at(phase_.time_s);
   acceleration_current_ = true;
-  samples_since_split_ = 0;
+  split_.samples_since = 0;
   if (exponential()) linearize(s.displacement, phase_);
 }
 
@@ -441,11 +441,11 @@ bool BearingDynamics::integrate_sample(Vector5& q, Vector5& v, RollingPhase& pha
 
 BearingDynamics::CageTrig BearingDynamics::half_step_rotation() const {
   const double half_turn = slipping_cage_speed() * (0.5 * internal_step_s());
-  if (half_turn != half_step_turn_) {
-    half_step_turn_ = half_turn;
-    half_step_rotation_ = CageTrig{std::cos(half_turn), std::sin(half_turn)};
+  if (half_turn != etd_.half_step_turn) {
+    etd_.half_step_turn = half_turn;
+    etd_.half_step_rotation = CageTrig{std::cos(half_turn), std::sin(half_turn)};
   }
-  return half_step_rotation_;
+  return etd_.half_step_rotation;
 }
 
 namespace {
@@ -464,18 +464,19 @@ BearingDynamics::Vector10 BearingDynamics::etdrk4_step(const Vector10& y, const 
   // small and fixed-size: coefficient-based (lazyProduct), not Eigen's general
   // matrix-vector routine, which for these sizes costs more than the arithmetic.
   const auto remainder = [&](const Vector10& u, const RollingPhase& p, const CageTrig& t) {
-    return Vector5(acceleration(q_lin_ + u.head<5>(), u.tail<5>(), p, balls, t) - lin_accel_.lazyProduct(u));
+    return Vector5(acceleration(etd_.q_lin + u.head<5>(), u.tail<5>(), p, balls, t) - etd_.lin_accel.lazyProduct(u));
   };
   const RollingPhase mid = advanced(phase, 0.5 * h), end = advanced(phase, h);
   const CageTrig trig_mid = rotated(trig, rotation), trig_end = rotated(trig_mid, rotation);
-  const Vector10 e_half_y = exp_half_.lazyProduct(y);
-  const Vector10 y2 = e_half_y + phi_half_.lazyProduct(r1);
+  const Vector10 e_half_y = etd_.exp_half.lazyProduct(y);
+  const Vector10 y2 = e_half_y + etd_.phi_half.lazyProduct(r1);
   const Vector5 r2 = remainder(y2, mid, trig_mid);
-  const Vector10 y3 = e_half_y + phi_half_.lazyProduct(r2);
+  const Vector10 y3 = e_half_y + etd_.phi_half.lazyProduct(r2);
   const Vector5 r3 = remainder(y3, mid, trig_mid);
-  const Vector10 y4 = exp_half_.lazyProduct(y2) + phi_half_.lazyProduct(Vector5(2.0 * r3 - r1));
+  const Vector10 y4 = etd_.exp_half.lazyProduct(y2) + etd_.phi_half.lazyProduct(Vector5(2.0 * r3 - r1));
   const Vector5 r4 = remainder(y4, end, trig_end);
-  return exp_full_.lazyProduct(y) + w1_.lazyProduct(r1) + w2_.lazyProduct(Vector5(r2 + r3)) + w3_.lazyProduct(r4);
+  return etd_.exp_full.lazyProduct(y) + etd_.w1.lazyProduct(r1) + etd_.w2.lazyProduct(Vector5(r2 + r3)) +
+         etd_.w3.lazyProduct(r4);
 }
 
 void BearingDynamics::integrate_sample_exponential(Vector5& q, Vector5& v, RollingPhase& phase, const Vector5& a_start,
@@ -484,16 +485,16 @@ void BearingDynamics::integrate_sample_exponential(Vector5& q, Vector5& v, Rolli
   const CageTrig rot = half_step_rotation();
   CageTrig trig{std::cos(phase.cage), std::sin(phase.cage)};
   Vector10 y;
-  y << q - q_lin_, v;
+  y << q - etd_.q_lin, v;
   for (int i = 0; i < step_ratio_.steps; ++i) {
-    const Vector5 r1 = (i == 0 ? a_start : acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls, trig)) -
-                       lin_accel_.lazyProduct(y);
+    const Vector5 r1 = (i == 0 ? a_start : acceleration(etd_.q_lin + y.head<5>(), y.tail<5>(), phase, balls, trig)) -
+                       etd_.lin_accel.lazyProduct(y);
     y = etdrk4_step(y, r1, phase, trig, h, rot, balls);
     phase = advanced(phase, h);
     trig = rotated(rotated(trig, rot), rot);
   }
-  sample_end_trig_ = trig;
-  q = q_lin_ + y.head<5>();
+  etd_.sample_end_trig = trig;
+  q = etd_.q_lin + y.head<5>();
   v = y.tail<5>();
 }
 
@@ -512,7 +513,7 @@ void BearingDynamics::start_adams(AdamsState& adams, const RollingPhase& start, 
     y = etdrk4_step(y, r, phase, trig, -h, backward, balls);
     phase = advanced(phase, -h);
     trig = rotated(rotated(trig, backward), backward);
-    r = acceleration(q_lin_ + y.head<5>(), y.tail<5>(), phase, balls, trig) - lin_accel_.lazyProduct(y);
+    r = acceleration(etd_.q_lin + y.head<5>(), y.tail<5>(), phase, balls, trig) - etd_.lin_accel.lazyProduct(y);
     adams.x.segment<5>(10 + 5 * k) = r;
   }
   adams.lead = 0;
@@ -526,7 +527,7 @@ void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
   // the remainder r_p at y_p and the step's end, the corrector
   // y_next = e^{hL} y + C0 r_p + C1 r + C2 r_-1 + C3 r_-2 = y_p + C0 nabla^4 r_p. The
   // predictor and the linear part of the predicted end, A y_p, are one product of
-  // adams_step_ with x = (y, r, r_-1, r_-2, r_-3); a step moves the remainders down by one.
+  // adams_weights_.step with x = (y, r, r_-1, r_-2, r_-3); a step moves the remainders down by one.
   // The method runs until it reaches or passes the sample's end (lead >= 0); a sample
   // within its last step comes from that step's start and the four remainders.
   const double h = internal_step_s();
@@ -534,9 +535,9 @@ void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
   const bool evaluate_end = options_.method == IntegrationMethod::ExponentialAdams;  // PECE, else PEC
   Eigen::Matrix<double, 30, 1>& x = adams.x;
   if (!adams.started) {
-    x.head<5>() = q - q_lin_;
+    x.head<5>() = q - etd_.q_lin;
     x.segment<5>(5) = v;
-    x.segment<5>(10) = a_start - times(lin_accel_, x.data());
+    x.segment<5>(10) = a_start - times(etd_.lin_accel, x.data());
     start_adams(adams, phase, balls);
     adams.trig_samples = 0;
   }
@@ -557,19 +558,19 @@ void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
   while (adams.lead < 0) {
     const RollingPhase end = advanced(method_phase, h);
     const CageTrig trig_end = rotated(rotated(trig, rot), rot);  // the same rotations as ETDRK4's stages
-    const Eigen::Matrix<double, 15, 1> predicted = times(adams_step_, x.data());  // (y_p, A y_p)
-    const Vector5 r_p =
-        acceleration(q_lin_ + predicted.head<5>(), predicted.segment<5>(5), end, balls, trig_end) - predicted.tail<5>();
+    const Eigen::Matrix<double, 15, 1> predicted = times(adams_weights_.step, x.data());  // (y_p, A y_p)
+    const Vector5 r_p = acceleration(etd_.q_lin + predicted.head<5>(), predicted.segment<5>(5), end, balls, trig_end) -
+                        predicted.tail<5>();
     const Vector5 fourth_difference =
         r_p - 4.0 * x.segment<5>(10) + 6.0 * x.segment<5>(15) - 4.0 * x.segment<5>(20) + x.segment<5>(25);
     adams.y_last_start = x.head<10>();
     // y_c = y_p + C nabla^4 r_p straight into x (y_p is the head of `predicted`).
-    detail::multiply_add<10, 5>(adams_corrector_.data(), fourth_difference.data(), predicted.data(), x.data());
+    detail::multiply_add<10, 5>(adams_weights_.corrector.data(), fourth_difference.data(), predicted.data(), x.data());
     for (int i = 29; i >= 15; --i) x[i] = x[i - 5];  // the history one place down
     // The next step's r: the predicted end's (PEC) or the corrected end's (PECE).
     x.segment<5>(10) = evaluate_end
-                           ? Vector5(acceleration(q_lin_ + x.head<5>(), x.segment<5>(5), end, balls, trig_end) -
-                                     times(lin_accel_, x.data()))
+                           ? Vector5(acceleration(etd_.q_lin + x.head<5>(), x.segment<5>(5), end, balls, trig_end) -
+                                     times(etd_.lin_accel, x.data()))
                            : r_p;
     method_phase = end;
     trig = trig_end;
@@ -580,16 +581,16 @@ void BearingDynamics::integrate_sample_adams(Vector5& q, Vector5& v, RollingPhas
   phase = advanced(phase, 1.0 / options_.sample_rate_hz);  // as without steps: the same for any step
   if (adams.lead == 0) {
     // PEC: a_p + A (y_c - y_p) = r_p + A y_c (its remainder is then the predicted one again).
-    q = q_lin_ + x.head<5>();
+    q = etd_.q_lin + x.head<5>();
     v = x.segment<5>(5);
-    *a_end = x.segment<5>(10) + times(lin_accel_, x.data());
+    *a_end = x.segment<5>(10) + times(etd_.lin_accel, x.data());
     return;
   }
   Eigen::Matrix<double, 30, 1> z;
   z.head<10>() = adams.y_last_start;
   z.tail<20>() = x.tail<20>();
-  const Eigen::Matrix<double, 15, 1> sample = times(adams_sample_within_step_[adams.lead - 1], z.data());
-  q = q_lin_ + sample.head<5>();
+  const Eigen::Matrix<double, 15, 1> sample = times(adams_weights_.sample_within_step[adams.lead - 1], z.data());
+  q = etd_.q_lin + sample.head<5>();
   v = sample.segment<5>(5);
   *a_end = sample.tail<5>();
 }
@@ -620,20 +621,20 @@ DynamicSample BearingDynamics::step() {
   const Vector5 a_start = acceleration_current_ ? current_.acceleration : acceleration(q0, v0, phase_, model_.balls());
   // Only the balls that can touch during the next kSamplesPerBallSplit samples take part
   // in the integration; the others carry no load now, so a_start holds for either set.
-  if (samples_since_split_ == 0) {
+  if (split_.samples_since == 0) {
     const double margin =
         options_.skip_clear_balls ? contact_margin_m(q0, v0, a_start) : std::numeric_limits<double>::infinity();
-    split_clear_max_deflection_m_ = model_.split_by_deflection(q0, phase_, margin, &active_balls_, &clear_balls_);
-    split_displacement_ = q0;
-    split_travel_ = {};
+    split_.clear_max_deflection_m = model_.split_by_deflection(q0, phase_, margin, &split_.active, &split_.clear);
+    split_.displacement = q0;
+    split_.travel = {};
   }
-  samples_since_split_ = (samples_since_split_ + 1) % kSamplesPerBallSplit;
+  split_.samples_since = (split_.samples_since + 1) % kSamplesPerBallSplit;
   // A moving load is followed at most every kSamplesPerLinearization samples, so that an
   // input changing every sample cannot make every sample pay for a linearization.
-  ++samples_since_linearization_;
-  if (exponential() && (linearized_step_s_ != internal_step_s() ||
-                        (samples_since_linearization_ >= kSamplesPerLinearization &&
-                         (load_line_.load - load_lin_).norm() > kRelinearizeLoadChange * load_lin_.norm()))) {
+  ++etd_.samples_since_linearization;
+  if (exponential() && (etd_.step_s != internal_step_s() ||
+                        (etd_.samples_since_linearization >= kSamplesPerLinearization &&
+                         (load_line_.load - etd_.load_lin).norm() > kRelinearizeLoadChange * etd_.load_lin.norm()))) {
     // About the equilibrium of the current load (the ring vibrates about it), or about the
     // current displacement when there is none.
     Vector5 q_eq = q0;
@@ -643,7 +644,7 @@ DynamicSample BearingDynamics::step() {
     }
     linearize(q_eq, phase_);
   }
-  const BallArrays* balls = &active_balls_;
+  const BallArrays* balls = &split_.active;
   Vector5 q = q0, v = v0;
   RollingPhase phase = phase_;
   AdamsState adams_state = adams_;  // kept only when the sample is
@@ -652,15 +653,15 @@ DynamicSample BearingDynamics::step() {
   // The skipped balls are checked ball by ball only when the bound of clear_deflection_bound_m
   // does not already show them all clear (it almost always does: the split's margin is twice
   // the bound's growth over kSamplesPerBallSplit samples).
-  split_travel_[0] += std::abs(phase.cage - phase_.cage);
-  split_travel_[1] += std::abs((phase.cage - phase_.cage) - (phase.outer_ring - phase_.outer_ring));
-  split_travel_[2] += std::abs((phase.cage - phase_.cage) - (phase.inner_ring - phase_.inner_ring));
-  split_travel_[3] += std::abs(phase.ball_spin - phase_.ball_spin);
-  if (clear_balls_.size() > 0 && q.allFinite() && clear_deflection_bound_m(q, split_travel_) > 0.0 &&
-      model_.max_deflection(q, phase, clear_balls_) > 0.0) {
+  split_.travel[0] += std::abs(phase.cage - phase_.cage);
+  split_.travel[1] += std::abs((phase.cage - phase_.cage) - (phase.outer_ring - phase_.outer_ring));
+  split_.travel[2] += std::abs((phase.cage - phase_.cage) - (phase.inner_ring - phase_.inner_ring));
+  split_.travel[3] += std::abs(phase.ball_spin - phase_.ball_spin);
+  if (split_.clear.size() > 0 && q.allFinite() && clear_deflection_bound_m(q, split_.travel) > 0.0 &&
+      model_.max_deflection(q, phase, split_.clear) > 0.0) {
     // A ball outside the margin came into contact: redo the sample with every ball.
-    ++full_sample_retries_;
-    samples_since_split_ = 0;
+    ++split_.full_sample_retries;
+    split_.samples_since = 0;
     balls = &model_.balls();
     q = q0;
     v = v0;
@@ -671,7 +672,7 @@ DynamicSample BearingDynamics::step() {
   // The exponential integrators left cos and sin of the end's cage angle.
   const DynamicSample sample = commit_sample(q, v,
                                              end_known       ? a_end
-                                             : exponential() ? acceleration(q, v, phase, *balls, sample_end_trig_)
+                                             : exponential() ? acceleration(q, v, phase, *balls, etd_.sample_end_trig)
                                                              : acceleration(q, v, phase, *balls),
                                              phase);
   if (adams()) adams_ = adams_state;
@@ -689,12 +690,12 @@ double BearingDynamics::clear_deflection_bound_m(const Vector5& q, const std::ar
   // fixed phi by at most |dt| + |dtheta| lever, and the offsets by the imperfections' bound
   // for the races' and balls' travel. Plus a rounding allowance.
   const double lever = model_.max_lever_arm_m();
-  const Vector5 dq = q - split_displacement_;
+  const Vector5 dq = q - split_.displacement;
   const double rotation = travel[0] * (q.head<2>().norm() + q.tail<2>().norm() * lever);
   const double displacement = dq.head<3>().norm() + dq.tail<2>().norm() * lever;
   const double offsets = model_.imperfections().max_offset_change_m(travel[1], travel[2], travel[3]);
   const double rounding = 1e-9 * model_.groove_centre_distance_m() + 1e-15;
-  return split_clear_max_deflection_m_ + rotation + displacement + offsets + rounding;
+  return split_.clear_max_deflection_m + rotation + displacement + offsets + rounding;
 }
 
 DynamicSample BearingDynamics::commit_sample(const Vector5& q, const Vector5& v, const Vector5& a,

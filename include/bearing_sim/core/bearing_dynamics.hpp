@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bearing_sim/core/bearing_model.hpp"
+#include "bearing_sim/core/integrator_state.hpp"
 
 namespace bearing_sim {
 
@@ -117,8 +118,8 @@ class BearingDynamics {
   std::uint64_t sample_index() const { return sample_index_; }
   // Balls integrated in the last sample, and how often a sample had to be redone with
   // every ball because one outside the contact margin touched.
-  std::size_t active_ball_count() const { return active_balls_.size(); }
-  std::uint64_t full_sample_retries() const { return full_sample_retries_; }
+  std::size_t active_ball_count() const { return split_.active.size(); }
+  std::uint64_t full_sample_retries() const { return split_.full_sample_retries; }
 
   // Natural frequencies of the ring on the linearized contacts at the static equilibrium.
   static Vector5 natural_frequencies_rad_s(const BearingModel& model, const Vector5& load);
@@ -140,7 +141,7 @@ class BearingDynamics {
   };
   static StepRatio choose_step_ratio(const BearingModel& model, const Vector5& load, double sample_rate_hz,
                                      IntegrationMethod method);
-  static constexpr int kAdamsStepSampleDivisions = 4;
+  static constexpr int kAdamsStepSampleDivisions = integrators::kAdamsStepSampleDivisions;
   static constexpr double kStepTimesOmegaMax = 0.5;
   static constexpr double kExponentialStepTimesOmegaMax = 1.0;
   // The Adams methods extrapolate the remainder from past steps. Without spalls it is smooth
@@ -155,36 +156,17 @@ class BearingDynamics {
   // Linearizations of the exponential integrator since construction (it is redone when
   // the load has moved by more than kRelinearizeLoadChange of its size, at most every
   // kSamplesPerLinearization samples, or the model changed).
-  std::uint64_t linearizations() const { return linearizations_; }
+  std::uint64_t linearizations() const { return etd_.linearizations; }
   static constexpr double kRelinearizeLoadChange = 0.2;
   static constexpr int kSamplesPerLinearization = 16;  // at most one per this many samples
 
  private:
+  using CageTrig = integrators::CageTrig;
+  using Vector10 = integrators::Vector10;
+  using Matrix10 = integrators::Matrix10;
+  using AdamsState = integrators::AdamsState;
   Vector5 acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase,
                        const BallArrays& balls) const;
-  // cos and sin of a cage angle, carried along with it by the exponential integrator.
-  struct CageTrig {
-    double c = 1.0, s = 0.0;
-  };
-  using Vector10 = Eigen::Matrix<double, 10, 1>;
-  // The Adams method's own state, which runs ahead of the output samples by less than one
-  // internal step: x = (y, r, r_-1, r_-2, r_-3) at its time, y = (q - q_lin, v), r the
-  // remainder there and at the three step ends before (relative to the current
-  // linearization; the step multiplies them with its weights in one product), y at the
-  // start of the last step (the samples within it come from it) and how far it is ahead of
-  // the last sample, in 1/steps of a sample (step_ratio_). Its rolling phase is the
-  // sample's advanced by the lead, so that the samples' phases do not depend on the step.
-  struct AdamsState {
-    Eigen::Matrix<double, 30, 1> x = Eigen::Matrix<double, 30, 1>::Zero();
-    Vector10 y_last_start = Vector10::Zero();
-    int lead = 0;
-    bool started = false;  // else it starts from the next sample's start
-    // cos and sin of the cage angle at its time, carried by the steps' rotations into the
-    // next sample (one sincos per kSamplesPerCageTrig samples: each rotation adds ~1 ulp).
-    CageTrig trig{1.0, 0.0};
-    double trig_cage = 0.0;
-    int trig_samples = 0;  // samples it may still be carried
-  };
   Vector5 acceleration(const Vector5& q, const Vector5& q_dot, const RollingPhase& phase, const BallArrays& balls,
                        const CageTrig& trig) const;
   RollingPhase advanced(const RollingPhase& phase, double dt) const;
@@ -260,49 +242,26 @@ class BearingDynamics {
   Vector5 load_in_current_acceleration_ = Vector5::Zero();
   // Replaces the load line, moving the current acceleration and the Adams remainders with it.
   void change_load(const LoadLine& line);
-  BallArrays active_balls_, clear_balls_;  // per sample: near contact / clear by the margin
-  std::uint64_t full_sample_retries_ = 0;
-  // Exponential integrator: y = (q - q_lin, v), y' = L y + (0, r), L = [0 I; A], the
-  // remainder r = a(q, v, t) - A y. Stored for ETDRK4: e^{hL}, e^{hL/2}, the phi-function
-  // blocks that multiply the remainder, for the internal step h (for -h with the Adams
-  // methods, whose history they make backward in time).
-  using Matrix10 = Eigen::Matrix<double, 10, 10>;
-  using Matrix10x5 = Eigen::Matrix<double, 10, 5>;
-  Vector5 q_lin_ = Vector5::Zero();
-  Vector5 load_lin_ = Vector5::Zero();
-  Eigen::Matrix<double, 5, 10> lin_accel_ = Eigen::Matrix<double, 5, 10>::Zero();  // A
-  Matrix10 exp_full_ = Matrix10::Identity(), exp_half_ = Matrix10::Identity();
-  Matrix10x5 phi_half_ = Matrix10x5::Zero();  // (h/2) phi1(hL/2)
-  Matrix10x5 w1_ = Matrix10x5::Zero(), w2_ = Matrix10x5::Zero(), w3_ = Matrix10x5::Zero();
-  // Adams method: the predictor [E P] (e^{hL} and the weights P of the remainder at the
-  // step's start and of the history entries, side by side) over its linear part A [E P], one
-  // 15x30 product with (y, r, r_-1, r_-2, r_-3) giving y_p and A y_p. The corrector is the
-  // predicted end plus the weight of the predicted end's remainder times the fourth backward
-  // difference of the remainders (the two cubics differ by exactly that term), one 10x5
-  // product.
-  Eigen::Matrix<double, 15, 30> adams_step_ = Eigen::Matrix<double, 15, 30>::Zero();
-  Matrix10x5 adams_corrector_ = Matrix10x5::Zero();
-  // A sample at theta of the last step (0 < theta < 1; entry lead - 1 for theta = 1 - lead /
-  // step_ratio_.samples): (y, A y + r)(theta) = D (y_last_start, r_end, r, r_-1, r_-2) from
-  // the corrector's cubic through the four remainders, exact in the linear part.
-  std::array<Eigen::Matrix<double, 15, 30>, kAdamsStepSampleDivisions - 1> adams_sample_within_step_{};
-  AdamsState adams_;
-  // The cage turn of half an internal step and its cos and sin (recomputed when it changes),
-  // and cos and sin of the cage angle at the end of the last integrated sample.
-  mutable double half_step_turn_ = std::numeric_limits<double>::quiet_NaN();
-  mutable CageTrig half_step_rotation_;
-  mutable CageTrig sample_end_trig_;
-  double linearized_step_s_ = 0.0;
-  int samples_since_linearization_ = 0;
-  std::uint64_t linearizations_ = 0;
+  // The balls integrated (near contact by the margin) and the others, split every
+  // kSamplesPerBallSplit samples (see step()).
+  struct BallSplit {
+    BallArrays active, clear;
+    std::uint64_t full_sample_retries = 0;  // samples redone with every ball
+    int samples_since = 0;                  // 0: split again before the next sample
+    // Since the last split: its displacement, the largest deflection (spalls left out) of a
+    // clear ball then, and the rolling travel (|cage|, |cage - outer|, |cage - inner|, |spin|, rad).
+    Vector5 displacement = Vector5::Zero();
+    double clear_max_deflection_m = 0.0;
+    std::array<double, 4> travel{};
+  };
+  BallSplit split_;
   static constexpr int kSamplesPerBallSplit = 16;
+  // The integrators' state (integrator_state.hpp): the exponential integrators' linear part
+  // and ETDRK4's weights, the Adams methods' weights and their running state.
+  integrators::EtdState etd_;
+  integrators::AdamsWeights adams_weights_;
+  AdamsState adams_;
   static constexpr int kSamplesPerCageTrig = 16;
-  int samples_since_split_ = 0;  // current_.acceleration matches the load and model_
-  // Since the last split: its displacement, the largest deflection (spalls left out) of a
-  // clear ball then, and the rolling travel (|cage|, |cage - outer|, |cage - inner|, |spin|, rad).
-  Vector5 split_displacement_ = Vector5::Zero();
-  double split_clear_max_deflection_m_ = 0.0;
-  std::array<double, 4> split_travel_{};
   // Upper bound of every clear ball's deflection at q after `travel` (see step()).
   double clear_deflection_bound_m(const Vector5& q, const std::array<double, 4>& travel) const;
 };
