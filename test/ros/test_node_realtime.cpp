@@ -27,12 +27,15 @@ constexpr double kStampToleranceS = 1e-6;
 // system clock's own slewing during the run.
 constexpr double kClockToleranceS = 0.001;
 
-// utime + stime of a process, s.
+// utime + stime of a process, s; NaN when its /proc entry cannot be read (the process gone:
+// the figure is printed for the record, not asserted).
 double cpu_seconds(int pid) {
   std::ifstream f("/proc/" + std::to_string(pid) + "/stat");
   std::string line;
   std::getline(f, line);
-  std::istringstream rest(line.substr(line.rfind(')') + 2));  // after "pid (comm) "
+  const std::size_t comm_end = line.rfind(')');
+  if (comm_end == std::string::npos || comm_end + 2 > line.size()) return std::nan("");
+  std::istringstream rest(line.substr(comm_end + 2));  // after "pid (comm) "
   std::string field;
   double utime = 0, stime = 0;
   for (int i = 3; i <= 15 && rest >> field; ++i) {
