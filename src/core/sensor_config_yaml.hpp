@@ -1,6 +1,7 @@
 #pragma once
-// The readers of a sensor file's YAML (docs/sensor.md), apart from the sensor's physics
-// (virtual_accelerometer.hpp, machine_background.hpp).
+// The readers of a sensor file's YAML (docs/sensor.md): virtual_accelerometer_reader.cpp and
+// machine_background_reader.cpp, apart from the sensor's physics (virtual_accelerometer.hpp,
+// machine_background.hpp). Internal to the core library.
 #include <string>
 
 #include <yaml-cpp/yaml.h>

@@ -110,9 +110,6 @@ YAML_SOURCES = {
     'sweep.cpp': 'varies the keys of a bearing file for each case',
     'flexible_ring_config.cpp': 'the reader of the flexible_ring: block',
     'flexible_ring_config.hpp': 'the reader of the flexible_ring: block',
-    # Sensor physics with their readers still inside (to move to a reader like the others).
-    'machine_background.cpp': 'parse_installation_config',
-    'virtual_accelerometer.cpp': 'parse_accelerometer_config',
 }
 
 
