@@ -11,6 +11,7 @@
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
+#include "dynamics_eigenvalues.hpp"
 #include "small_products.hpp"
 
 namespace bearing_sim {
@@ -48,9 +49,7 @@ BearingDynamics::BearingDynamics(BearingModel model, const Vector5& load, double
 
 Vector5 BearingDynamics::natural_frequencies_rad_s(const BearingModel& model, const Vector5& load) {
   const StaticSolution s = solve_static(model, load);
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix5> eigen(0.5 * (s.stiffness + s.stiffness.transpose()),
-                                                                model.mass_matrix(), Eigen::EigenvaluesOnly);
-  return eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  return detail::undamped_natural_frequencies(s.stiffness, model.mass_matrix());
 }
 
 double BearingDynamics::fastest_rate_rad_s(const BearingModel& model, const Vector5& load) {
@@ -65,7 +64,7 @@ double BearingDynamics::fastest_rate_rad_s(const BearingModel& model, const Vect
   a.topRightCorner<5, 5>().setIdentity();
   a.bottomLeftCorner<5, 5>() = -(inv_m * s.stiffness);
   a.bottomRightCorner<5, 5>() = -(inv_m * damping);
-  return Eigen::EigenSolver<Eigen::Matrix<double, 10, 10>>(a, false).eigenvalues().cwiseAbs().maxCoeff();
+  return detail::largest_eigenvalue_magnitude(a);
 }
 
 const char* integration_method_name(IntegrationMethod method) {

@@ -1,0 +1,15 @@
+#include "dynamics_eigenvalues.hpp"
+
+namespace bearing_sim::detail {
+
+Vector5 undamped_natural_frequencies(const Matrix5& stiffness, const Matrix5& mass) {
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix5> eigen(0.5 * (stiffness + stiffness.transpose()), mass,
+                                                                Eigen::EigenvaluesOnly);
+  return eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+}
+
+double largest_eigenvalue_magnitude(const Eigen::Matrix<double, 10, 10>& a) {
+  return Eigen::EigenSolver<Eigen::Matrix<double, 10, 10>>(a, false).eigenvalues().cwiseAbs().maxCoeff();
+}
+
+}  // namespace bearing_sim::detail
