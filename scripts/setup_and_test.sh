@@ -17,9 +17,14 @@ source "$BEARING_SIM_BUILD/devel/setup.bash"
 set -u
 rm -rf "$BEARING_SIM_BUILD/test_results"
 TIMEFORMAT='tests: %0R s wall, %0U s user, %0S s sys'
-time cmake --build "$BEARING_SIM_BUILD" -- -j"${BEARING_SIM_TEST_JOBS:-2}" --output-sync=target run_tests 2>&1 \
+# A test program that never ends must not hold the run up: after BEARING_SIM_TEST_TIMEOUT_S
+# (default 2400 s, ten times a loaded run) the test programs are stopped, and the suites that
+# wrote no results count as failed below. grep passes each line on at once, so a log cut
+# short shows how far the run got.
+time timeout --kill-after=30 "${BEARING_SIM_TEST_TIMEOUT_S:-2400}" \
+  cmake --build "$BEARING_SIM_BUILD" -- -j"${BEARING_SIM_TEST_JOBS:-2}" --output-sync=target run_tests 2>&1 \
   | tee "$BEARING_SIM_BUILD/run_tests.log" \
-  | grep -E '^\[ *(RUN|OK|FAILED|PASSED) |^\[ROSTEST\]|^(SUMMARY|  \* RESULT|FAILURE)|Failure|Error|\.\.\. (ok|FAIL|ERROR|skipped)|SKIPPED' || true
+  | grep --line-buffered -E '^\[ *(RUN|OK|FAILED|PASSED) |^\[ROSTEST\]|^(SUMMARY|  \* RESULT|FAILURE)|Failure|Error|\.\.\. (ok|FAIL|ERROR|skipped)|SKIPPED' || true
 # Built without LCM (-DBEARING_SIM_WITH_LCM=OFF): its suites are not expected, and said so.
 without=()
 grep -q '^BEARING_SIM_WITH_LCM:BOOL=OFF' "$BEARING_SIM_BUILD/CMakeCache.txt" && without+=(--without lcm)

@@ -22,8 +22,13 @@ std::string read_file(const std::string& path);
 // The built bearing_tool's path.
 std::string bearing_tool_path();
 
+// The longest a bearing_tool run of a test may take before it is stopped: 15 min, far above
+// any test's run even on a loaded machine.
+constexpr int kToolTimeoutS = 900;
+
 // bearing_tool with `args` (shell words); stdout and stderr captured apart, stderr via a
-// file in `scratch_dir`.
+// file in `scratch_dir`, stdin empty. A run stopped at kToolTimeoutS exits 124 (or 137) and
+// its stderr says so.
 RunResult run_bearing_tool(const std::string& args, const std::string& scratch_dir);
 
 // A test with a scratch directory of its own (removed afterwards) to write inputs into and
