@@ -6,9 +6,12 @@
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/seeded_gaussian.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
+#include "indexed_key.hpp"
 
 namespace bearing_sim {
 namespace {
+
+using detail::at;
 
 // Bounds that catch a unit slip, not physics: 100 g is twice the usual sensor's range.
 constexpr double kMaxAmplitude_m_s2 = 100.0 * kStandardGravity_m_s2;
@@ -24,8 +27,6 @@ constexpr std::uint32_t kShaftStream = 1, kHalfOrderStream = 3, kOtherOrderStrea
 // (the drift in between stays below 1e-9 rad).
 constexpr double kMaxRotationCorrection_rad = 1e-4;
 constexpr int kResyncSamples = 4096;
-
-std::string at(const std::string& key, std::size_t i) { return key + "[" + std::to_string(i) + "]"; }
 
 InstallationProblem amplitudes_problem(const std::vector<double>& a, const std::string& key, std::size_t max_count) {
   if (a.size() > max_count) return {key, "at most " + std::to_string(max_count) + " values"};

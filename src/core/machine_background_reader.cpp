@@ -6,16 +6,17 @@
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/machine_background.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
+#include "indexed_key.hpp"
 #include "sensor_config_yaml.hpp"
 #include "yaml_reader.hpp"
 
 namespace bearing_sim {
 namespace {
 
+using detail::at;
+
 constexpr double kMg_m_s2 = 1e-3 * kStandardGravity_m_s2;
 constexpr double kUgPerSqrtHz = 1e-6 * kStandardGravity_m_s2;
-
-std::string at(const std::string& key, std::size_t i) { return key + "[" + std::to_string(i) + "]"; }
 
 std::vector<double> number_list(const detail::Reader& r, const YAML::Node& map, const std::string& key, double scale) {
   std::vector<double> values;

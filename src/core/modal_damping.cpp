@@ -4,10 +4,9 @@
 #include <cmath>
 #include <sstream>
 
-#include <Eigen/Eigenvalues>
-
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
+#include "bearing_sim/core/symmetric_eigen.hpp"
 
 namespace bearing_sim {
 
@@ -25,15 +24,15 @@ RadialMode radial_mode(const BearingModel& model, const Vector5& load) {
   unit_model.contact_force_and_stiffness(s.displacement, RollingPhase{}, nullptr, &g);
 
   const Matrix5 m = model.mass_matrix();
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix5> eigen(0.5 * (s.stiffness + s.stiffness.transpose()), m);
+  const SymmetricEigen5 eigen = generalized_symmetric_eigen(0.5 * (s.stiffness + s.stiffness.transpose()), m, true);
   Eigen::Vector2d radial(load[0], load[1]);
   radial = radial.norm() > 0.0 ? Eigen::Vector2d(radial.normalized()) : Eigen::Vector2d(1.0, 0.0);
-  const double lambda_max = eigen.eigenvalues().cwiseAbs().maxCoeff();
+  const double lambda_max = eigen.eigenvalues.cwiseAbs().maxCoeff();
   RadialMode best;
   for (int i = 0; i < 5; ++i) {
-    const double lambda = eigen.eigenvalues()[i];
+    const double lambda = eigen.eigenvalues[i];
     if (!(lambda > 1e-9 * lambda_max)) continue;  // no stiffness in this shape
-    Vector5 phi = eigen.eigenvectors().col(i);
+    Vector5 phi = eigen.eigenvectors.col(i);
     phi /= std::sqrt(phi.dot(m * phi));
     const double along = radial.x() * phi[0] + radial.y() * phi[1];
     const double share = m(0, 0) * along * along;  // translation's share, of a mass-normalized shape

@@ -3,21 +3,20 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <mutex>
-#include <regex>
 #include <sstream>
 #include <thread>
-
-#include <Eigen/Eigenvalues>
 
 #include "bearing_config_reader.hpp"
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/flexible_bearing.hpp"
 #include "bearing_sim/core/frequencies.hpp"
+#include "bearing_sim/core/symmetric_eigen.hpp"
 #include "yaml_reader.hpp"
 
 namespace bearing_sim {
@@ -177,23 +176,44 @@ std::string dirname_of(const std::string& path) {
   return slash == std::string::npos ? "." : path.substr(0, slash);
 }
 
-// "208", "Z", "Z-1", "2Z+1" -> integer for balls per row z.
+// "208", "Z", "Z-1", "2Z+1" -> integer for balls per row z: `\s*[0-9]+\s*` or
+// `\s*[0-9]*\s*[Zz]\s*([+-]\s*[0-9]+)?\s*`. Scanned by hand: std::regex doubled this file's
+// compile time.
 bool resolve_order(const std::string& text, int z, int* order) {
-  static const std::regex plain("^\\s*([0-9]+)\\s*$");
-  static const std::regex rel("^\\s*([0-9]*)\\s*[Zz]\\s*(([+-])\\s*([0-9]+))?\\s*$");
-  std::smatch m;
-  if (std::regex_match(text, m, plain)) {
-    *order = std::stoi(m[1]);
+  std::size_t i = 0;
+  const auto skip_space = [&] {
+    while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+  };
+  const auto digits = [&] {
+    const std::size_t start = i;
+    while (i < text.size() && text[i] >= '0' && text[i] <= '9') ++i;
+    return text.substr(start, i - start);
+  };
+  skip_space();
+  const std::string factor = digits();
+  skip_space();
+  if (i == text.size()) {
+    if (factor.empty()) return false;
+    *order = std::stoi(factor);
     return true;
   }
-  if (std::regex_match(text, m, rel)) {
-    const int k = m[1].str().empty() ? 1 : std::stoi(m[1]);
-    int offset = 0;
-    if (m[2].matched) offset = (m[3] == "-" ? -1 : 1) * std::stoi(m[4]);
-    *order = k * z + offset;
-    return true;
+  if (text[i] != 'Z' && text[i] != 'z') return false;
+  ++i;
+  skip_space();
+  char sign = 0;
+  std::string term;
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) {
+    sign = text[i++];
+    skip_space();
+    term = digits();
+    if (term.empty()) return false;
+    skip_space();
   }
-  return false;
+  if (i != text.size()) return false;
+  const int k = factor.empty() ? 1 : std::stoi(factor);
+  const int offset = sign ? (sign == '-' ? -1 : 1) * std::stoi(term) : 0;
+  *order = k * z + offset;
+  return true;
 }
 
 // The imperfections section of one case: orders resolved against Z, amplitudes scaled.
@@ -511,9 +531,9 @@ SweepResult run_sweep_case(const SweepCase& c, bool dynamic) {
     if (c.config.has_dynamics()) {
       const Matrix5 k = 0.5 * (r.statics.stiffness + r.statics.stiffness.transpose());
       const Matrix5 m = model.mass_matrix();
-      Eigen::GeneralizedSelfAdjointEigenSolver<Matrix5> eig(k, m, Eigen::EigenvaluesOnly);
-      if (eig.info() == Eigen::Success)
-        for (int i = 0; i < 5; ++i) r.ring_modes_hz[i] = std::sqrt(std::max(eig.eigenvalues()[i], 0.0)) / (2.0 * kPi);
+      const SymmetricEigen5 eig = generalized_symmetric_eigen(k, m, false);
+      if (eig.converged)
+        for (int i = 0; i < 5; ++i) r.ring_modes_hz[i] = std::sqrt(std::max(eig.eigenvalues[i], 0.0)) / (2.0 * kPi);
     }
     if (dynamic) {
       SimulationRequest req;

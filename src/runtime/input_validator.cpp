@@ -5,13 +5,13 @@
 #include <sstream>
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
+#include "bearing_sim/core/symmetric_eigen.hpp"
 
 namespace bearing_sim {
 namespace runtime {
@@ -80,10 +80,9 @@ InputCheck check_integrator_work(const BearingModel& model, const Vector5& load,
   const Matrix5 l_inv = Eigen::LLT<Matrix5>(model.mass_matrix()).matrixL().solve(Matrix5::Identity());
   const Matrix5 a = l_inv * s.stiffness * l_inv.transpose();
   const Matrix5 d = l_inv * damping * l_inv.transpose();
-  const Eigen::SelfAdjointEigenSolver<Matrix5> eigen(0.5 * (a + a.transpose()));
-  const double omega_max = std::sqrt(std::max(0.0, eigen.eigenvalues()[4]));
-  const double damping_rate =
-      Eigen::SelfAdjointEigenSolver<Matrix5>(0.5 * (d + d.transpose()), Eigen::EigenvaluesOnly).eigenvalues()[4];
+  const SymmetricEigen5 eigen = symmetric_eigen(0.5 * (a + a.transpose()), true);
+  const double omega_max = std::sqrt(std::max(0.0, eigen.eigenvalues[4]));
+  const double damping_rate = symmetric_eigen(0.5 * (d + d.transpose()), false).eigenvalues[4];
   const BearingConfig& b = model.config();
   std::ostringstream why;
   constexpr double kHighestPlausibleModeHz = 1.0e5;
@@ -96,7 +95,7 @@ InputCheck check_integrator_work(const BearingModel& model, const Vector5& load,
   } else {
     Eigen::Index dof = 0;
     // The mode's shape in the ring's coordinates, each DOF weighted by its own inertia.
-    const Vector5 shape = l_inv.transpose() * eigen.eigenvectors().col(4);
+    const Vector5 shape = l_inv.transpose() * eigen.eigenvectors.col(4);
     shape.cwiseProduct(model.mass_matrix().diagonal().cwiseSqrt()).cwiseAbs().maxCoeff(&dof);
     const std::string mode = dof >= 3 ? "tilt" : dof == 2 ? "axial" : "radial";
     why << mode << " mode at " << frequency_text(omega_max / kTwoPi) << ": ";
