@@ -19,7 +19,7 @@ using namespace bearing_sim;
 using namespace bearing_sim::test;
 
 namespace {
-const char* kSource = "unit_test_bearing.yaml";
+const char* kBearingSource = "unit_test_bearing.yaml";
 
 // A valid single-row file as (key, value) lines; overrides replace or add, "" removes.
 std::string yaml(const std::map<std::string, std::string>& overrides = {}) {
@@ -51,14 +51,14 @@ std::string yaml(const std::map<std::string, std::string>& overrides = {}) {
 }
 
 // Expects a ConfigError whose message names the source and every one of `words`.
-void expect_error(const std::string& text, const std::vector<std::string>& words) {
+void expect_bearing_error(const std::string& text, const std::vector<std::string>& words) {
   SCOPED_TRACE(text);
   try {
-    bearing_config_from_string(text, kSource);
+    bearing_config_from_string(text, kBearingSource);
     ADD_FAILURE() << "no ConfigError";
   } catch (const ConfigError& e) {
     const std::string msg = e.what();
-    EXPECT_NE(msg.find(kSource), std::string::npos) << msg;
+    EXPECT_NE(msg.find(kBearingSource), std::string::npos) << msg;
     for (const auto& w : words) EXPECT_NE(msg.find(w), std::string::npos) << "'" << w << "' not in: " << msg;
   } catch (const std::exception& e) {
     ADD_FAILURE() << "wrong exception type: " << e.what();
@@ -67,7 +67,7 @@ void expect_error(const std::string& text, const std::vector<std::string>& words
 }  // namespace
 
 TEST(ConfigErrors, BaseFileIsValid) {
-  const BearingConfig c = bearing_config_from_string(yaml(), kSource);
+  const BearingConfig c = bearing_config_from_string(yaml(), kBearingSource);
   EXPECT_EQ(c.balls_per_row, 9);
   EXPECT_NEAR(c.ball_diameter_m, 7.94e-3, 1e-15);
   EXPECT_NEAR(c.contact_angle_rad, 15.0 * kPi / 180.0, 1e-15);
@@ -79,83 +79,83 @@ TEST(ConfigErrors, BaseFileIsValid) {
 TEST(ConfigErrors, MissingRequiredKey) {
   for (const char* k :
        {"balls_per_row", "ball_diameter_mm", "pitch_diameter_mm", "inner_groove_curvature", "outer_groove_curvature"})
-    expect_error(yaml({{k, ""}}), {k});
+    expect_bearing_error(yaml({{k, ""}}), {k});
   // Two rows need a row spacing.
-  expect_error(yaml({{"rows", "2"}}), {"row_spacing_mm"});
+  expect_bearing_error(yaml({{"rows", "2"}}), {"row_spacing_mm"});
 }
 
 TEST(ConfigErrors, UnknownKey) {
-  expect_error(yaml({{"ball_diameter", "7.94"}}), {"ball_diameter"});
-  expect_error(yaml({{"material", "{youngs_modulus: 208}"}}), {"material", "youngs_modulus"});
-  expect_error(yaml({{"damping", "{contact_damping: 10}"}}), {"damping", "contact_damping"});
+  expect_bearing_error(yaml({{"ball_diameter", "7.94"}}), {"ball_diameter"});
+  expect_bearing_error(yaml({{"material", "{youngs_modulus: 208}"}}), {"material", "youngs_modulus"});
+  expect_bearing_error(yaml({{"damping", "{contact_damping: 10}"}}), {"damping", "contact_damping"});
 }
 
 TEST(ConfigErrors, WrongType) {
-  expect_error(yaml({{"ball_diameter_mm", "seven"}}), {"ball_diameter_mm"});
-  expect_error(yaml({{"balls_per_row", "9.5"}}), {"balls_per_row"});
-  expect_error(yaml({{"rows", "two"}}), {"rows"});
-  expect_error(yaml({{"pitch_diameter_mm", "[39.04]"}}), {"pitch_diameter_mm"});
-  expect_error(yaml({{"material", "208"}}), {"material"});
-  expect_error(yaml({{"material", "{poisson_ratio: abc}"}}), {"poisson_ratio"});
-  expect_error(yaml({{"damping", "{contact_damping_Ns_per_m: lots}"}}), {"contact_damping_Ns_per_m"});
-  expect_error(yaml({{"rotating_ring", "both"}}), {"rotating_ring"});
-  expect_error(yaml({{"arrangement", "tandem"}}), {"arrangement"});
+  expect_bearing_error(yaml({{"ball_diameter_mm", "seven"}}), {"ball_diameter_mm"});
+  expect_bearing_error(yaml({{"balls_per_row", "9.5"}}), {"balls_per_row"});
+  expect_bearing_error(yaml({{"rows", "two"}}), {"rows"});
+  expect_bearing_error(yaml({{"pitch_diameter_mm", "[39.04]"}}), {"pitch_diameter_mm"});
+  expect_bearing_error(yaml({{"material", "208"}}), {"material"});
+  expect_bearing_error(yaml({{"material", "{poisson_ratio: abc}"}}), {"poisson_ratio"});
+  expect_bearing_error(yaml({{"damping", "{contact_damping_Ns_per_m: lots}"}}), {"contact_damping_Ns_per_m"});
+  expect_bearing_error(yaml({{"rotating_ring", "both"}}), {"rotating_ring"});
+  expect_bearing_error(yaml({{"arrangement", "tandem"}}), {"arrangement"});
 }
 
 TEST(ConfigErrors, OutOfRange) {
-  expect_error(yaml({{"ball_diameter_mm", "0"}}), {"ball_diameter_mm"});
-  expect_error(yaml({{"ball_diameter_mm", "-7.94"}}), {"ball_diameter_mm"});
-  expect_error(yaml({{"pitch_diameter_mm", "0"}}), {"pitch_diameter_mm"});
-  expect_error(yaml({{"pitch_diameter_mm", "-39"}}), {"pitch_diameter_mm"});
-  expect_error(yaml({{"balls_per_row", "0"}}), {"balls_per_row"});
-  expect_error(yaml({{"balls_per_row", "-9"}}), {"balls_per_row"});
-  expect_error(yaml({{"inner_groove_curvature", "0.5"}}), {"inner_groove_curvature"});
-  expect_error(yaml({{"inner_groove_curvature", "0.45"}}), {"inner_groove_curvature"});
-  expect_error(yaml({{"outer_groove_curvature", "0.5"}}), {"outer_groove_curvature"});
-  expect_error(yaml({{"outer_groove_curvature", "-1"}}), {"outer_groove_curvature"});
-  expect_error(yaml({{"contact_angle_deg", "-1"}}), {"contact_angle_deg"});
-  expect_error(yaml({{"contact_angle_deg", "60"}}), {"contact_angle_deg"});
-  expect_error(yaml({{"contact_angle_deg", "75"}}), {"contact_angle_deg"});
-  expect_error(yaml({{"rows", "3"}}), {"rows"});
-  expect_error(yaml({{"rows", "0"}}), {"rows"});
-  expect_error(yaml({{"rows", "2"}, {"row_spacing_mm", "0"}}), {"row_spacing_mm"});
-  expect_error(yaml({{"rows", "2"}, {"row_spacing_mm", "-5"}}), {"row_spacing_mm"});
-  expect_error(yaml({{"material", "{poisson_ratio: 0.5}"}}), {"poisson_ratio"});
-  expect_error(yaml({{"material", "{poisson_ratio: -0.1}"}}), {"poisson_ratio"});
-  expect_error(yaml({{"material", "{youngs_modulus_GPa: 0}"}}), {"youngs_modulus_GPa"});
-  expect_error(yaml({{"material", "{density_kg_m3: -1}"}}), {"density_kg_m3"});
-  expect_error(yaml({{"damping", "{contact_damping_Ns_per_m: -1}"}}), {"contact_damping_Ns_per_m"});
-  expect_error(yaml({{"rotating_mass_kg", "0"}}), {"rotating_mass_kg"});
-  expect_error(yaml({{"rotating_mass_kg", "-1"}}), {"rotating_mass_kg"});
-  expect_error(yaml({{"tilt_inertia_kg_m2", "-1"}}), {"tilt_inertia_kg_m2"});
+  expect_bearing_error(yaml({{"ball_diameter_mm", "0"}}), {"ball_diameter_mm"});
+  expect_bearing_error(yaml({{"ball_diameter_mm", "-7.94"}}), {"ball_diameter_mm"});
+  expect_bearing_error(yaml({{"pitch_diameter_mm", "0"}}), {"pitch_diameter_mm"});
+  expect_bearing_error(yaml({{"pitch_diameter_mm", "-39"}}), {"pitch_diameter_mm"});
+  expect_bearing_error(yaml({{"balls_per_row", "0"}}), {"balls_per_row"});
+  expect_bearing_error(yaml({{"balls_per_row", "-9"}}), {"balls_per_row"});
+  expect_bearing_error(yaml({{"inner_groove_curvature", "0.5"}}), {"inner_groove_curvature"});
+  expect_bearing_error(yaml({{"inner_groove_curvature", "0.45"}}), {"inner_groove_curvature"});
+  expect_bearing_error(yaml({{"outer_groove_curvature", "0.5"}}), {"outer_groove_curvature"});
+  expect_bearing_error(yaml({{"outer_groove_curvature", "-1"}}), {"outer_groove_curvature"});
+  expect_bearing_error(yaml({{"contact_angle_deg", "-1"}}), {"contact_angle_deg"});
+  expect_bearing_error(yaml({{"contact_angle_deg", "60"}}), {"contact_angle_deg"});
+  expect_bearing_error(yaml({{"contact_angle_deg", "75"}}), {"contact_angle_deg"});
+  expect_bearing_error(yaml({{"rows", "3"}}), {"rows"});
+  expect_bearing_error(yaml({{"rows", "0"}}), {"rows"});
+  expect_bearing_error(yaml({{"rows", "2"}, {"row_spacing_mm", "0"}}), {"row_spacing_mm"});
+  expect_bearing_error(yaml({{"rows", "2"}, {"row_spacing_mm", "-5"}}), {"row_spacing_mm"});
+  expect_bearing_error(yaml({{"material", "{poisson_ratio: 0.5}"}}), {"poisson_ratio"});
+  expect_bearing_error(yaml({{"material", "{poisson_ratio: -0.1}"}}), {"poisson_ratio"});
+  expect_bearing_error(yaml({{"material", "{youngs_modulus_GPa: 0}"}}), {"youngs_modulus_GPa"});
+  expect_bearing_error(yaml({{"material", "{density_kg_m3: -1}"}}), {"density_kg_m3"});
+  expect_bearing_error(yaml({{"damping", "{contact_damping_Ns_per_m: -1}"}}), {"contact_damping_Ns_per_m"});
+  expect_bearing_error(yaml({{"rotating_mass_kg", "0"}}), {"rotating_mass_kg"});
+  expect_bearing_error(yaml({{"rotating_mass_kg", "-1"}}), {"rotating_mass_kg"});
+  expect_bearing_error(yaml({{"tilt_inertia_kg_m2", "-1"}}), {"tilt_inertia_kg_m2"});
   // A row phase beyond a turn (1e308 lost every digit of the azimuth; 1e20 put all balls at one).
-  expect_error(yaml({{"rows", "2"}, {"row_spacing_mm", "10"}, {"row_phase_deg", "1e308"}}), {"row_phase_deg"});
-  expect_error(yaml({{"rows", "2"}, {"row_spacing_mm", "10"}, {"row_phase_deg", "-361"}}), {"row_phase_deg"});
+  expect_bearing_error(yaml({{"rows", "2"}, {"row_spacing_mm", "10"}, {"row_phase_deg", "1e308"}}), {"row_phase_deg"});
+  expect_bearing_error(yaml({{"rows", "2"}, {"row_spacing_mm", "10"}, {"row_phase_deg", "-361"}}), {"row_phase_deg"});
   EXPECT_NO_THROW(
-      bearing_config_from_string(yaml({{"rows", "2"}, {"row_spacing_mm", "10"}, {"row_phase_deg", "-360"}}), kSource));
+      bearing_config_from_string(yaml({{"rows", "2"}, {"row_spacing_mm", "10"}, {"row_phase_deg", "-360"}}), kBearingSource));
   // Balls that do not fit on the pitch circle: 40 x 7.94 mm > pi x 39.04 mm.
-  expect_error(yaml({{"balls_per_row", "40"}}), {"balls_per_row"});
+  expect_bearing_error(yaml({{"balls_per_row", "40"}}), {"balls_per_row"});
   // Limits are open/closed as documented: 0 deg and just under 60 deg are accepted.
-  EXPECT_NO_THROW(bearing_config_from_string(yaml({{"contact_angle_deg", "0"}}), kSource));
-  EXPECT_NO_THROW(bearing_config_from_string(yaml({{"contact_angle_deg", "59.9"}}), kSource));
-  EXPECT_NO_THROW(bearing_config_from_string(yaml({{"inner_groove_curvature", "0.5001"}}), kSource));
+  EXPECT_NO_THROW(bearing_config_from_string(yaml({{"contact_angle_deg", "0"}}), kBearingSource));
+  EXPECT_NO_THROW(bearing_config_from_string(yaml({{"contact_angle_deg", "59.9"}}), kBearingSource));
+  EXPECT_NO_THROW(bearing_config_from_string(yaml({{"inner_groove_curvature", "0.5001"}}), kBearingSource));
 }
 
 TEST(ConfigErrors, NonFinite) {
   for (const char* v : {".nan", ".NaN", ".inf", "-.inf"}) {
-    expect_error(yaml({{"ball_diameter_mm", v}}), {"ball_diameter_mm"});
-    expect_error(yaml({{"clearance_um", v}}), {"clearance_um"});
-    expect_error(yaml({{"material", std::string("{youngs_modulus_GPa: ") + v + "}"}}), {"youngs_modulus_GPa"});
-    expect_error(yaml({{"damping", std::string("{contact_damping_Ns_per_m: ") + v + "}"}}),
+    expect_bearing_error(yaml({{"ball_diameter_mm", v}}), {"ball_diameter_mm"});
+    expect_bearing_error(yaml({{"clearance_um", v}}), {"clearance_um"});
+    expect_bearing_error(yaml({{"material", std::string("{youngs_modulus_GPa: ") + v + "}"}}), {"youngs_modulus_GPa"});
+    expect_bearing_error(yaml({{"damping", std::string("{contact_damping_Ns_per_m: ") + v + "}"}}),
                  {"contact_damping_Ns_per_m"});
   }
 }
 
 TEST(ConfigErrors, MalformedYamlAndMissingFile) {
-  expect_error("balls_per_row: [9\nball_diameter_mm: 7.94\n", {});
-  expect_error("balls_per_row: 9\n  ball_diameter_mm: : 7.94\n", {});
-  expect_error("- just\n- a list\n", {});
-  expect_error("", {});
+  expect_bearing_error("balls_per_row: [9\nball_diameter_mm: 7.94\n", {});
+  expect_bearing_error("balls_per_row: 9\n  ball_diameter_mm: : 7.94\n", {});
+  expect_bearing_error("- just\n- a list\n", {});
+  expect_bearing_error("", {});
   const std::string missing = std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/no_such_bearing.yaml";
   try {
     load_bearing_config(missing);
@@ -254,7 +254,7 @@ TEST(ConfigErrors, AnImperfectionsFileReadsAsTheSameSectionsOfABearingFile) {
   std::ifstream in(file);
   std::stringstream text;
   text << in.rdbuf();
-  const ImperfectionSpec in_bearing = bearing_config_from_string(yaml() + text.str(), kSource).imperfections;
+  const ImperfectionSpec in_bearing = bearing_config_from_string(yaml() + text.str(), kBearingSource).imperfections;
   ASSERT_EQ(in_bearing.waviness.size(), alone.waviness.size());
   for (std::size_t i = 0; i < alone.waviness.size(); ++i) {
     EXPECT_EQ(in_bearing.waviness[i].order, alone.waviness[i].order);
@@ -275,11 +275,11 @@ TEST(ConfigErrors, AnImperfectionsTextWithABadKeyIsRefusedNamingIt) {
   for (const auto& [text, words] : cases) {
     SCOPED_TRACE(text);
     try {
-      imperfections_from_string(text, kSource, 1);
+      imperfections_from_string(text, kBearingSource, 1);
       ADD_FAILURE() << "no ConfigError";
     } catch (const ConfigError& e) {
       const std::string msg = e.what();
-      EXPECT_NE(msg.find(kSource), std::string::npos) << msg;
+      EXPECT_NE(msg.find(kBearingSource), std::string::npos) << msg;
       for (const auto& w : words) EXPECT_NE(msg.find(w), std::string::npos) << "'" << w << "' not in: " << msg;
     }
   }

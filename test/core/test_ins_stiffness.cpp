@@ -7,13 +7,13 @@
 #include <cmath>
 
 #include "bearing_sim/core/bearing_config.hpp"
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 
 namespace bearing_sim {
 namespace {
 
 constexpr double kKgf = 9.80665;  // N
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kFactor = 2.0;  // docs/validation.md, section 2
 
 const std::string kFile = std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/ins_618_22_db.yaml";

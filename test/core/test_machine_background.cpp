@@ -487,59 +487,59 @@ TEST(MachineBackground, ParsesTheInstallationAndPathModes) {
   EXPECT_NO_THROW(VirtualAccelerometer(cwru, 12000.0));
 }
 
-void expect_config_error(const std::string& body, const std::string& key) {
+void expect_background_error(const std::string& body, const std::string& key) {
   test::expect_config_error([&] { accelerometer_config_from_string("sensor:\n" + body, "bad_sensor.yaml"); },
                             {"bad_sensor.yaml", "'" + key + "'"}, key);
 }
 
 TEST(MachineBackground, BadKeysAreRefusedNamingThem) {
   const std::string mode = "  path_modes:\n    - {frequency_Hz: 1000, damping_ratio: 0.03, participation: 0.5";
-  expect_config_error(mode + ", q: 1}\n", "sensor.path_modes[0].q");
-  expect_config_error("  path_modes:\n    - {frequency_Hz: 1000, damping_ratio: 0.03}\n",
+  expect_background_error(mode + ", q: 1}\n", "sensor.path_modes[0].q");
+  expect_background_error("  path_modes:\n    - {frequency_Hz: 1000, damping_ratio: 0.03}\n",
                       "sensor.path_modes[0].participation");
-  expect_config_error(mode + "}\n    - {frequency_Hz: 2000, damping_ratio: 0.03, participation: 9.6}\n",
+  expect_background_error(mode + "}\n    - {frequency_Hz: 2000, damping_ratio: 0.03, participation: 9.6}\n",
                       "sensor.path_modes");  // participations add up to 10.1
-  expect_config_error("  path_modes:\n    - {frequency_Hz: 1000, damping_ratio: 0, participation: 0.5}\n",
+  expect_background_error("  path_modes:\n    - {frequency_Hz: 1000, damping_ratio: 0, participation: 0.5}\n",
                       "sensor.path_modes[0].damping_ratio");
-  expect_config_error("  path_modes:\n    - {frequency_Hz: .nan, damping_ratio: 0.03, participation: 0.5}\n",
+  expect_background_error("  path_modes:\n    - {frequency_Hz: .nan, damping_ratio: 0.03, participation: 0.5}\n",
                       "sensor.path_modes[0].frequency_Hz");
-  expect_config_error("  path_modes:\n    - {frequency_Hz: 1000, damping_ratio: 0.03, participation: 10.5}\n",
+  expect_background_error("  path_modes:\n    - {frequency_Hz: 1000, damping_ratio: 0.03, participation: 10.5}\n",
                       "sensor.path_modes[0].participation");
-  expect_config_error("  path_modes: 3\n", "sensor.path_modes");
-  expect_config_error("  mount_resonance_Hz: -1\n", "sensor.mount_resonance_Hz");
-  expect_config_error("  mount_damping_ratio: 0\n", "sensor.mount_damping_ratio");
-  expect_config_error("  mount_resonance_Hz: .inf\n", "sensor.mount_resonance_Hz");
-  expect_config_error("  path_resonance_Hz: 2000\n" + mode + "}\n", "sensor.path_modes");
-  expect_config_error("  installation: [1]\n", "sensor.installation");
-  expect_config_error("  installation: {shaft_harmonic_mg: [1]}\n", "sensor.installation.shaft_harmonic_mg");
-  expect_config_error("  installation: {shaft_harmonics_mg: [1, -2]}\n", "sensor.installation.shaft_harmonics_mg[1]");
-  expect_config_error("  installation: {shaft_harmonics_mg: [1, x]}\n", "sensor.installation.shaft_harmonics_mg[1]");
-  expect_config_error("  installation: {shaft_harmonics_mg: 1}\n", "sensor.installation.shaft_harmonics_mg");
-  expect_config_error("  installation: {half_orders_mg: [.inf]}\n", "sensor.installation.half_orders_mg[0]");
-  expect_config_error("  installation: {line_harmonics_mg: [1e9]}\n", "sensor.installation.line_harmonics_mg[0]");
-  expect_config_error("  installation: {line_frequency_Hz: 0}\n", "sensor.installation.line_frequency_Hz");
-  expect_config_error("  installation: {line_frequency_Hz: sixty}\n", "sensor.installation.line_frequency_Hz");
-  expect_config_error("  installation: {speed_locked_orders: [{order: -1, amplitude_mg: 1}]}\n",
+  expect_background_error("  path_modes: 3\n", "sensor.path_modes");
+  expect_background_error("  mount_resonance_Hz: -1\n", "sensor.mount_resonance_Hz");
+  expect_background_error("  mount_damping_ratio: 0\n", "sensor.mount_damping_ratio");
+  expect_background_error("  mount_resonance_Hz: .inf\n", "sensor.mount_resonance_Hz");
+  expect_background_error("  path_resonance_Hz: 2000\n" + mode + "}\n", "sensor.path_modes");
+  expect_background_error("  installation: [1]\n", "sensor.installation");
+  expect_background_error("  installation: {shaft_harmonic_mg: [1]}\n", "sensor.installation.shaft_harmonic_mg");
+  expect_background_error("  installation: {shaft_harmonics_mg: [1, -2]}\n", "sensor.installation.shaft_harmonics_mg[1]");
+  expect_background_error("  installation: {shaft_harmonics_mg: [1, x]}\n", "sensor.installation.shaft_harmonics_mg[1]");
+  expect_background_error("  installation: {shaft_harmonics_mg: 1}\n", "sensor.installation.shaft_harmonics_mg");
+  expect_background_error("  installation: {half_orders_mg: [.inf]}\n", "sensor.installation.half_orders_mg[0]");
+  expect_background_error("  installation: {line_harmonics_mg: [1e9]}\n", "sensor.installation.line_harmonics_mg[0]");
+  expect_background_error("  installation: {line_frequency_Hz: 0}\n", "sensor.installation.line_frequency_Hz");
+  expect_background_error("  installation: {line_frequency_Hz: sixty}\n", "sensor.installation.line_frequency_Hz");
+  expect_background_error("  installation: {speed_locked_orders: [{order: -1, amplitude_mg: 1}]}\n",
                       "sensor.installation.speed_locked_orders[0].order");
-  expect_config_error("  installation: {speed_locked_orders: [{order: 2}]}\n",
+  expect_background_error("  installation: {speed_locked_orders: [{order: 2}]}\n",
                       "sensor.installation.speed_locked_orders[0].amplitude_mg");
-  expect_config_error("  installation: {speed_locked_orders: [{order: 2, amplitude_mg: 1, phase: 0}]}\n",
+  expect_background_error("  installation: {speed_locked_orders: [{order: 2, amplitude_mg: 1, phase: 0}]}\n",
                       "sensor.installation.speed_locked_orders[0].phase");
-  expect_config_error("  installation: {speed_locked_orders: [3]}\n", "sensor.installation.speed_locked_orders[0]");
-  expect_config_error("  installation: {shaft_modulation_depth: 1.5}\n", "sensor.installation.shaft_modulation_depth");
-  expect_config_error("  installation: {shaft_modulation_phase_deg: 400}\n",
+  expect_background_error("  installation: {speed_locked_orders: [3]}\n", "sensor.installation.speed_locked_orders[0]");
+  expect_background_error("  installation: {shaft_modulation_depth: 1.5}\n", "sensor.installation.shaft_modulation_depth");
+  expect_background_error("  installation: {shaft_modulation_phase_deg: 400}\n",
                       "sensor.installation.shaft_modulation_phase_deg");
-  expect_config_error("  installation: {floor: {frequencies_Hz: [100, 50], density_ug_per_sqrt_Hz: [1, 2]}}\n",
+  expect_background_error("  installation: {floor: {frequencies_Hz: [100, 50], density_ug_per_sqrt_Hz: [1, 2]}}\n",
                       "sensor.installation.floor.frequencies_Hz[1]");
-  expect_config_error("  installation: {floor: {frequencies_Hz: [100, 200], density_ug_per_sqrt_Hz: [1, 0]}}\n",
+  expect_background_error("  installation: {floor: {frequencies_Hz: [100, 200], density_ug_per_sqrt_Hz: [1, 0]}}\n",
                       "sensor.installation.floor.density_ug_per_sqrt_Hz[1]");
-  expect_config_error("  installation: {floor: {frequencies_Hz: [100, 200], density_ug_per_sqrt_Hz: [1]}}\n",
+  expect_background_error("  installation: {floor: {frequencies_Hz: [100, 200], density_ug_per_sqrt_Hz: [1]}}\n",
                       "sensor.installation.floor");
-  expect_config_error("  installation: {floor: {frequencies_Hz: [100]}}\n",
+  expect_background_error("  installation: {floor: {frequencies_Hz: [100]}}\n",
                       "sensor.installation.floor.density_ug_per_sqrt_Hz");
-  expect_config_error("  installation: {floor: {frequencies_Hz: [100], density_ug_per_sqrt_Hz: [1], slope: 2}}\n",
+  expect_background_error("  installation: {floor: {frequencies_Hz: [100], density_ug_per_sqrt_Hz: [1], slope: 2}}\n",
                       "sensor.installation.floor.slope");
-  expect_config_error("  installation: {floor: {frequencies_Hz: [], density_ug_per_sqrt_Hz: []}}\n",
+  expect_background_error("  installation: {floor: {frequencies_Hz: [], density_ug_per_sqrt_Hz: []}}\n",
                       "sensor.installation.floor.frequencies_Hz");
 }
 

@@ -117,7 +117,7 @@ TEST(ModalDamping, BearingFileResolvesTheRatioAtItsReferenceLoad) {
 }
 
 namespace {
-void expect_config_error(const std::string& yaml, std::vector<std::string> words) {
+void expect_damping_error(const std::string& yaml, std::vector<std::string> words) {
   words.push_back("damping_test.yaml");
   test::expect_config_error([&] { bearing_config_from_string(yaml, "damping_test.yaml"); }, words, yaml);
 }
@@ -125,16 +125,16 @@ void expect_config_error(const std::string& yaml, std::vector<std::string> words
 
 TEST(ModalDamping, BadDampingBlocksAreNamed) {
   const std::string base = kBearing6205Yaml.substr(0, kBearing6205Yaml.find("damping:"));
-  expect_config_error(base + "damping: {contact_damping_Ns_per_m: 100, modal_damping_ratio: 0.02}\n",
+  expect_damping_error(base + "damping: {contact_damping_Ns_per_m: 100, modal_damping_ratio: 0.02}\n",
                       {"damping.contact_damping_Ns_per_m", "damping.modal_damping_ratio", "exactly one"});
-  expect_config_error(base + "damping: {}\n", {"exactly one"});
-  expect_config_error(base + "damping: {modal_damping_ratio: 0.5, reference_force_N: [500, 0, 0]}\n",
+  expect_damping_error(base + "damping: {}\n", {"exactly one"});
+  expect_damping_error(base + "damping: {modal_damping_ratio: 0.5, reference_force_N: [500, 0, 0]}\n",
                       {"damping.modal_damping_ratio", "[0, 0.3]"});
-  expect_config_error(base + "damping: {modal_damping_ratio: 0.02, reference_force_N: [500, 0]}\n",
+  expect_damping_error(base + "damping: {modal_damping_ratio: 0.02, reference_force_N: [500, 0]}\n",
                       {"damping.reference_force_N", "3 numbers"});
   // The 6205 has no preload: at zero load no ball touches and there is no radial mode.
-  expect_config_error(base + "clearance_um: 5\ndamping: {modal_damping_ratio: 0.02}\n",
+  expect_damping_error(base + "clearance_um: 5\ndamping: {modal_damping_ratio: 0.02}\n",
                       {"damping.modal_damping_ratio", "reference_force_N", "no radial mode"});
-  expect_config_error(base + "damping: {contact_damping_Ns_per_m: 100, reference_force_N: [1, 0, 0]}\n",
+  expect_damping_error(base + "damping: {contact_damping_Ns_per_m: 100, reference_force_N: [1, 0, 0]}\n",
                       {"damping.reference_force_N"});
 }

@@ -14,7 +14,7 @@ using namespace bearing_sim;
 using namespace bearing_sim::test;
 
 namespace {
-const char* kSource = "/tmp/unit_test_scenario.yaml";
+const char* kScenarioSource = "/tmp/unit_test_scenario.yaml";
 constexpr double kRpm = 2.0 * kPi / 60.0;
 
 // Header of a valid scenario on the CT bearing (absolute path), 25 s long.
@@ -34,7 +34,7 @@ const std::string kSpeed =
     "    - {type: ramp, start_s: 20, end_s: 22, to_speed_rad_s: 0}\n";
 
 Scenario speed_scenario(const std::string& extra = "") {
-  return Scenario::from_string(header() + kSpeed + extra, kSource);
+  return Scenario::from_string(header() + kSpeed + extra, kScenarioSource);
 }
 
 // The hand-written piecewise speed of kSpeed, rad/s, and its integral in closed form.
@@ -60,13 +60,13 @@ double hand_angle(double t) {
   return a22;
 }
 
-void expect_config_error(const std::string& yaml, const std::string& key, const std::string& what = "") {
+void expect_scenario_error(const std::string& yaml, const std::string& key, const std::string& what = "") {
   try {
-    Scenario::from_string(yaml, kSource);
+    Scenario::from_string(yaml, kScenarioSource);
     ADD_FAILURE() << "no error for key " << key;
   } catch (const ConfigError& e) {
     const std::string msg = e.what();
-    EXPECT_NE(msg.find(kSource), std::string::npos) << msg;
+    EXPECT_NE(msg.find(kScenarioSource), std::string::npos) << msg;
     EXPECT_NE(msg.find("'" + key + "'"), std::string::npos) << "expected key '" << key << "' in: " << msg;
     if (!what.empty()) {
       EXPECT_NE(msg.find(what), std::string::npos) << "expected '" << what << "' in: " << msg;
@@ -121,7 +121,7 @@ TEST(Scenario, LoadStepsAndRamps) {
                                                 "    - {type: step, start_s: 2, force_N: [300, 10, -50]}\n"
                                                 "    - {type: ramp, start_s: 4, end_s: 8, moment_Nm: [40, 60]}\n"
                                                 "    - {type: ramp, start_s: 8, end_s: 10, force_N: [0, 0, 0]}\n",
-                                            kSource);
+                                            kScenarioSource);
   auto expect_load = [&](double t, Vector5 expected) {
     const Vector5 l = sc.inputs_at(t).load;
     for (int i = 0; i < 5; ++i) EXPECT_NEAR(l[i], expected[i], 1e-12) << "t = " << t << " component " << i;
@@ -182,7 +182,7 @@ TEST(Scenario, PhasesAndDefectEvents) {
           "  - {type: spall, at_s: 8, surface: ball, ball: 3, width_mm: 0.3, depth_um: 5}\n"
           "  - {type: clear, at_s: 12}\n"
           "  - {type: spall, at_s: 15, surface: inner_race, width_mm: 1, depth_um: 20}\n",
-      kSource);
+      kScenarioSource);
   EXPECT_EQ(sc.phase_at(0.0), "spin-up");
   EXPECT_EQ(sc.phase_at(9.99), "spin-up");
   EXPECT_EQ(sc.inputs_at(10.0).phase, "scan");
@@ -218,92 +218,92 @@ TEST(Scenario, SpallsAreCountedAsTheRunHoldsThemAndRefusedBelowASpall) {
   // 64 at once, cleared, 64 more: the run never holds more than the cap.
   const Scenario sc = Scenario::from_string(header() + "defects:\n" + spall_events(kMaxSpalls, 1.0) +
                                                 "  - {type: clear, at_s: 2}\n" + spall_events(kMaxSpalls, 3.0),
-                                            kSource);
+                                            kScenarioSource);
   EXPECT_EQ(sc.defect_events().size(), 2u * kMaxSpalls + 1u);
   // One more before the clear: refused naming the event and the cap.
-  expect_config_error(header() + "defects:\n" + spall_events(kMaxSpalls + 1, 1.0), "defects[64]",
+  expect_scenario_error(header() + "defects:\n" + spall_events(kMaxSpalls + 1, 1.0), "defects[64]",
                       "at most 64 may be at once");
   // A 1e-300 m spall (or a position of 1e300 degrees): refused as the service refuses it.
-  expect_config_error(header() + "defects:\n" + spall_events(1, 1.0, "width_mm: 1e-297, depth_um: 10"), "defects[0]",
+  expect_scenario_error(header() + "defects:\n" + spall_events(1, 1.0, "width_mm: 1e-297, depth_um: 10"), "defects[0]",
                       "at least 1 um wide and deep");
-  expect_config_error(
+  expect_scenario_error(
       header() + "defects:\n" + "  - {type: spall, at_s: 1, position_deg: 1e300, width_mm: 0.5, depth_um: 10}\n",
       "defects[0]", "beyond +-1e+06 rad");
 }
 
 TEST(Scenario, ASpeedBeyondTheBearingsLimitIsRefusedNamingTheKey) {
-  expect_config_error(header() + "speed: {initial_speed_rpm: 1e300}\n", "speed.initial_speed_rpm",
+  expect_scenario_error(header() + "speed: {initial_speed_rpm: 1e300}\n", "speed.initial_speed_rpm",
                       "is beyond +-900.1 rad/s");
-  expect_config_error(
+  expect_scenario_error(
       header() + "speed:\n  segments:\n    - {type: ramp, start_s: 1, end_s: 2, to_speed_rad_s: -1e4}\n",
       "speed.segments[0].to_speed_rad_s", "-1e+04 rad/s");
-  EXPECT_NO_THROW(Scenario::from_string(header() + "speed: {initial_speed_rpm: 8500}\n", kSource));
+  EXPECT_NO_THROW(Scenario::from_string(header() + "speed: {initial_speed_rpm: 8500}\n", kScenarioSource));
 }
 
 // The node refuses a load its bearing cannot carry and runs on at the last good one, while
 // scenario_state (the labels) said the refused load: such a scenario is refused when read.
 TEST(Scenario, ALoadTheBearingCannotCarryIsRefusedNamingTheSegment) {
-  expect_config_error(header() +
+  expect_scenario_error(header() +
                           "load:\n  initial: {force_N: [6800, 0, 0]}\n  segments:\n"
                           "    - {type: step, start_s: 5, force_N: [6800, 0, 0]}\n"
                           "    - {type: step, start_s: 10, force_N: [1e9, 0, 0]}\n",
                       "load.segments[1].force_N", "the bearing cannot carry the load (1e+09");
-  expect_config_error(header() + "load:\n  initial: {force_N: [0, 0, 1e12]}\n", "load.initial", "cannot carry");
+  expect_scenario_error(header() + "load:\n  initial: {force_N: [0, 0, 1e12]}\n", "load.initial", "cannot carry");
   EXPECT_NO_THROW(Scenario::from_string(
-      header() + "load:\n  segments:\n    - {type: ramp, start_s: 1, end_s: 2, force_N: [20000, 0, 0]}\n", kSource));
+      header() + "load:\n  segments:\n    - {type: ramp, start_s: 1, end_s: 2, force_N: [20000, 0, 0]}\n", kScenarioSource));
 }
 
 TEST(Scenario, BadInputNamesFileAndKey) {
   const std::string h = header();
-  expect_config_error(h + "speeed: {}\n", "speeed", "unknown key");
-  expect_config_error(h + kSpeed + "    - {type: hold, start_s: 22, end_s: 23, rpm: 3}\n", "speed.segments[4].rpm",
+  expect_scenario_error(h + "speeed: {}\n", "speeed", "unknown key");
+  expect_scenario_error(h + kSpeed + "    - {type: hold, start_s: 22, end_s: 23, rpm: 3}\n", "speed.segments[4].rpm",
                       "unknown key");
-  expect_config_error("name: x\nduration_s: -3\nbearing_file: " + bearing_file("ct_gantry_lyc.yaml") + "\n",
+  expect_scenario_error("name: x\nduration_s: -3\nbearing_file: " + bearing_file("ct_gantry_lyc.yaml") + "\n",
                       "duration_s", "must be > 0");
-  expect_config_error("name: x\nbearing_file: " + bearing_file("ct_gantry_lyc.yaml") + "\n", "duration_s", "required");
+  expect_scenario_error("name: x\nbearing_file: " + bearing_file("ct_gantry_lyc.yaml") + "\n", "duration_s", "required");
   // Overlapping, then unsorted, speed segments.
-  expect_config_error(h + "speed:\n  segments:\n    - {type: ramp, start_s: 0, end_s: 5, to_speed_rpm: 10}\n"
+  expect_scenario_error(h + "speed:\n  segments:\n    - {type: ramp, start_s: 0, end_s: 5, to_speed_rpm: 10}\n"
                           "    - {type: hold, start_s: 4, end_s: 6}\n",
                       "speed.segments[1].start_s", "overlap");
-  expect_config_error(h + "speed:\n  segments:\n    - {type: ramp, start_s: 5, end_s: 6, to_speed_rpm: 10}\n"
+  expect_scenario_error(h + "speed:\n  segments:\n    - {type: ramp, start_s: 5, end_s: 6, to_speed_rpm: 10}\n"
                           "    - {type: ramp, start_s: 1, end_s: 2, to_speed_rpm: 20}\n",
                       "speed.segments[1].start_s", "time order");
-  expect_config_error(h + "speed:\n  segments:\n    - {type: ramp, start_s: 5, end_s: 5, to_speed_rpm: 10}\n",
+  expect_scenario_error(h + "speed:\n  segments:\n    - {type: ramp, start_s: 5, end_s: 5, to_speed_rpm: 10}\n",
                       "speed.segments[0].end_s", "after start_s");
-  expect_config_error(h + "speed:\n  segments:\n    - {type: ramp, start_s: 5, end_s: 30, to_speed_rpm: 10}\n",
+  expect_scenario_error(h + "speed:\n  segments:\n    - {type: ramp, start_s: 5, end_s: 30, to_speed_rpm: 10}\n",
                       "speed.segments[0].end_s", "after the end");
-  expect_config_error(h + "speed:\n  segments:\n    - {type: ramp, start_s: 5, end_s: 6}\n",
+  expect_scenario_error(h + "speed:\n  segments:\n    - {type: ramp, start_s: 5, end_s: 6}\n",
                       "speed.segments[0].to_speed_rpm");
-  expect_config_error(h + "speed:\n  segments:\n    - {type: coast, start_s: 5, end_s: 6, time_constant_s: 0}\n",
+  expect_scenario_error(h + "speed:\n  segments:\n    - {type: coast, start_s: 5, end_s: 6, time_constant_s: 0}\n",
                       "speed.segments[0].time_constant_s");
-  expect_config_error(h + "speed:\n  segments:\n    - {type: spin, start_s: 5, end_s: 6}\n", "speed.segments[0].type");
-  expect_config_error(h + "speed: {initial_speed_rpm: 3, initial_speed_rad_s: 1}\n", "speed.initial_speed_rpm",
+  expect_scenario_error(h + "speed:\n  segments:\n    - {type: spin, start_s: 5, end_s: 6}\n", "speed.segments[0].type");
+  expect_scenario_error(h + "speed: {initial_speed_rpm: 3, initial_speed_rad_s: 1}\n", "speed.initial_speed_rpm",
                       "not both");
-  expect_config_error(h + "load:\n  segments:\n    - {type: ramp, start_s: 2, end_s: 4, force_N: [1, 2, 3]}\n"
+  expect_scenario_error(h + "load:\n  segments:\n    - {type: ramp, start_s: 2, end_s: 4, force_N: [1, 2, 3]}\n"
                           "    - {type: step, start_s: 3, moment_Nm: [1, 1]}\n",
                       "load.segments[1].start_s", "overlap");
-  expect_config_error(h + "load:\n  initial: {force_N: [1, 2]}\n", "load.initial.force_N", "3 numbers");
-  expect_config_error(h + "load:\n  initial: {force_N: [1, .nan, 3]}\n", "load.initial.force_N", "finite");
-  expect_config_error(h + "load:\n  unbalance: {mass_kg: -1, radius_m: 0.5}\n", "load.unbalance.mass_kg");
-  expect_config_error(h + "phases:\n  - {name: a, start_s: 5}\n  - {name: b, start_s: 2}\n", "phases[1].start_s",
+  expect_scenario_error(h + "load:\n  initial: {force_N: [1, 2]}\n", "load.initial.force_N", "3 numbers");
+  expect_scenario_error(h + "load:\n  initial: {force_N: [1, .nan, 3]}\n", "load.initial.force_N", "finite");
+  expect_scenario_error(h + "load:\n  unbalance: {mass_kg: -1, radius_m: 0.5}\n", "load.unbalance.mass_kg");
+  expect_scenario_error(h + "phases:\n  - {name: a, start_s: 5}\n  - {name: b, start_s: 2}\n", "phases[1].start_s",
                       "time order");
   // Defects: unsorted, not fitting when they appear, outgrowing the bearing, bad surface.
-  expect_config_error(
+  expect_scenario_error(
       h + "defects:\n  - {at_s: 5, width_mm: 1, depth_um: 10}\n  - {at_s: 2, width_mm: 1, depth_um: 10}\n",
       "defects[1].at_s", "time order");
-  expect_config_error(h + "defects:\n  - {at_s: 1, width_mm: 1, depth_um: 4000}\n", "defects[0]", "does not fit");
-  expect_config_error(h + "defects:\n  - {at_s: 1, surface: ball, ball: 414, width_mm: 1, depth_um: 10}\n",
+  expect_scenario_error(h + "defects:\n  - {at_s: 1, width_mm: 1, depth_um: 4000}\n", "defects[0]", "does not fit");
+  expect_scenario_error(h + "defects:\n  - {at_s: 1, surface: ball, ball: 414, width_mm: 1, depth_um: 10}\n",
                       "defects[0]", "ball index");
-  expect_config_error(h + "defects:\n  - {at_s: 1, width_mm: 1, depth_um: 10, depth_growth_um_per_s: 200}\n",
+  expect_scenario_error(h + "defects:\n  - {at_s: 1, width_mm: 1, depth_um: 10, depth_growth_um_per_s: 200}\n",
                       "defects[0]", "grows too large");
-  expect_config_error(h + "defects:\n  - {at_s: 1, surface: cage, width_mm: 1, depth_um: 10}\n", "defects[0].surface");
-  expect_config_error(h + "defects:\n  - {at_s: 1, width_mm: 1, depth_um: 10, width_growth_mm_per_s: -1}\n",
+  expect_scenario_error(h + "defects:\n  - {at_s: 1, surface: cage, width_mm: 1, depth_um: 10}\n", "defects[0].surface");
+  expect_scenario_error(h + "defects:\n  - {at_s: 1, width_mm: 1, depth_um: 10, width_growth_mm_per_s: -1}\n",
                       "defects[0].width_growth_mm_per_s", ">= 0");
   // Files.
-  expect_config_error("name: x\nduration_s: 3\nbearing_file: no_such_bearing.yaml\n", "bearing_file", "cannot find");
-  expect_config_error(h + "sensor_file: no_such_sensor.yaml\n", "sensor_file", "cannot find");
+  expect_scenario_error("name: x\nduration_s: 3\nbearing_file: no_such_bearing.yaml\n", "bearing_file", "cannot find");
+  expect_scenario_error(h + "sensor_file: no_such_sensor.yaml\n", "sensor_file", "cannot find");
   EXPECT_THROW(Scenario::load("/nonexistent/scenario.yaml"), ConfigError);
-  EXPECT_THROW(Scenario::from_string("name: [unclosed\n", kSource), ConfigError);
+  EXPECT_THROW(Scenario::from_string("name: [unclosed\n", kScenarioSource), ConfigError);
 }
 
 TEST(Scenario, ShippedScenariosLoad) {

@@ -13,15 +13,15 @@ using namespace bearing_sim;
 using namespace bearing_sim::test;
 
 namespace {
-const char* kSource = "/tmp/unit_test_scenario_temperature.yaml";
+const char* kTemperatureSource = "/tmp/unit_test_scenario_temperature.yaml";
 
 Scenario with_temperature(const std::string& block) {
   return Scenario::from_string(
-      "name: unit\nduration_s: 30\nbearing_file: " + bearing_file("ct_gantry_lyc.yaml") + "\n" + block, kSource);
+      "name: unit\nduration_s: 30\nbearing_file: " + bearing_file("ct_gantry_lyc.yaml") + "\n" + block, kTemperatureSource);
 }
 
-void expect_error(const std::string& block, std::vector<std::string> words) {
-  words.push_back(kSource);
+void expect_temperature_error(const std::string& block, std::vector<std::string> words) {
+  words.push_back(kTemperatureSource);
   expect_config_error([&] { with_temperature(block); }, words, block);
 }
 }  // namespace
@@ -57,19 +57,19 @@ TEST(ScenarioTemperature, StepsAndStaircaseRamps) {
 }
 
 TEST(ScenarioTemperature, BadTimeLinesAreNamed) {
-  expect_error("ring_temperature_difference: {initial_K: .nan}\n", {"ring_temperature_difference.initial_K", "finite"});
-  expect_error("ring_temperature_difference: {segments: [{type: hold, start_s: 1}]}\n",
+  expect_temperature_error("ring_temperature_difference: {initial_K: .nan}\n", {"ring_temperature_difference.initial_K", "finite"});
+  expect_temperature_error("ring_temperature_difference: {segments: [{type: hold, start_s: 1}]}\n",
                {"ring_temperature_difference.segments[0].type", "step or ramp"});
-  expect_error("ring_temperature_difference: {segments: [{type: ramp, start_s: 1, difference_K: 3}]}\n",
+  expect_temperature_error("ring_temperature_difference: {segments: [{type: ramp, start_s: 1, difference_K: 3}]}\n",
                {"segments[0].end_s", "required"});
-  expect_error("ring_temperature_difference: {segments: [{type: step, start_s: 1}]}\n",
+  expect_temperature_error("ring_temperature_difference: {segments: [{type: step, start_s: 1}]}\n",
                {"segments[0].difference_K", "required"});
   // The CT bearing's 1111 mm pitch circle: 120 K more on the inner ring is an interference
   // beyond the model's 5 % of the ball diameter.
-  expect_error("ring_temperature_difference: {segments: [{type: ramp, start_s: 1, end_s: 5, difference_K: 120}]}\n",
+  expect_temperature_error("ring_temperature_difference: {segments: [{type: ramp, start_s: 1, end_s: 5, difference_K: 120}]}\n",
                {"segments[0].difference_K", "interference", "120 K"});
-  expect_error("ring_temperature_difference: {initial_K: 200}\n", {"initial_K", "150 K"});
-  expect_error(
+  expect_temperature_error("ring_temperature_difference: {initial_K: 200}\n", {"initial_K", "150 K"});
+  expect_temperature_error(
       "ring_temperature_difference: {segments: [{type: step, start_s: 5, difference_K: 1}, "
       "{type: step, start_s: 4, difference_K: 2}]}\n",
       {"segments[1].start_s", "time order"});

@@ -8,11 +8,12 @@
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/bearing_model.hpp"
 #include "bearing_sim/core/condition_indicators.hpp"
+#include "bearing_sim/core/constants.hpp"
 #include "bearing_sim/core/errors.hpp"
 
 namespace bearing_sim::test {
 
-constexpr double kPi = 3.14159265358979323846;
+using bearing_sim::kPi;  // one value of pi: the core's
 
 // Path of a shipped bearing file, e.g. bearing_file("ct_gantry_lyc.yaml").
 std::string bearing_file(const std::string& name);

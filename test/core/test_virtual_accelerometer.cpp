@@ -375,26 +375,26 @@ TEST(VirtualAccelerometer, ParsesSensorFile) {
   EXPECT_EQ(d.seed, 42u);
 }
 
-void expect_config_error(const std::string& body, const std::string& key) {
+void expect_sensor_error(const std::string& body, const std::string& key) {
   test::expect_config_error([&] { accelerometer_config_from_string(body, "bad_sensor.yaml"); },
                             {"bad_sensor.yaml", "'" + key + "'"}, key);
 }
 
 TEST(VirtualAccelerometer, BadConfigNamesTheKey) {
-  expect_config_error("sensor:\n  sensitivity_V_per_g: 0.1\n", "sensor.sensitivity_V_per_g");
-  expect_config_error("sensor:\n  adc_bits: many\n", "sensor.adc_bits");
-  expect_config_error("sensor:\n  adc_bits: 4\n", "sensor.adc_bits");
-  expect_config_error("sensor:\n  path_damping_ratio: 1.5\n", "sensor.path_damping_ratio");
-  expect_config_error("sensor:\n  output_rate_Hz: 60000\n", "sensor.output_rate_Hz");
-  expect_config_error("sensor:\n  anti_alias_order: 5\n", "sensor.anti_alias_order");
-  expect_config_error("sensor:\n  anti_alias_cutoff_fraction: 0.5\n", "sensor.anti_alias_cutoff_fraction");
-  expect_config_error("sensor:\n  axis: [0, 0, 0]\n", "sensor.axis");
-  expect_config_error("sensor:\n  axis: [1, 0]\n", "sensor.axis");
-  expect_config_error("sensor:\n  mount: shaft\n", "sensor.mount");
-  expect_config_error("sensor:\n  noise_density_ug_per_sqrt_Hz: -1\n", "sensor.noise_density_ug_per_sqrt_Hz");
-  expect_config_error("sensor:\n  output_unit: g\n", "sensor.output_unit");
-  expect_config_error("sensor: {}\nbearing: x\n", "bearing");
-  expect_config_error("name: x\n", "name");  // a bare mapping, not under sensor:
+  expect_sensor_error("sensor:\n  sensitivity_V_per_g: 0.1\n", "sensor.sensitivity_V_per_g");
+  expect_sensor_error("sensor:\n  adc_bits: many\n", "sensor.adc_bits");
+  expect_sensor_error("sensor:\n  adc_bits: 4\n", "sensor.adc_bits");
+  expect_sensor_error("sensor:\n  path_damping_ratio: 1.5\n", "sensor.path_damping_ratio");
+  expect_sensor_error("sensor:\n  output_rate_Hz: 60000\n", "sensor.output_rate_Hz");
+  expect_sensor_error("sensor:\n  anti_alias_order: 5\n", "sensor.anti_alias_order");
+  expect_sensor_error("sensor:\n  anti_alias_cutoff_fraction: 0.5\n", "sensor.anti_alias_cutoff_fraction");
+  expect_sensor_error("sensor:\n  axis: [0, 0, 0]\n", "sensor.axis");
+  expect_sensor_error("sensor:\n  axis: [1, 0]\n", "sensor.axis");
+  expect_sensor_error("sensor:\n  mount: shaft\n", "sensor.mount");
+  expect_sensor_error("sensor:\n  noise_density_ug_per_sqrt_Hz: -1\n", "sensor.noise_density_ug_per_sqrt_Hz");
+  expect_sensor_error("sensor:\n  output_unit: g\n", "sensor.output_unit");
+  expect_sensor_error("sensor: {}\nbearing: x\n", "bearing");
+  expect_sensor_error("name: x\n", "name");  // a bare mapping, not under sensor:
 }
 
 TEST(VirtualAccelerometer, InconsistentRatesAreRejected) {

@@ -13,6 +13,7 @@
 #include "bearing_sim/core/ring_dynamics.hpp"
 #include "bearing_sim/runtime/sample_pipeline.hpp"
 #include "bearing_sim/runtime/sample_source.hpp"
+#include "test_support.hpp"
 
 using namespace bearing_sim;
 using namespace bearing_sim::runtime;
@@ -20,12 +21,7 @@ using namespace bearing_sim::runtime;
 namespace {
 const std::string kFlexible = std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/ct_gantry_flexible.yaml";
 
-Vector5 ct_load() {
-  Vector5 l;
-  l << 6800.0, 0.0, 0.0, 0.0, 2100.0;
-  return l;
-}
-constexpr double kCtSpeed = 180.0 * 2.0 * M_PI / 60.0;
+using bearing_sim::test::ct_load;  // the CT gantry's load (test_support)
 
 // Keeps the ideal samples and the ball loads handed out.
 struct Sink : PipelineSink {
@@ -54,11 +50,11 @@ Eigen::Vector3d ball_force_sum(const std::vector<BallState>& balls) {
 
 TEST(FlexiblePipeline, TheSamplesAreFlexibleDynamicsOwnAndTheBallsCarryTheLoad) {
   const BearingModel model(load_bearing_config(kFlexible));
-  FlexibleDynamics reference(FlexibleBearing(model), ct_load(), kCtSpeed);
+  FlexibleDynamics reference(FlexibleBearing(model), ct_load(), test::kCtSpeedRadS);
   OutputSettings settings;
   settings.chunk_samples = 100;
   settings.ball_loads_rate_hz = 100.0;
-  SamplePipeline pipeline(make_ring_dynamics(model, ct_load(), kCtSpeed, DynamicsOptions{10000.0, 0}), nullptr,
+  SamplePipeline pipeline(make_ring_dynamics(model, ct_load(), test::kCtSpeedRadS, DynamicsOptions{10000.0, 0}), nullptr,
                           settings, 0.0);
   ASSERT_NE(pipeline.source().ring().flexible(), nullptr);
   // Before the first sample: the static equilibrium. The balls' forces balance the applied
@@ -106,7 +102,7 @@ TEST(FlexiblePipeline, ADivergingFlexibleRingIsResetToItsStaticEquilibrium) {
   // the flexible ring's static equilibrium instead, finite, and go on.
   const BearingModel model(load_bearing_config(kFlexible));
   SampleSource source(
-      make_ring_dynamics(model, ct_load(), kCtSpeed, DynamicsOptions{2000.0, 1, true, IntegrationMethod::Rk4}));
+      make_ring_dynamics(model, ct_load(), test::kCtSpeedRadS, DynamicsOptions{2000.0, 1, true, IntegrationMethod::Rk4}));
   const FlexibleBearing bearing(model);
   int diverged = 0;
   for (int i = 0; i < 400 && diverged < 2; ++i) {

@@ -20,9 +20,7 @@ using namespace bearing_sim;
 using namespace bearing_sim::runtime;
 
 namespace {
-const std::string kCtBearing = std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/ct_gantry_lyc.yaml";
 constexpr double kFs = 10000.0;
-constexpr double kCtSpeed = 180.0 * 2.0 * M_PI / 60.0;
 
 using bearing_sim::test::ct_load;  // the CT gantry's load (test_support)
 
@@ -70,9 +68,9 @@ const FaultIndicator& fault(const HealthReport& r, FaultKind kind) {
 }  // namespace
 
 TEST(HealthMonitor, ImpactTrainAtTheInnerRaceFrequencyIsAWarningNoiseIsOk) {
-  const BearingModel model(load_bearing_config(kCtBearing));
-  const double bpfi = bearing_frequencies(model, kCtSpeed).ball_pass_inner_race_hz;  // 313.2 Hz
-  HealthMonitor noisy(model, ct_load(), kCtSpeed, settings(), nullptr);
+  const BearingModel model(load_bearing_config(test::bearing_file("ct_gantry_lyc.yaml")));
+  const double bpfi = bearing_frequencies(model, test::kCtSpeedRadS).ball_pass_inner_race_hz;  // 313.2 Hz
+  HealthMonitor noisy(model, ct_load(), test::kCtSpeedRadS, settings(), nullptr);
   const auto noise = signal(3.0, 1e-3, 0.0, 0.0, 1);
   noisy.push(noise.data(), noise.size());
   const HealthReport ok = noisy.analyze_now(3.0);
@@ -81,7 +79,7 @@ TEST(HealthMonitor, ImpactTrainAtTheInnerRaceFrequencyIsAWarningNoiseIsOk) {
   EXPECT_NEAR(ok.indicators.acceleration.rms, 1e-3, 3e-5);
   EXPECT_NEAR(ok.indicators.window_s, 2.0, 0.05);
 
-  HealthMonitor faulty(model, ct_load(), kCtSpeed, settings(), nullptr);
+  HealthMonitor faulty(model, ct_load(), test::kCtSpeedRadS, settings(), nullptr);
   const auto impacts = signal(3.0, 1e-3, bpfi, 5e-3, 2);
   faulty.push(impacts.data(), impacts.size());
   const HealthReport warn = faulty.analyze_now(3.0);
@@ -95,8 +93,8 @@ TEST(HealthMonitor, ImpactTrainAtTheInnerRaceFrequencyIsAWarningNoiseIsOk) {
 }
 
 TEST(HealthMonitor, RingBufferHoldsTheLastWindowOnly) {
-  const BearingModel model(load_bearing_config(kCtBearing));
-  HealthMonitor m(model, ct_load(), kCtSpeed, settings(), nullptr);
+  const BearingModel model(load_bearing_config(test::bearing_file("ct_gantry_lyc.yaml")));
+  HealthMonitor m(model, ct_load(), test::kCtSpeedRadS, settings(), nullptr);
   const auto loud = signal(1.0, 10.0, 0.0, 0.0, 3);
   m.push(loud.data(), loud.size());
   const HealthReport early = m.analyze_now(1.0);
@@ -114,9 +112,9 @@ TEST(HealthMonitor, RingBufferHoldsTheLastWindowOnly) {
 }
 
 TEST(HealthMonitor, MinerDamageAndLivesFollowTheOperation) {
-  const BearingModel model(load_bearing_config(kCtBearing));
-  HealthMonitor m(model, ct_load(), kCtSpeed, settings(), nullptr);
-  for (int i = 0; i < 1000; ++i) m.add_operation(ct_load(), kCtSpeed, 0.01);  // 10 s at 180 rpm
+  const BearingModel model(load_bearing_config(test::bearing_file("ct_gantry_lyc.yaml")));
+  HealthMonitor m(model, ct_load(), test::kCtSpeedRadS, settings(), nullptr);
+  for (int i = 0; i < 1000; ++i) m.add_operation(ct_load(), test::kCtSpeedRadS, 0.01);  // 10 s at 180 rpm
   const HealthReport r = m.analyze_now(10.0);
   // ISO 281 for the double-row 35 deg bearing with Fa = 0: P = Fr (X = 1, Y = 0.66 Fa).
   const double c = basic_dynamic_load_rating_N(model.config());
@@ -142,27 +140,27 @@ TEST(HealthMonitor, MinerDamageAndLivesFollowTheOperation) {
 }
 
 TEST(HealthMonitor, MinerDamageFollowsALoadChange) {
-  const BearingModel model(load_bearing_config(kCtBearing));
-  HealthMonitor m(model, ct_load(), kCtSpeed, settings(), nullptr);
+  const BearingModel model(load_bearing_config(test::bearing_file("ct_gantry_lyc.yaml")));
+  HealthMonitor m(model, ct_load(), test::kCtSpeedRadS, settings(), nullptr);
   const double life0 = m.analyze_now(0.0).reference_life_million_rev;
   // Twice the radial load: until the next analysis the life is scaled by ISO 281's
   // (P_then / P_now)^3 = 1/8 (Fa = 0: P = Fr).
   Vector5 heavy = ct_load();
   heavy[0] *= 2.0;
-  m.add_operation(heavy, kCtSpeed, 10.0);  // 30 revolutions
+  m.add_operation(heavy, test::kCtSpeedRadS, 10.0);  // 30 revolutions
   const HealthReport a = m.analyze_now(10.0);
   EXPECT_NEAR(a.miner_damage, 30.0 / (life0 / 8.0 * 1e6), 1e-9 * a.miner_damage);
   // After an analysis at the new load: its own reference life, from its ball loads.
   const double life1 = a.reference_life_million_rev;
   EXPECT_LT(life1, life0 / 4.0);  // ball loads grow with the load: (Q_c/Q_e)^3 falls ~8x
-  m.add_operation(heavy, kCtSpeed, 10.0);
+  m.add_operation(heavy, test::kCtSpeedRadS, 10.0);
   const HealthReport b = m.analyze_now(20.0);
   EXPECT_NEAR(b.miner_damage - a.miner_damage, 30.0 / (life1 * 1e6), 1e-9 * b.miner_damage);
 }
 
 TEST(HealthMonitor, DefectsAreReportedWithTheirSizeNow) {
-  const BearingModel model(load_bearing_config(kCtBearing));
-  HealthMonitor m(model, ct_load(), kCtSpeed, settings(), nullptr);
+  const BearingModel model(load_bearing_config(test::bearing_file("ct_gantry_lyc.yaml")));
+  HealthMonitor m(model, ct_load(), test::kCtSpeedRadS, settings(), nullptr);
   Spall s;
   s.surface = Surface::InnerRace;
   s.position_rad = 3.0;
@@ -182,11 +180,11 @@ TEST(HealthMonitor, DefectsAreReportedWithTheirSizeNow) {
 }
 
 TEST(HealthMonitor, WorkerAnalysesOnRequestAndStops) {
-  const BearingModel model(load_bearing_config(kCtBearing));
+  const BearingModel model(load_bearing_config(test::bearing_file("ct_gantry_lyc.yaml")));
   std::promise<HealthReport> got;
   auto future = got.get_future();
   bool once = false;
-  HealthMonitor m(model, ct_load(), kCtSpeed, settings(), [&](const HealthReport& r) {
+  HealthMonitor m(model, ct_load(), test::kCtSpeedRadS, settings(), [&](const HealthReport& r) {
     if (!once) got.set_value(r);
     once = true;
   });
@@ -203,13 +201,13 @@ TEST(HealthMonitor, WorkerAnalysesOnRequestAndStops) {
 }
 
 TEST(HealthMonitor, BadSettingsAreRefused) {
-  const BearingModel model(load_bearing_config(kCtBearing));
+  const BearingModel model(load_bearing_config(test::bearing_file("ct_gantry_lyc.yaml")));
   HealthSettings s = settings();
   s.window_s = 0.001;  // 10 samples
-  EXPECT_THROW(HealthMonitor(model, ct_load(), kCtSpeed, s, nullptr), InvalidInputError);
+  EXPECT_THROW(HealthMonitor(model, ct_load(), test::kCtSpeedRadS, s, nullptr), InvalidInputError);
   s = settings();
   s.sample_rate_hz = 0.0;
-  EXPECT_THROW(HealthMonitor(model, ct_load(), kCtSpeed, s, nullptr), InvalidInputError);
+  EXPECT_THROW(HealthMonitor(model, ct_load(), test::kCtSpeedRadS, s, nullptr), InvalidInputError);
 }
 
 namespace {
@@ -278,9 +276,4 @@ TEST(ChunkAssembler, ChunksCarryTheTilt) {
   EXPECT_FLOAT_EQ(c.accel_x[0], 0.1f);
   EXPECT_FLOAT_EQ(c.accel_x[1], 7.0f);
   EXPECT_FLOAT_EQ(c.displacement_z[1], 3e-6f);
-}
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
 }

@@ -31,10 +31,8 @@ using namespace bearing_sim;
 using namespace bearing_sim::runtime;
 
 namespace {
-const std::string kCtBearing = std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/ct_gantry_lyc.yaml";
 
 using bearing_sim::test::ct_load;  // the CT gantry's load (test_support)
-constexpr double kCtSpeed = 180.0 * 2.0 * M_PI / 60.0;
 
 DynamicSample sample_with(double v) {
   DynamicSample s;
@@ -260,7 +258,7 @@ TEST(InputValidator, RejectsALoadTheBearingCannotCarry) {
 }
 
 TEST(InputValidator, RejectsABearingWhoseStiffModeWouldStallTheIntegrator) {
-  const BearingConfig ct = load_bearing_config(kCtBearing);
+  const BearingConfig ct = load_bearing_config(test::bearing_file("ct_gantry_lyc.yaml"));
   // The shipped CT bearing is far below the ceiling.
   double rate = 0.0;
   EXPECT_TRUE(check_integrator_work(BearingModel(ct), ct_load(), &rate).accepted);
@@ -290,9 +288,9 @@ TEST(InputValidator, RejectsABearingWhoseStiffModeWouldStallTheIntegrator) {
 }
 
 TEST(SampleSource, NumbersSamplesFromTheInitialEquilibrium) {
-  const BearingModel model(load_bearing_config(kCtBearing));
+  const BearingModel model(load_bearing_config(test::bearing_file("ct_gantry_lyc.yaml")));
   const StaticSolution s = solve_static(model, ct_load());
-  SampleSource source(BearingDynamics(model, ct_load(), kCtSpeed));
+  SampleSource source(BearingDynamics(model, ct_load(), test::kCtSpeedRadS));
   const SampleSource::Sample first = source.next();
   EXPECT_EQ(first.index, 0u);
   EXPECT_DOUBLE_EQ(first.time_s, 0.0);
@@ -310,10 +308,10 @@ TEST(SampleSource, ADivergingStateIsResetToTheEquilibriumAndNeverNaN) {
   // One RK4 step per 2 kHz sample puts omega_max * h near 5 for the CT bearing, beyond
   // RK4's stability limit (2.8): the state must run away. (RK4 explicitly: the default
   // exponential integrator is stable there, the linear part being exact.)
-  const BearingModel model(load_bearing_config(kCtBearing));
+  const BearingModel model(load_bearing_config(test::bearing_file("ct_gantry_lyc.yaml")));
   const StaticSolution s = solve_static(model, ct_load());
   SampleSource source(
-      BearingDynamics(model, ct_load(), kCtSpeed, DynamicsOptions{2000.0, 1, true, IntegrationMethod::Rk4}));
+      BearingDynamics(model, ct_load(), test::kCtSpeedRadS, DynamicsOptions{2000.0, 1, true, IntegrationMethod::Rk4}));
   std::uint64_t diverged = 0;
   for (std::uint64_t i = 0; i < 4000; ++i) {
     const SampleSource::Sample smp = source.next();
@@ -388,10 +386,6 @@ TEST(TimingStats, PercentilesOfTheRecentValues) {
   EXPECT_DOUBLE_EQ(t.max(), 300.0);
 }
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}
 
 namespace {
 // Records what the pipeline hands out, in order.
@@ -420,11 +414,11 @@ struct RecordingSink : PipelineSink {
 }  // namespace
 
 TEST(SamplePipeline, ContiguousChunksEveryMeasuredSampleHandedOverOnceSettingsFromTheNextChunk) {
-  const BearingModel model(load_bearing_config(kCtBearing));
+  const BearingModel model(load_bearing_config(test::bearing_file("ct_gantry_lyc.yaml")));
   OutputSettings settings;
   settings.chunk_samples = 100;
   settings.level_rate_hz = 100.0;
-  SamplePipeline p(BearingDynamics(model, ct_load(), kCtSpeed, DynamicsOptions{10000.0, 0}), nullptr, settings, 50.0);
+  SamplePipeline p(BearingDynamics(model, ct_load(), test::kCtSpeedRadS, DynamicsOptions{10000.0, 0}), nullptr, settings, 50.0);
   RecordingSink sink;
   p.run_chunk(sink);
   EXPECT_EQ(p.current_chunk_last_index(), 199u);

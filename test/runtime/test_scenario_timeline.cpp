@@ -273,10 +273,6 @@ TEST(LoadRamp, LinearToTheTargetOverItsSamples) {
   EXPECT_FALSE(step.active());  // the caller applies b at once
 }
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}
 
 // The ring temperature difference goes out on the load grid, only when its staircase steps,
 // with the scenario's value at the time sent; a scenario without the key sends none.

@@ -20,12 +20,19 @@
 #include "bearing_sim/core/quasi_static.hpp"
 #include "bearing_sim/core/simd_info.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
+#include "bearing_sim/core/constants.hpp"
 #include "tool_runner.hpp"
+#include "tool_test_files.hpp"
 
 namespace {
 
+using bearing_sim::kPi;
+using bearing_sim::test::contains;
+using bearing_sim::test::kConfigDir;
+using bearing_sim::test::kCtBearingYaml;
+using bearing_sim::test::kCtScanYaml;
+
 using nlohmann::json;
-constexpr double kPi = 3.14159265358979323846;
 
 using bearing_sim::test::read_file;
 using bearing_sim::test::RunResult;
@@ -45,7 +52,6 @@ class ToolTest : public bearing_sim::test::ToolScratchTest {
   }
 };
 
-const std::string kCt = std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/ct_gantry_lyc.yaml";
 const std::string kIns = std::string(BEARING_SIM_SOURCE_DIR) + "/config/bearings/ins_618_22_db.yaml";
 
 // 6205 deep-groove ball bearing (the usual fault-frequency example); no mass given.
@@ -68,9 +74,6 @@ const char* const kSingleRowAngular =
     "inner_groove_curvature: 0.52\n"
     "outer_groove_curvature: 0.52\n";
 
-bool contains(const std::string& haystack, const std::string& needle) {
-  return haystack.find(needle) != std::string::npos;
-}
 
 // ---------------------------------------------------------------------------
 // --help
@@ -96,7 +99,7 @@ TEST_F(ToolTest, HelpOnEverySubcommandExitsZeroAndListsItsOptions) {
 
 TEST_F(ToolTest, NoSubcommandOrUnknownOptionIsBadInput) {
   EXPECT_EQ(run("").exit_code, 2);
-  EXPECT_EQ(run("static --bearing '" + kCt + "' --no-such-option 1").exit_code, 2);
+  EXPECT_EQ(run("static --bearing '" + kCtBearingYaml + "' --no-such-option 1").exit_code, 2);
   const RunResult missing = run("static --force 1,0,0");
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_TRUE(contains(missing.err, "--bearing")) << missing.err;
@@ -158,7 +161,7 @@ TEST_F(ToolTest, MissingBearingFileIsBadInputNamingIt) {
 // ---------------------------------------------------------------------------
 
 TEST_F(ToolTest, BadVectorsAndNumbersNameTheOption) {
-  const std::string b = " --bearing '" + kCt + "'";
+  const std::string b = " --bearing '" + kCtBearingYaml + "'";
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"static" + b + " --force 1,2", "--force"},      // too few
       {"static" + b + " --force 1,2,3,4", "--force"},  // too many
@@ -217,7 +220,7 @@ TEST_F(ToolTest, AxialLoadAgainstSingleRowAngularContactIsNotCarried) {
 // ---------------------------------------------------------------------------
 
 TEST_F(ToolTest, StaticMatchesCoreSolverAndBallLoadsBalanceTheForce) {
-  const bearing_sim::BearingModel model(bearing_sim::load_bearing_config(kCt));
+  const bearing_sim::BearingModel model(bearing_sim::load_bearing_config(kCtBearingYaml));
   struct Case {
     std::string force, moment;
     bearing_sim::Vector5 load;
@@ -228,7 +231,7 @@ TEST_F(ToolTest, StaticMatchesCoreSolverAndBallLoadsBalanceTheForce) {
   cases[1] = {"3000,-2000,1500", "-300,800", {}};
   cases[1].load << 3000, -2000, 1500, -300, 800;
   for (const auto& c : cases) {
-    const json j = run_json("static --bearing '" + kCt + "' --force " + c.force + " --moment " + c.moment);
+    const json j = run_json("static --bearing '" + kCtBearingYaml + "' --force " + c.force + " --moment " + c.moment);
     ASSERT_TRUE(j.contains("displacement") && j.contains("balls")) << j.dump();
     const bearing_sim::StaticSolution core = bearing_sim::solve_static(model, c.load);
 
@@ -282,7 +285,7 @@ TEST_F(ToolTest, StaticMatchesCoreSolverAndBallLoadsBalanceTheForce) {
 
 TEST_F(ToolTest, StaticCtCaseHasThePublishedMagnitudes) {
   // The example: x about 6.6 um, theta_y about 1.47e-5 rad, max ball load about 171 N.
-  const json j = run_json("static --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100");
+  const json j = run_json("static --bearing '" + kCtBearingYaml + "' --force 6800,0,0 --moment 0,2100");
   EXPECT_NEAR(j["displacement"][0].get<double>(), 6.6e-6, 0.1e-6);
   EXPECT_NEAR(j["displacement"][4].get<double>(), 1.47e-5, 0.01e-5);
   EXPECT_NEAR(j["max_ball_load_N"].get<double>(), 171.0, 1.0);
@@ -291,7 +294,7 @@ TEST_F(ToolTest, StaticCtCaseHasThePublishedMagnitudes) {
 }
 
 TEST_F(ToolTest, StaticTableShowsTheJsonValuesInDisplayUnits) {
-  const std::string args = "static --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100";
+  const std::string args = "static --bearing '" + kCtBearingYaml + "' --force 6800,0,0 --moment 0,2100";
   const RunResult r = run(args);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json j = run_json(args);
@@ -374,7 +377,7 @@ TEST_F(ToolTest, SimdTargetPinsTheKernelsAndOneThisCpuCannotRunIsRefused) {
   const std::size_t comma = targets.rfind(", ");
   const std::string narrowest = comma == std::string::npos ? targets : targets.substr(comma + 2);
   const std::string args =
-      "simulate --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.05";
+      "simulate --bearing '" + kCtBearingYaml + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.05";
   const json best = run_json(args);
   const json pinned = run_json("--simd-target " + narrowest + " " + args);
   EXPECT_EQ(best["simd_target"], bearing_sim::simd_target_name());
@@ -392,7 +395,7 @@ TEST_F(ToolTest, SimulateCsvHasOneRowPerSampleAndMeanIsTheStaticDisplacement) {
   const double duration = 0.1, rate = 7000.0;  // 700 samples
   const std::size_t expected_rows = 700;
   const std::string csv = dir_ + "/run.csv";
-  const json j = run_json("simulate --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 " +
+  const json j = run_json("simulate --bearing '" + kCtBearingYaml + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 " +
                           "--duration 0.1 --rate 7000 --csv '" + csv + "'");
   ASSERT_TRUE(j.contains("mean_displacement")) << j.dump();
 
@@ -420,7 +423,7 @@ TEST_F(ToolTest, SimulateCsvHasOneRowPerSampleAndMeanIsTheStaticDisplacement) {
   // A smooth bearing started at its static equilibrium stays there on average: the mean
   // displacement equals the core's static solution within 0.5 % (of each non-zero
   // component; the zero ones within 0.5 % of the displacement's size).
-  const bearing_sim::BearingModel model(bearing_sim::load_bearing_config(kCt));
+  const bearing_sim::BearingModel model(bearing_sim::load_bearing_config(kCtBearingYaml));
   bearing_sim::Vector5 load;
   load << 6800, 0, 0, 0, 2100;
   const auto eq = bearing_sim::solve_static(model, load);
@@ -453,7 +456,7 @@ TEST_F(ToolTest, SimulateThroughASensorGivesItsNoiseFloorAndWritesItsSamples) {
   const std::string sensor_file =
       std::string(BEARING_SIM_SOURCE_DIR) + "/config/sensors/ct_gantry_housing_accelerometer.yaml";
   const std::string csv = dir_ + "/sensor.csv";
-  const json j = run_json("simulate --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 " +
+  const json j = run_json("simulate --bearing '" + kCtBearingYaml + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 " +
                           "--duration 1 --sensor '" + sensor_file + "' --sensor-csv '" + csv + "'");
   ASSERT_TRUE(j["sensor"].is_object()) << j.dump();
   const bearing_sim::AccelerometerConfig config = bearing_sim::load_accelerometer_config(sensor_file);
@@ -483,21 +486,21 @@ TEST_F(ToolTest, SimulateThroughASensorGivesItsNoiseFloorAndWritesItsSamples) {
 
   // Without --sensor the JSON says so (null), and --sensor-csv alone is refused.
   const json ideal =
-      run_json("simulate --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.01");
+      run_json("simulate --bearing '" + kCtBearingYaml + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.01");
   EXPECT_TRUE(ideal["sensor"].is_null());
   const RunResult alone =
-      run("simulate --bearing '" + kCt + "' --outer-rpm 10 --duration 0.01 --sensor-csv '" + csv + "'");
+      run("simulate --bearing '" + kCtBearingYaml + "' --outer-rpm 10 --duration 0.01 --sensor-csv '" + csv + "'");
   EXPECT_EQ(alone.exit_code, 2);
   EXPECT_NE(alone.err.find("--sensor"), std::string::npos) << alone.err;
   // A sensor that cannot run at the run's rate (its 10 kHz output does not divide 7 kHz).
   const RunResult rate =
-      run("simulate --bearing '" + kCt + "' --outer-rpm 10 --duration 0.01 --rate 7000 --sensor '" + sensor_file + "'");
+      run("simulate --bearing '" + kCtBearingYaml + "' --outer-rpm 10 --duration 0.01 --rate 7000 --sensor '" + sensor_file + "'");
   EXPECT_EQ(rate.exit_code, 2);
   EXPECT_NE(rate.err.find("--sensor"), std::string::npos) << rate.err;
 }
 
 TEST_F(ToolTest, SimulateExplicitSubstepsAreUsed) {
-  const json j = run_json("simulate --bearing '" + kCt +
+  const json j = run_json("simulate --bearing '" + kCtBearingYaml +
                           "' --force 6800,0,0 --outer-rpm 180 --duration 0.01 "
                           "--rate 10000 --substeps 3");
   EXPECT_EQ(j["substeps"].get<int>(), 3);
@@ -507,7 +510,7 @@ TEST_F(ToolTest, SimulateExplicitSubstepsAreUsed) {
 
 TEST_F(ToolTest, SimulateRefusesASpeedOnTheFixedRing) {
   // CT file: the outer ring turns, the inner one is fixed.
-  const RunResult r = run("simulate --bearing '" + kCt +
+  const RunResult r = run("simulate --bearing '" + kCtBearingYaml +
                           "' --force 6800,0,0 --outer-rpm 180 --inner-rpm 10 "
                           "--duration 0.01");
   EXPECT_EQ(r.exit_code, 2);
@@ -528,7 +531,7 @@ TEST_F(ToolTest, SimulateRefusesASpeedOnTheFixedRing) {
                 .exit_code,
             0);
   // frequencies takes both speeds.
-  EXPECT_EQ(run("frequencies --bearing '" + kCt + "' --outer-rpm 180 --inner-rpm 10").exit_code, 0);
+  EXPECT_EQ(run("frequencies --bearing '" + kCtBearingYaml + "' --outer-rpm 180 --inner-rpm 10").exit_code, 0);
 }
 
 TEST_F(ToolTest, SimulateWithoutMassIsBadInputNamingTheKey) {
@@ -539,7 +542,7 @@ TEST_F(ToolTest, SimulateWithoutMassIsBadInputNamingTheKey) {
 }
 
 TEST_F(ToolTest, SimulateUnwritableCsvIsBadInput) {
-  const RunResult r = run("simulate --bearing '" + kCt + "' --force 6800,0,0 --outer-rpm 180 --duration 0.01 --csv '" +
+  const RunResult r = run("simulate --bearing '" + kCtBearingYaml + "' --force 6800,0,0 --outer-rpm 180 --duration 0.01 --csv '" +
                           dir_ + "/no/such/dir/run.csv'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(contains(r.err, "--csv")) << r.err;
@@ -567,7 +570,7 @@ TEST_F(ToolTest, StaticWithAFlexibleRingIsTheCoresFlexibleEquilibrium) {
   EXPECT_NEAR(j["flexible_ring"]["modes"][0]["frequency_hz"].get<double>(), 84.7, 0.05);
   EXPECT_EQ(j["flexible_ring"]["natural_frequencies_hz"].size(), 25u);
   // A rigid ring's file has none.
-  EXPECT_TRUE(run_json("static --bearing '" + kCt + "' --force 6800,0,0")["flexible_ring"].is_null());
+  EXPECT_TRUE(run_json("static --bearing '" + kCtBearingYaml + "' --force 6800,0,0")["flexible_ring"].is_null());
 }
 
 TEST_F(ToolTest, SimulateWithAFlexibleRingWritesTheModalCoordinates) {
@@ -600,8 +603,3 @@ TEST_F(ToolTest, SimulateWithAFlexibleRingWritesTheModalCoordinates) {
 }
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

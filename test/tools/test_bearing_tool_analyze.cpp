@@ -20,12 +20,19 @@
 #include "bearing_sim/core/condition_indicators.hpp"
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/simulation_run.hpp"
+#include "bearing_sim/core/constants.hpp"
 #include "tool_runner.hpp"
+#include "tool_test_files.hpp"
 
 namespace {
 
+using bearing_sim::kPi;
+using bearing_sim::test::contains;
+using bearing_sim::test::kConfigDir;
+using bearing_sim::test::kCtBearingYaml;
+using bearing_sim::test::kCtScanYaml;
+
 using nlohmann::json;
-constexpr double kPi = 3.14159265358979323846;
 
 // 6205-like, inner ring rotating, a 1 mm x 30 um outer race spall (as test_envelope_faults).
 const std::string kBearing = bearing_sim::test::kBearing6205Yaml +
@@ -157,8 +164,3 @@ TEST_F(AnalyzeTool, BadInput) {
 }
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

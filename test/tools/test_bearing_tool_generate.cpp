@@ -29,14 +29,21 @@
 #include "bearing_sim/core/flexible_dynamics.hpp"
 #include "bearing_sim/core/scenario.hpp"
 #include "bearing_sim/core/simd_info.hpp"
+#include "bearing_sim/core/constants.hpp"
 #include "tool_runner.hpp"
+#include "tool_test_files.hpp"
 
 using bearing_sim::test::read_file;
 using bearing_sim::test::run_bearing_tool;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using bearing_sim::kPi;
+using bearing_sim::test::contains;
+using bearing_sim::test::kConfigDir;
+using bearing_sim::test::kCtBearingYaml;
+using bearing_sim::test::kCtScanYaml;
+
 constexpr double kRpm = 2.0 * kPi / 60.0;
 constexpr double kRate = 10000.0;
 constexpr std::uint64_t kSamples = 20500;  // 2.05 s: the last chunk is short (100 per chunk)
@@ -341,9 +348,4 @@ TEST_F(Generate, AFlexibleRingScenarioIsFlexibleDynamicsDrivenByIt) {
     ASSERT_EQ(ideal[3 * i], static_cast<float>(d.step().accelerations[0])) << "sample " << i;
   }
   EXPECT_EQ(next_event, events.size());
-}
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
 }

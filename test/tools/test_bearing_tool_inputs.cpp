@@ -15,28 +15,30 @@
 
 #include <gtest/gtest.h>
 
+#include "bearing_sim/core/constants.hpp"
 #include "tool_runner.hpp"
+#include "tool_test_files.hpp"
 
 namespace {
+
+using bearing_sim::kPi;
+using bearing_sim::test::contains;
+using bearing_sim::test::kConfigDir;
+using bearing_sim::test::kCtBearingYaml;
+using bearing_sim::test::kCtScanYaml;
 
 using bearing_sim::test::read_file;
 using bearing_sim::test::RunResult;
 
-const std::string kConfig = std::string(BEARING_SIM_SOURCE_DIR) + "/config";
-const std::string kCt = kConfig + "/bearings/ct_gantry_lyc.yaml";
-const std::string kScan = kConfig + "/scenarios/ct_gantry_scan.yaml";
 
-bool contains(const std::string& haystack, const std::string& needle) {
-  return haystack.find(needle) != std::string::npos;
-}
 
 class ToolInputTest : public bearing_sim::test::ToolScratchTest {
  protected:
   // The CT bearing file with one line replaced (the key must be in it).
   std::string ct_with(const std::string& key, const std::string& value) {
     const std::string text =
-        std::regex_replace(read_file(kCt), std::regex("(^|\n)( *)" + key + ":[^\n]*"), "$1$2" + key + ": " + value);
-    EXPECT_NE(text, read_file(kCt)) << key;
+        std::regex_replace(read_file(kCtBearingYaml), std::regex("(^|\n)( *)" + key + ":[^\n]*"), "$1$2" + key + ": " + value);
+    EXPECT_NE(text, read_file(kCtBearingYaml)) << key;
     return write("ct_" + key + ".yaml", text);
   }
 
@@ -59,12 +61,12 @@ TEST_F(ToolInputTest, FilesThatAreNoRegularFilesAreRefusedNamingThem) {
     expect_refused("frequencies --bearing '" + path + "' --outer-rpm 10", {path});
     expect_refused("sweep --definition '" + path + "' --csv '" + dir_ + "/out.csv'", {path});
     expect_refused("generate '" + path + "' --out '" + dir_ + "/out' --quiet", {path});
-    expect_refused("analyze --csv '" + path + "' --bearing '" + kCt + "' --outer-rpm 180", {"--csv", path});
+    expect_refused("analyze --csv '" + path + "' --bearing '" + kCtBearingYaml + "' --outer-rpm 180", {"--csv", path});
   }
 }
 
 TEST_F(ToolInputTest, AKeyWrittenTwiceIsRefusedNamingFileKeyAndLines) {
-  std::string text = read_file(kCt);
+  std::string text = read_file(kCtBearingYaml);
   text.insert(0, "balls_per_row: 10\n");  // a stale line above the real one (now line 2 + its old number)
   const std::string path = write("twice.yaml", text);
   const RunResult r = run("static --bearing '" + path + "' --force 6800,0,0");
@@ -76,7 +78,7 @@ TEST_F(ToolInputTest, AKeyWrittenTwiceIsRefusedNamingFileKeyAndLines) {
 }
 
 TEST_F(ToolInputTest, EmptyVectorFieldsNameTheOptionNotTheNextArgument) {
-  const std::string b = " --bearing '" + kCt + "'";
+  const std::string b = " --bearing '" + kCtBearingYaml + "'";
   for (const std::string value : {",,", ",", "1,,3", "''"}) {
     SCOPED_TRACE(value);
     const RunResult r = run("static" + b + " --force " + value + " --json");
@@ -98,7 +100,7 @@ TEST_F(ToolInputTest, ACsvWhoseTimeGoesBackwardsIsRefusedNamingTheLine) {
   for (int i = 0; i < 100; ++i) csv += std::to_string(i * 1e-4) + "," + std::to_string(i % 7) + "\n";
   csv += "0.005,1\n";  // line 102: back in time
   const std::string path = write("backwards.csv", csv);
-  expect_refused("analyze --csv '" + path + "' --bearing '" + kCt + "' --outer-rpm 180",
+  expect_refused("analyze --csv '" + path + "' --bearing '" + kCtBearingYaml + "' --outer-rpm 180",
                  {path, "line 102", "time_s", "does not increase"});
 }
 
@@ -120,7 +122,7 @@ std::string sine_csv(double seconds, int decimals, double hole_from_s = 0.0, dou
 TEST_F(ToolInputTest, ACsvWithAHoleInItsTimeIsRefusedNamingTheLineAndTheGap) {
   // 2 s at 20 kHz with 0.5 s missing from t = 1 s: the rate came out as 29999/2 = 14999.5 Hz.
   const std::string holed = write("hole.csv", sine_csv(2.0, 9, 1.0, 1.5));
-  const std::string analyze = " --bearing '" + kCt + "' --outer-rpm 180";
+  const std::string analyze = " --bearing '" + kCtBearingYaml + "' --outer-rpm 180";
   // Line 20002 holds t = 1.5 s (line 1 is the header, line 20001 the sample at 0.99995 s).
   expect_refused("analyze --csv '" + holed + "'" + analyze,
                  {holed, "line 20002", "time_s", "0.50005 s after the previous sample (line 20001)",
@@ -145,13 +147,13 @@ TEST_F(ToolInputTest, ACsvWithAColumnNamedTwiceIsRefusedNamingIt) {
   const std::string path = write("twice.csv", csv);
   // The last 'ax_m_s2' silently won; now refused, whichever column is asked for.
   for (const std::string column : {"ax_m_s2", "ay_m_s2"})
-    expect_refused("analyze --csv '" + path + "' --bearing '" + kCt + "' --outer-rpm 180 --column " + column,
+    expect_refused("analyze --csv '" + path + "' --bearing '" + kCtBearingYaml + "' --outer-rpm 180 --column " + column,
                    {path, "column 'ax_m_s2' appears twice", "columns 2 and 4"});
 }
 
 TEST_F(ToolInputTest, AnalysisThresholdsOutsideTheirRangesAreRefused) {
   const std::string csv = write("ok.csv", sine_csv(0.5, 9));
-  const std::string analyze = "analyze --csv '" + csv + "' --bearing '" + kCt + "' --outer-rpm 180";
+  const std::string analyze = "analyze --csv '" + csv + "' --bearing '" + kCtBearingYaml + "' --outer-rpm 180";
   expect_refused(analyze + " --snr-db -1e300", {"--snr-db -1e+300", "from 0 to 60 dB"});
   expect_refused(analyze + " --snr-db 61", {"--snr-db 61", "from 0 to 60 dB"});
   expect_refused(analyze + " --kurtosis-warn -5", {"--kurtosis-warn -5", "0 (off) or from 3", "1000"});
@@ -180,7 +182,7 @@ TEST_F(ToolInputTest, ABearingValueThatStallsTheIntegratorIsRefusedNamingTheKeyA
                  {sweep, "case 1 (clearance_um = 0", "overdamped", "contact_damping_Ns_per_m"});
   EXPECT_FALSE(std::filesystem::exists(dir_ + "/stall.csv")) << "nothing may be written for a refused sweep";
   // The shipped file runs.
-  EXPECT_EQ(run("simulate --bearing '" + kCt + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.01")
+  EXPECT_EQ(run("simulate --bearing '" + kCtBearingYaml + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 --duration 0.01")
                 .exit_code,
             0);
 }
@@ -188,18 +190,18 @@ TEST_F(ToolInputTest, ABearingValueThatStallsTheIntegratorIsRefusedNamingTheKeyA
 TEST_F(ToolInputTest, RunsOfYearsNeedTheConfirmationFlagAndNothingStarts) {
   // 1e9 samples of the CT bearing (414 balls) at 10 kHz with 200 integration steps each: weeks
   // here (about 1 ms per sample), and still days on a machine 50 times faster.
-  expect_refused("simulate --bearing '" + kCt + "' --force 6800,0,0 --outer-rpm 180 --duration 1e5 --substeps 200",
+  expect_refused("simulate --bearing '" + kCtBearingYaml + "' --force 6800,0,0 --outer-rpm 180 --duration 1e5 --substeps 200",
                  {"simulate", "--allow-long-run", "measured on this machine"});
   // 1e11 samples (the longest duration a scenario may have): years at any speed.
   const std::string out = dir_ + "/never";
-  expect_refused("generate '" + kScan + "' --out '" + out + "' --duration-s 1e7 --quiet",
+  expect_refused("generate '" + kCtScanYaml + "' --out '" + out + "' --duration-s 1e7 --quiet",
                  {"generate", "--allow-long-run"});
   EXPECT_FALSE(std::filesystem::exists(out)) << "nothing may be written for a refused run";
   // The flexible ring: 1e9 samples of 1000 steps each, about 70 days here (AMD EPYC, AVX-512),
   // so still far above the hour on a machine 50 times faster. (At its automatic few steps per
   // sample the same run is an hour here and under it on a faster machine, which then started
   // the run.) Its probe runs on a copy before the CSV opens.
-  const std::string flexible = kConfig + "/bearings/ct_gantry_flexible.yaml";
+  const std::string flexible = kConfigDir + "/bearings/ct_gantry_flexible.yaml";
   const std::string csv = dir_ + "/flexible.csv";
   expect_refused("simulate --bearing '" + flexible + "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180" +
                      " --duration 1e5 --substeps 1000 --csv '" + csv + "'",
@@ -208,7 +210,7 @@ TEST_F(ToolInputTest, RunsOfYearsNeedTheConfirmationFlagAndNothingStarts) {
 }
 
 TEST_F(ToolInputTest, ARateSampleCountOrStepCountBeyondAnyRunIsRefusedNamingTheOptions) {
-  const std::string sim = "simulate --bearing '" + kCt + "' --force 6800,0,0 --outer-rpm 180";
+  const std::string sim = "simulate --bearing '" + kCtBearingYaml + "' --force 6800,0,0 --outer-rpm 180";
   // 1 GHz: a second of run is 1e9 samples (the node and a scenario stop at 1 MHz too).
   expect_refused(sim + " --rate 1e9", {"--rate", "1e9", "1000000"});
   // 1e10 samples at the default 10 kHz: beyond the 1e9 a run holds.
@@ -221,11 +223,11 @@ TEST_F(ToolInputTest, ARateSampleCountOrStepCountBeyondAnyRunIsRefusedNamingTheO
 TEST_F(ToolInputTest, ASpeedNoBearingReachesIsRefusedNamingItAndTheLimit) {
   // 1e300 rpm and a sweep to 1e12 rpm ran and printed numbers; the CT bearing's pitch circle
   // (1111 mm) at 500 m/s is 900 rad/s, 8595 rpm.
-  const std::string b = " --bearing '" + kCt + "'";
+  const std::string b = " --bearing '" + kCtBearingYaml + "'";
   expect_refused("simulate" + b + " --force 6800,0,0 --outer-rpm 1e300 --duration 0.01",
                  {"ring speed", "(1e+300 rpm) is beyond +-900.1 rad/s (8595 rpm)", "500 m/s"});
   expect_refused("frequencies" + b + " --outer-rpm -1e12", {"outer ring speed", "(-1e+12 rpm)"});
-  const std::string sweep = write("fast_sweep.yaml", "name: fast\nbearing: " + kCt +
+  const std::string sweep = write("fast_sweep.yaml", "name: fast\nbearing: " + kCtBearingYaml +
                                                          "\noperating_point: {force_N: [6800, 0, 0], duration_s: 0.01}"
                                                          "\nparameter: speed_rpm\nvalues: [180, 1e12]\n");
   expect_refused("sweep --definition '" + sweep + "' --csv '" + dir_ + "/fast.csv' --quiet",
@@ -236,7 +238,7 @@ TEST_F(ToolInputTest, ASpeedNoBearingReachesIsRefusedNamingItAndTheLimit) {
 TEST_F(ToolInputTest, ABodyOrBearingPlaceBeyondAnyMachineIsRefusedNamingWhatWasGiven) {
   // A body of 5e-324 kg made every K/m overflow; 1e-300 kg was refused naming a mass of
   // 5e-324 kg never given, and so were bearings 1e300 mm from the centre of mass.
-  const std::string modes = "modes --bearing '" + kCt + "' --force 6800,0,0";
+  const std::string modes = "modes --bearing '" + kCtBearingYaml + "' --force 6800,0,0";
   expect_refused(modes + " --mass-kg 1e-300 --inertia-kg-m2 1,1,1", {"--mass-kg 1e-300", "from 0.001 to 1e+07 kg"});
   expect_refused(modes + " --mass-kg 5e-324 --inertia-kg-m2 1,1,1", {"--mass-kg 4.94066e-324", "0.001"});
   expect_refused(modes + " --mass-kg 1e9 --inertia-kg-m2 1,1,1", {"--mass-kg 1e+09", "1e+07 kg"});
@@ -251,8 +253,3 @@ TEST_F(ToolInputTest, ABodyOrBearingPlaceBeyondAnyMachineIsRefusedNamingWhatWasG
 }
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -12,15 +12,20 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "bearing_sim/core/constants.hpp"
 #include "tool_runner.hpp"
+#include "tool_test_files.hpp"
 
 namespace {
 
+using bearing_sim::kPi;
+using bearing_sim::test::contains;
+using bearing_sim::test::kConfigDir;
+using bearing_sim::test::kCtBearingYaml;
+using bearing_sim::test::kCtScanYaml;
+
 using bearing_sim::test::RunResult;
 
-const std::string kConfig = std::string(BEARING_SIM_SOURCE_DIR) + "/config";
-const std::string kCt = kConfig + "/bearings/ct_gantry_lyc.yaml";
-const std::string kScan = kConfig + "/scenarios/ct_gantry_scan.yaml";
 
 // A 6205-like deep groove bearing (a0 = 0, dm = 39.04 mm) with the given clearance.
 std::string bearing_6205(double clearance_um) {
@@ -68,28 +73,23 @@ TEST_F(ToolTemperatureTest, StaticAtATemperatureDifferenceIsTheColdBearingWithIt
 
 TEST_F(ToolTemperatureTest, BadValuesExit2NamingTheOption) {
   for (const std::string v : {"nan", "inf", "-inf", "warm"}) {
-    expect_refused("static --bearing '" + kCt + "' --ring-temperature-difference-K " + v,
+    expect_refused("static --bearing '" + kCtBearingYaml + "' --ring-temperature-difference-K " + v,
                    {"--ring-temperature-difference-K"});
-    expect_refused("simulate --bearing '" + kCt +
+    expect_refused("simulate --bearing '" + kCtBearingYaml +
                        "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 "
                        "--duration 0.01 --ring-temperature-difference-K " +
                        v,
                    {"--ring-temperature-difference-K"});
-    expect_refused("generate '" + kScan + "' --out '" + dir_ + "/out' --quiet --ring-temperature-difference-K " + v,
+    expect_refused("generate '" + kCtScanYaml + "' --out '" + dir_ + "/out' --quiet --ring-temperature-difference-K " + v,
                    {"--ring-temperature-difference-K"});
   }
   // 120 K on the CT bearing's 1111 mm pitch circle: 630 um of interference, beyond 5 % of d.
-  expect_refused("static --bearing '" + kCt + "' --force 6800,0,0 --ring-temperature-difference-K 120",
+  expect_refused("static --bearing '" + kCtBearingYaml + "' --force 6800,0,0 --ring-temperature-difference-K 120",
                  {"--ring-temperature-difference-K", "interference", "5 % of the ball diameter"});
-  expect_refused("simulate --bearing '" + kCt +
+  expect_refused("simulate --bearing '" + kCtBearingYaml +
                      "' --force 6800,0,0 --moment 0,2100 --outer-rpm 180 "
                      "--duration 0.01 --ring-temperature-difference-K 200",
                  {"--ring-temperature-difference-K", "150 K"});
-  expect_refused("generate '" + kScan + "' --out '" + dir_ + "/out' --quiet --ring-temperature-difference-K 120",
+  expect_refused("generate '" + kCtScanYaml + "' --out '" + dir_ + "/out' --quiet --ring-temperature-difference-K 120",
                  {"ring temperature difference 120 K", "interference"});
-}
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
 }
