@@ -24,6 +24,8 @@
 #include "dataset_plain_writer.hpp"
 #include "finite_data_guard.hpp"
 #include "job_size.hpp"
+#include "output_size.hpp"
+#include "output_space.hpp"
 #include "tool_common.hpp"
 
 namespace bearing_sim::tool {
@@ -169,6 +171,15 @@ void run(const GenerateOptions& o) {
                  "generate (" + std::to_string(jobs.size()) + " scenario(s) on " + std::to_string(threads) +
                      " thread(s), dynamics alone)",
                  "--allow-long-run");
+  // The files' size against the free space (after the wall time, before --out is created).
+  std::vector<PlannedOutput> outputs;
+  for (const Job& job : jobs) {
+    const BearingConfig bearing = load_bearing_config(job.simulation->scenario().bearing_file());
+    outputs.push_back({"--out '" + o.out_dir + "'", o.out_dir + "/" + file_stem(job.simulation->info().scenario),
+                       dataset_output_bytes(job.simulation->info(), settings, job.simulation->scenario(),
+                                            bearing.rows * bearing.balls_per_row, o.formats)});
+  }
+  check_output_space(outputs);
   prepare_out_dir(o.out_dir);
   std::mutex print_mutex;
   std::atomic<std::size_t> next{0};

@@ -16,6 +16,8 @@
 #include "commands.hpp"
 #include "flexible_ring_report.hpp"
 #include "job_size.hpp"
+#include "output_size.hpp"
+#include "output_space.hpp"
 #include "simulated_sensor.hpp"
 #include "tool_common.hpp"
 
@@ -146,8 +148,16 @@ void run(const SimulateOptions& o) {
   std::unique_ptr<SimulatedSensor> sensor;
   // The sensor's statistics over the summary's window: the second half of the samples.
   if (!o.sensor.empty())
-    sensor =
-        std::make_unique<SimulatedSensor>(o.sensor, o.rate_hz, static_cast<std::size_t>(samples) / 2, o.sensor_csv);
+    sensor = std::make_unique<SimulatedSensor>(o.sensor, o.rate_hz, static_cast<std::size_t>(samples) / 2);
+  // The files' size against the free space (after the wall time).
+  std::vector<PlannedOutput> outputs;
+  if (!o.csv.empty())
+    outputs.push_back({"--csv '" + o.csv + "'", o.csv,
+                       time_series_csv_bytes(samples, 10, static_cast<double>(std::strlen(kCsvHeader) + 1))});
+  if (!o.sensor_csv.empty())
+    outputs.push_back({"--sensor-csv '" + o.sensor_csv + "'", o.sensor_csv, sensor->csv_bytes(samples, o.rate_hz)});
+  check_output_space(outputs);
+  if (!o.sensor_csv.empty()) sensor->write_csv(o.sensor_csv);
   std::unique_ptr<CsvWriter> csv;
   if (!o.csv.empty()) csv = std::make_unique<CsvWriter>(o.csv);
   std::function<void(const DynamicSample&)> on_sample;

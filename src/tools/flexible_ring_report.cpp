@@ -11,6 +11,8 @@
 #include "bearing_sim/core/flexible_dynamics.hpp"
 #include "bearing_sim/core/vibration_level.hpp"
 #include "job_size.hpp"
+#include "output_size.hpp"
+#include "output_space.hpp"
 #include "tool_common.hpp"
 
 namespace bearing_sim::tool {
@@ -80,6 +82,12 @@ void print_flexible_ring_static(const nlohmann::json& ring) {
 void run_flexible_simulation(const BearingModel& model, const FlexibleSimulationRequest& r) {
   FlexibleDynamics dynamics(FlexibleBearing(model), r.load, r.ring_speed_rad_s, r.rate_hz, r.substeps, r.method);
   const long samples = std::lround(r.duration_s * r.rate_hz);
+  const auto& modes = dynamics.bearing().modes();
+  const int n = dynamics.bearing().size();
+  std::string csv_header =
+      "time_s,x_m,y_m,z_m,theta_x_rad,theta_y_rad,ax_m_s2,ay_m_s2,az_m_s2,alpha_x_rad_s2,alpha_y_rad_s2";
+  for (int c = 0; c < n - 5; ++c) csv_header += "," + coordinate_name(modes, c);
+  csv_header += "\n";
   // Its cost from a probe on a copy, before anything is written, as the rigid ring's.
   if (samples > 1000) {
     FlexibleDynamics probe = dynamics;
@@ -87,16 +95,17 @@ void run_flexible_simulation(const BearingModel& model, const FlexibleSimulation
     check_job_size(static_cast<double>(samples), static_cast<double>(samples) * per_sample, r.allow_long_run,
                    "simulate", "--allow-long-run");
   }
-  const auto& modes = dynamics.bearing().modes();
-  const int n = dynamics.bearing().size();
+  // The CSV's size against the free space (after the wall time): the 10 rigid-body columns
+  // and the ring's.
+  if (!r.csv.empty())
+    check_output_space(
+        {{"--csv '" + r.csv + "'", r.csv,
+          time_series_csv_bytes(static_cast<double>(samples), 10 + (n - 5), static_cast<double>(csv_header.size()))}});
   std::FILE* csv = nullptr;
   if (!r.csv.empty()) {
     csv = std::fopen(r.csv.c_str(), "w");
     if (!csv) throw InputError("--csv: cannot open '" + r.csv + "' for writing: " + std::strerror(errno));
-    std::fprintf(csv,
-                 "time_s,x_m,y_m,z_m,theta_x_rad,theta_y_rad,ax_m_s2,ay_m_s2,az_m_s2,alpha_x_rad_s2,alpha_y_rad_s2");
-    for (int c = 0; c < n - 5; ++c) std::fprintf(csv, ",%s", coordinate_name(modes, c).c_str());
-    std::fputc('\n', csv);
+    std::fputs(csv_header.c_str(), csv);
   }
   // Statistics over the second half (as simulate's rigid ring): mean and RMS of the rigid
   // accelerations and of each modal coordinate.

@@ -8,13 +8,13 @@
 
 #include "bearing_sim/core/errors.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
+#include "output_size.hpp"
 #include "tool_common.hpp"
 
 namespace bearing_sim::tool {
 
-SimulatedSensor::SimulatedSensor(const std::string& sensor_file, double rate_hz, std::size_t window_start,
-                                 const std::string& csv)
-    : file_(sensor_file), csv_path_(csv), window_start_(window_start) {
+SimulatedSensor::SimulatedSensor(const std::string& sensor_file, double rate_hz, std::size_t window_start)
+    : file_(sensor_file), window_start_(window_start) {
   const AccelerometerConfig config = load_accelerometer_config(sensor_file);
   try {
     sensor_ = std::make_unique<runtime::TriaxialSensor>(config, rate_hz);
@@ -22,11 +22,20 @@ SimulatedSensor::SimulatedSensor(const std::string& sensor_file, double rate_hz,
     throw InputError("--sensor '" + sensor_file + "' at --rate " + general(rate_hz, 6) + " Hz: " + e.what());
   }
   unit_ = config.output_unit == SensorOutputUnit::Voltage_V ? "V" : "m_s2";
-  if (!csv_path_.empty()) {
-    csv_ = std::fopen(csv_path_.c_str(), "w");
-    if (!csv_) throw InputError("--sensor-csv: cannot open '" + csv_path_ + "' for writing: " + std::strerror(errno));
-    std::fprintf(csv_, "time_s,x_%s,y_%s,z_%s\n", unit_.c_str(), unit_.c_str(), unit_.c_str());
-  }
+}
+
+std::string SimulatedSensor::csv_header() const { return "time_s,x_" + unit_ + ",y_" + unit_ + ",z_" + unit_ + "\n"; }
+
+void SimulatedSensor::write_csv(const std::string& csv) {
+  csv_path_ = csv;
+  csv_ = std::fopen(csv_path_.c_str(), "w");
+  if (!csv_) throw InputError("--sensor-csv: cannot open '" + csv_path_ + "' for writing: " + std::strerror(errno));
+  std::fputs(csv_header().c_str(), csv_);
+}
+
+double SimulatedSensor::csv_bytes(double input_samples, double rate_hz) const {
+  const double rows = std::ceil(input_samples * sensor_->output_rate_hz() / rate_hz);
+  return time_series_csv_bytes(rows, 3, static_cast<double>(csv_header().size()));
 }
 
 SimulatedSensor::~SimulatedSensor() {

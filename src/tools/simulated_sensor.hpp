@@ -20,12 +20,16 @@ class SimulatedSensor {
  public:
   // sensor_file: the accelerometer file (`sensor:` mapping); rate_hz: the run's sample rate;
   // window_start: the index of the run's sample from which the statistics count (the
-  // summary's window); csv: empty for none.
-  SimulatedSensor(const std::string& sensor_file, double rate_hz, std::size_t window_start, const std::string& csv);
+  // summary's window).
+  SimulatedSensor(const std::string& sensor_file, double rate_hz, std::size_t window_start);
   ~SimulatedSensor();
   SimulatedSensor(const SimulatedSensor&) = delete;
   SimulatedSensor& operator=(const SimulatedSensor&) = delete;
 
+  // Writes every sensor sample from now on to the CSV file `csv` (a header line first).
+  void write_csv(const std::string& csv);
+  // The CSV's size after `input_samples` of the run, at most (output_size.hpp).
+  double csv_bytes(double input_samples, double rate_hz) const;
   void push(const DynamicSample& sample);
   // Closes the CSV (throws if writing it failed).
   void finish();
@@ -35,6 +39,8 @@ class SimulatedSensor {
   double output_rate_hz() const { return sensor_->output_rate_hz(); }
 
  private:
+  std::string csv_header() const;
+
   std::string file_, csv_path_, unit_;
   std::unique_ptr<runtime::TriaxialSensor> sensor_;
   std::size_t window_start_, inputs_ = 0;

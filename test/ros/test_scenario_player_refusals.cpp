@@ -9,10 +9,7 @@
 //   start), and a spall (the node already holds the 64 it may hold), for which no label
 //   listing the spall is ever published (the player learns of it from the service's reply).
 // Every wait is a generous time-out; nothing here measures speed.
-#include <sys/wait.h>
-
 #include <cmath>
-#include <cstdio>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -24,6 +21,7 @@
 #include "bearing_sim/InjectDefect.h"
 #include "bearing_sim/InputRejection.h"
 #include "bearing_sim/ScenarioState.h"
+#include "command_runner.hpp"
 
 using namespace bearing_sim;
 
@@ -32,8 +30,8 @@ namespace {
 const char* const kMaxForceParam = "/bearing/bearing_sim_node/max_force_N";
 
 struct PlayerRun {
-  int status = -1;  // exit status; -1 if it did not exit normally
-  std::string output;
+  int status = -1;     // exit status (run_command's)
+  std::string output;  // stdout, then stderr
 };
 
 // The player on the node's namespace with the scenario; waits for the test's scenario_state
@@ -42,17 +40,11 @@ PlayerRun run_player(const std::string& name) {
   std::string file, process;
   ros::param::get("~scenario_file", file);
   ros::param::get("~node_process", process);
-  const std::string command = std::string("timeout 300 ") + SCENARIO_PLAYER_PATH + " __ns:=/bearing __name:=" + name +
+  const std::string command = std::string(SCENARIO_PLAYER_PATH) + " __ns:=/bearing __name:=" + name +
                               " _scenario_file:=" + file + " _node_process:=" + process +
-                              " _wait_for_subscribers:=1 _wait_timeout_s:=120 2>&1";
-  PlayerRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return run;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) run.output += buffer;
-  const int status = pclose(pipe);
-  if (status != -1 && WIFEXITED(status)) run.status = WEXITSTATUS(status);
-  return run;
+                              " _wait_for_subscribers:=1 _wait_timeout_s:=120";
+  const test::CommandResult r = test::run_command(command, 300);
+  return {r.exit_code, r.out + r.err};
 }
 
 class ScenarioPlayerRefusals : public ::testing::Test {

@@ -48,7 +48,7 @@ constexpr double kRpm = 2.0 * kPi / 60.0;
 constexpr double kRate = 10000.0;
 constexpr std::uint64_t kSamples = 20500;  // 2.05 s: the last chunk is short (100 per chunk)
 
-std::string source_file(const std::string& relative) { return std::string(BEARING_SIM_SOURCE_DIR) + "/" + relative; }
+using bearing_sim::test::source_file;
 
 // 150 rpm, ramp to 180 rpm from 0.5 to 1.5 s; paper load plus 0.11 kg*m unbalance; an
 // outer-race spall from 0.55 s, 0.3 mm x 5 um growing by 0.5 mm/s and 10 um/s.
@@ -74,7 +74,7 @@ class Generate : public ::testing::Test {
     scenario_ = dir_ + "/gen_test.yaml";
     std::ofstream(scenario_) << scenario_text("gen_test", 5);
     std::ofstream(dir_ + "/gen_test2.yaml") << scenario_text("gen_test2", 9);
-    const auto a = run_bearing_tool("generate '" + scenario_ + "' --out '" + dir_ + "/a' --format bag,npy,csv", dir_);
+    const auto a = run_bearing_tool("generate '" + scenario_ + "' --out '" + dir_ + "/a' --format bag,npy,csv");
     ASSERT_EQ(a.exit_code, 0) << a.err;
     summary_ = a.out;
   }
@@ -259,12 +259,12 @@ TEST_F(Generate, NpyCsvAndJsonEqualTheBag) {
 }
 
 TEST_F(Generate, SameSeedSameBytesOtherSeedDiffers) {
-  const auto b = run_bearing_tool("generate '" + scenario_ + "' --out '" + dir_ + "/b' --format bag,npy --quiet", dir_);
+  const auto b = run_bearing_tool("generate '" + scenario_ + "' --out '" + dir_ + "/b' --format bag,npy --quiet");
   ASSERT_EQ(b.exit_code, 0) << b.err;
   for (const char* f : {"gen_test.bag", "gen_test_vibration.npy", "gen_test_vibration_ideal.npy", "gen_test.json"})
     expect_same_bytes(dir_ + "/a/" + f, dir_ + "/b/" + f);
   const auto c =
-      run_bearing_tool("generate '" + scenario_ + "' --out '" + dir_ + "/c' --format bag,npy --seed 6 --quiet", dir_);
+      run_bearing_tool("generate '" + scenario_ + "' --out '" + dir_ + "/c' --format bag,npy --seed 6 --quiet");
   ASSERT_EQ(c.exit_code, 0) << c.err;
   // The sensor noise follows the seed (this bearing has no random imperfections, so the
   // ideal acceleration does not depend on it).
@@ -277,12 +277,11 @@ TEST_F(Generate, SameSeedSameBytesOtherSeedDiffers) {
 
 TEST_F(Generate, ParallelThreadsGiveTheSameBytesAsOneByOne) {
   const std::string second = dir_ + "/gen_test2.yaml";
-  const auto both = run_bearing_tool(
-      "generate '" + scenario_ + "' '" + second + "' --out '" + dir_ + "/p' --format bag,npy --threads 2 --quiet",
-      dir_);
+  const auto both = run_bearing_tool("generate '" + scenario_ + "' '" + second + "' --out '" + dir_ +
+                                     "/p' --format bag,npy --threads 2 --quiet");
   ASSERT_EQ(both.exit_code, 0) << both.err;
   const auto one =
-      run_bearing_tool("generate '" + second + "' --out '" + dir_ + "/s' --format bag,npy --threads 1 --quiet", dir_);
+      run_bearing_tool("generate '" + second + "' --out '" + dir_ + "/s' --format bag,npy --threads 1 --quiet");
   ASSERT_EQ(one.exit_code, 0) << one.err;
   for (const char* f : {"gen_test.bag", "gen_test_vibration.npy", "gen_test.json"})
     expect_same_bytes(dir_ + "/a/" + f, dir_ + "/p/" + f);
@@ -295,7 +294,7 @@ TEST_F(Generate, ParallelThreadsGiveTheSameBytesAsOneByOne) {
 
 TEST_F(Generate, BadInputExitsTwoNamingTheProblem) {
   auto expect_bad = [&](const std::string& args, const std::string& what) {
-    const auto r = run_bearing_tool("generate " + args + " --quiet", dir_);
+    const auto r = run_bearing_tool("generate " + args + " --quiet");
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
     EXPECT_NE(r.err.find(what), std::string::npos) << "expected '" << what << "' in: " << r.err;
   };
@@ -323,7 +322,7 @@ TEST_F(Generate, AFlexibleRingScenarioIsFlexibleDynamicsDrivenByIt) {
          "load:\n  initial: {force_N: [6800, 0, 0], moment_Nm: [0, 2100]}\n"
          "  segments: [{type: step, start_s: 0.05, force_N: [9000, 0, 0], moment_Nm: [0, 2100]}]\n"
          "defects:\n  - {type: spall, at_s: 0.03, surface: outer_race, position_deg: 0, width_mm: 1, depth_um: 20}\n";
-  const auto r = run_bearing_tool("generate '" + file + "' --out '" + dir_ + "/f' --format npy --quiet", dir_);
+  const auto r = run_bearing_tool("generate '" + file + "' --out '" + dir_ + "/f' --format npy --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::uint64_t rows = 0;
   const std::vector<float> ideal = read_npy(dir_ + "/f/flexible_vibration_ideal.npy", &rows);

@@ -2,10 +2,8 @@
 // 10 kHz, in 100-sample chunks. Per second (an integer number of periods) the RMS about
 // the mean is A / sqrt(2) whatever c, and L = 20 lg(A / sqrt(2) / 9.81e-3 m/s^2). A missing
 // chunk is reported as a gap and makes the exit status 2.
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -17,6 +15,7 @@
 
 #include "bearing_sim/ros/lcm_conversion.hpp"
 #include "bearing_sim/ros/lcm_publish_queue.hpp"
+#include "command_runner.hpp"
 
 using namespace bearing_sim;
 using namespace bearing_sim::ros_node;
@@ -49,6 +48,7 @@ std::string write_log(const std::string& name, int seconds, std::int64_t skip) {
   return path;
 }
 
+// The consumer on `log`: its stdout, then its stderr, in `output`.
 struct ConsumerRun {
   std::string output;
   int status = -1;
@@ -56,14 +56,8 @@ struct ConsumerRun {
 
 ConsumerRun consume(const std::string& log) {
   const std::string command = std::string(LCM_CONSUMER_PATH) + " --url 'file://" + log + "?speed=0' --idle-exit-s 1";
-  ConsumerRun run;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return run;
-  std::array<char, 4096> buf;
-  while (std::fgets(buf.data(), buf.size(), pipe) != nullptr) run.output += buf.data();
-  const int rc = ::pclose(pipe);
-  run.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-  return run;
+  const test::CommandResult r = test::run_command(command, 300);
+  return {r.out + r.err, r.exit_code};
 }
 
 struct Line {

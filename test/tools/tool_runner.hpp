@@ -8,13 +8,11 @@
 
 #include <gtest/gtest.h>
 
+#include "command_runner.hpp"
+
 namespace bearing_sim::test {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using RunResult = CommandResult;
 
 // The whole text of a file ("" when it cannot be read).
 std::string read_file(const std::string& path);
@@ -26,10 +24,9 @@ std::string bearing_tool_path();
 // any test's run even on a loaded machine.
 constexpr int kToolTimeoutS = 900;
 
-// bearing_tool with `args` (shell words); stdout and stderr captured apart, stderr via a
-// file in `scratch_dir`, stdin empty. A run stopped at kToolTimeoutS exits 124 (or 137) and
-// its stderr says so.
-RunResult run_bearing_tool(const std::string& args, const std::string& scratch_dir);
+// bearing_tool with `args` (shell words) through run_command: stdout and stderr captured
+// apart, stdin empty. A run stopped at kToolTimeoutS exits 124 (or 137) and its stderr says so.
+RunResult run_bearing_tool(const std::string& args);
 
 // A test with a scratch directory of its own (removed afterwards) to write inputs into and
 // run bearing_tool in.
@@ -47,7 +44,7 @@ class ToolScratchTest : public ::testing::Test {
     std::ofstream(path) << text;
     return path;
   }
-  RunResult run(const std::string& args) { return run_bearing_tool(args, dir_); }
+  RunResult run(const std::string& args) { return run_bearing_tool(args); }
 
   std::string dir_;
 };
