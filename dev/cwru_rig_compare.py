@@ -22,6 +22,7 @@ three pass, 1 when one fails, 2 for bad input. The record 97
     source scripts/env.sh; source build/devel/setup.bash
     /usr/bin/python3 dev/cwru_rig_compare.py /work/cwru --out /tmp/cwru_rig_compare
     /usr/bin/python3 dev/cwru_rig_compare.py /work/cwru --out /tmp/x --hp 0,3 --positions @6,@3,@12 --window-s 1
+    /usr/bin/python3 dev/cwru_rig_compare.py /work/cwru --out /tmp/x --faults ball --seed 2
 
 Data: CWRU Bearing Data Center, Case Western Reserve University,
 https://engineering.case.edu/bearingdatacenter (not shipped: read from CWRU_DIR).
@@ -95,6 +96,9 @@ def parser():
     p.add_argument('--out', type=pathlib.Path, required=True, help='output directory (created)')
     p.add_argument('--hp', type=comma_list(int), default=[0, 1, 2, 3],
                    help='motor loads, comma-separated (default 0,1,2,3; the normal record is at 0 hp only)')
+    p.add_argument('--faults', type=comma_list(str), default=list(FAULT_ORDER),
+                   help=f"fault types, comma-separated, of {', '.join(FAULT_ORDER)} (default all; e.g. 'ball' to "
+                        "re-measure a change that touches ball faults only)")
     p.add_argument('--positions', type=comma_list(str), default=['@6'],
                    help=f"outer-race fault positions, comma-separated, of {', '.join(POSITION_DEG)} (default @6)")
     p.add_argument('--bearing', type=pathlib.Path, default=BEARING_FILE,
@@ -167,7 +171,7 @@ def conditions(args, table):
     asked loads and positions, in the table's fault order."""
     wanted = []
     for meta in table.values():
-        if meta['channel'] != 'DE' or meta['load_hp'] not in args.hp:
+        if meta['channel'] != 'DE' or meta['load_hp'] not in args.hp or meta['fault'] not in args.faults:
             continue
         if meta['fault'] == 'none':
             wanted.append(meta)
@@ -353,10 +357,10 @@ def main(argv=None):
     args = parser().parse_args(argv)
     import bearing_sim
     from bearing_sim import cwru_records
-    bad = [p for p in args.positions if p not in POSITION_DEG]
+    bad = [p for p in args.positions if p not in POSITION_DEG] + [f for f in args.faults if f not in FAULT_ORDER]
     if bad or args.window_s <= 0.0 or args.settle_s < 0.0:
-        print(f'cwru_rig_compare: positions must be of {list(POSITION_DEG)}, --window-s > 0, --settle-s >= 0',
-              file=sys.stderr)
+        print(f'cwru_rig_compare: positions must be of {list(POSITION_DEG)}, faults of {list(FAULT_ORDER)}, '
+              f'--window-s > 0, --settle-s >= 0 (got {bad})', file=sys.stderr)
         return 2
     table = cwru_records.metadata()
     wanted = conditions(args, table)

@@ -405,8 +405,12 @@ double BearingDynamics::slipping_cage_speed() const {
 
 RollingPhase BearingDynamics::advanced(const RollingPhase& p, double dt) const {
   const double slipping_cage_speed = this->slipping_cage_speed();
-  return RollingPhase{p.cage + slipping_cage_speed * dt, p.inner_ring + inner_speed_ * dt,
-                      p.outer_ring + outer_speed_ * dt, p.ball_spin + spin_speed_ * dt, p.time_s + dt};
+  return RollingPhase{p.cage + slipping_cage_speed * dt,
+                      p.inner_ring + inner_speed_ * dt,
+                      p.outer_ring + outer_speed_ * dt,
+                      p.ball_spin + spin_speed_ * dt,
+                      p.time_s + dt,
+                      p.cage_turns};
 }
 
 double BearingDynamics::contact_margin_m(const Vector5& q, const Vector5& v, const Vector5& a) const {
@@ -720,8 +724,16 @@ DynamicSample BearingDynamics::commit_sample(const Vector5& q, const Vector5& v,
     if (!(std::abs(x) <= 3.0 * kPi)) return std::remainder(x, kTwoPi);
     return x > kPi ? x - kTwoPi : x < -kPi ? x + kTwoPi : x;
   };
-  phase_ = RollingPhase{wrap(phase.cage), wrap(phase.inner_ring), wrap(phase.outer_ring), wrap(phase.ball_spin),
-                        static_cast<double>(sample_index_) / options_.sample_rate_hz};
+  const double cage = wrap(phase.cage);
+  // The turns the wrap took off the cage, counted (the balls' passages; a whole multiple of
+  // 2 pi up to the rounding of x -+ 2 pi).
+  const std::int64_t turns = phase.cage_turns + std::llround((phase.cage - cage) / kTwoPi);
+  phase_ = RollingPhase{cage,
+                        wrap(phase.inner_ring),
+                        wrap(phase.outer_ring),
+                        wrap(phase.ball_spin),
+                        static_cast<double>(sample_index_) / options_.sample_rate_hz,
+                        turns};
   current_.time_s = phase_.time_s;
   update_slip_fluctuation();
   current_.cage_angle_rad = phase_.cage;

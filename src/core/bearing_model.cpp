@@ -296,13 +296,16 @@ const double* BearingModel::offsets_at(const RollingPhase& phase, const BallArra
     std::uint64_t generation = 0;
     Imperfections::BallSet terms;  // of this set of balls
     RollingPhase phase;
+    // The use count beside the two flags, in one word: the cache is per thread, and its size
+    // counts against the static TLS space (docs/performance.md). The count wraps after 2^32
+    // uses, which only makes one eviction pick a recently used entry.
+    std::uint32_t last_use = 0;
     bool include_spalls = false;
     bool has_values = false;
     std::vector<double> values;
-    std::uint64_t last_use = 0;
   };
   thread_local std::array<Entry, 4> cache;
-  thread_local std::uint64_t uses = 0;
+  thread_local std::uint32_t uses = 0;
   Entry* entry = nullptr;
   for (Entry& e : cache)
     if (e.stamp == stamp_ && e.set == &balls && e.generation == balls.generation) entry = &e;
@@ -319,7 +322,7 @@ const double* BearingModel::offsets_at(const RollingPhase& phase, const BallArra
   const RollingPhase& p = entry->phase;
   const bool same = entry->has_values && entry->include_spalls == include_spalls && p.cage == phase.cage &&
                     p.inner_ring == phase.inner_ring && p.outer_ring == phase.outer_ring &&
-                    p.ball_spin == phase.ball_spin && p.time_s == phase.time_s;
+                    p.ball_spin == phase.ball_spin && p.time_s == phase.time_s && p.cage_turns == phase.cage_turns;
   if (!same) {
     entry->values.resize(balls.size());
     imperfections_.add_offsets(phase, entry->terms, balls.deflection_offset.data(), entry->values.data(),

@@ -320,8 +320,12 @@ Eigen::VectorXd FlexibleDynamics::load_frame_acceleration(const Eigen::VectorXd&
 }
 
 RollingPhase FlexibleDynamics::advanced(const RollingPhase& p, double dt) const {
-  return RollingPhase{p.cage + cage_speed_ * dt, p.inner_ring + inner_speed_ * dt, p.outer_ring + outer_speed_ * dt,
-                      p.ball_spin + spin_speed_ * dt, p.time_s + dt};
+  return RollingPhase{p.cage + cage_speed_ * dt,
+                      p.inner_ring + inner_speed_ * dt,
+                      p.outer_ring + outer_speed_ * dt,
+                      p.ball_spin + spin_speed_ * dt,
+                      p.time_s + dt,
+                      p.cage_turns};
 }
 
 Eigen::VectorXd FlexibleDynamics::acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v,

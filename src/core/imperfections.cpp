@@ -329,6 +329,18 @@ void Imperfections::struck_chord(std::size_t index, double time_s, double* angul
   *angular_width = width;
 }
 
+double Imperfections::spin_slip_rad(std::size_t index, int ball, const RollingPhase& phase) const {
+  // The ball's azimuth in the bearing frame since the start, from the middle of the unloaded
+  // arc: its passages through that middle so far are the whole turns of it.
+  const double azimuth = geometry_.base_azimuth[ball] + phase.cage + kTwoPi * static_cast<double>(phase.cage_turns) -
+                         spec_.ball_spin_slip_azimuth_rad;
+  const long passage = floor_to_long(azimuth / kTwoPi);
+  const std::uint64_t key = detail::mix64(spec_.seed ^ 0x7f4a7c159e3779b9ull) ^ detail::mix64(index);
+  // Made anew at each call (~40 hashes): a per-thread cache would take the core past the
+  // static TLS space of a library loaded with dlopen (docs/performance.md).
+  return spec_.ball_spin_slip_rad * detail::random_walk(key, passage);
+}
+
 void Imperfections::grown_window(const Spall& s, double time_s, SpallWindow* w) const {
   double angular_width = 0.0;
   spall_size(s, time_s, &angular_width, &w->depth, &w->geometric_depth);
@@ -469,7 +481,9 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
       if (entry < 0) continue;
       struck_chord(i, phase.time_s, &angular_width, &depth, &geometric_depth);
       if (depth <= 0.0) continue;
-      const double x = std::remainder(phase.ball_spin + ball_phase_[s.ball] - s.position_rad, kPi);
+      double spin = phase.ball_spin + ball_phase_[s.ball] - s.position_rad;
+      if (spec_.ball_spin_slip_rad > 0.0) spin -= spin_slip_rad(i, s.ball, phase);
+      const double x = std::remainder(spin, kPi);
       out[entry] -= spall_dip(x, angular_width, depth, sharp, geometric_depth);
     } else {
       // Only the few balls within half a width of the spall centre: find them by index,

@@ -63,6 +63,14 @@ void read_imperfection_keys(const detail::Reader& r, int rows, ImperfectionSpec*
   spec.ball_spin_axis_wander_correlation_s = r.number("ball_spin_axis_wander_correlation_s", 0.1);
   r.require(spec.ball_spin_axis_wander_correlation_s >= 1e-4 && spec.ball_spin_axis_wander_correlation_s <= 1e3,
             "ball_spin_axis_wander_correlation_s", "must be in [1e-4, 1e3] s");
+  // The spin angle gained or lost per passage through the unloaded arc; past a half turn a
+  // ball spall's phase (it meets a race every half turn) is lost at every passage anyway.
+  spec.ball_spin_slip_rad = r.number("ball_spin_slip_deg", 0.0) * kPi / 180.0;
+  r.require(spec.ball_spin_slip_rad >= 0.0 && spec.ball_spin_slip_rad <= kPi, "ball_spin_slip_deg",
+            "must be in [0, 180] deg");
+  spec.ball_spin_slip_azimuth_rad = r.number("ball_spin_slip_azimuth_deg", 180.0) * kPi / 180.0;
+  r.require(std::abs(spec.ball_spin_slip_azimuth_rad) <= kTwoPi, "ball_spin_slip_azimuth_deg",
+            "must be in [-360, 360] deg");
   const std::string edges = r.text("spall_edges", "rounded");
   r.require(edges == "rounded" || edges == "sharp", "spall_edges", "must be 'rounded' or 'sharp'");
   spec.spall_sharp_edges = edges == "sharp";
@@ -130,7 +138,8 @@ ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML
     r.check_keys({"seed", "waviness", "ball_diameter_variation_um", "roughness_rms_um", "roughness_row",
                   "ball_spacing_jitter_mm", "cage_slip_percent", "cage_slip_variation_percent",
                   "cage_slip_correlation_s", "ball_place_wander_mm", "ball_place_wander_correlation_s",
-                  "ball_spin_axis_wander_deg", "ball_spin_axis_wander_correlation_s", "spall_edges"});
+                  "ball_spin_axis_wander_deg", "ball_spin_axis_wander_correlation_s", "ball_spin_slip_deg",
+                  "ball_spin_slip_azimuth_deg", "spall_edges"});
     read_imperfection_keys(r, rows, &spec);
     const YAML::Node list = imperfections["waviness"];
     if (list) read_waviness(r, list, source, rows, &spec);

@@ -37,4 +37,45 @@ inline double smooth_normal(std::uint64_t key, double x) {
   return ((1.0 - f) * knot_normal(key, k) + f * knot_normal(key, k + 1)) / std::sqrt((1.0 - f) * (1.0 - f) + f * f);
 }
 
+// A zero-mean, unit-variance value for (key, knot): the sum of the four 16-bit uniforms of one
+// hash (Irwin-Hall, within +-2 sqrt 3), a near-normal value at a tenth of Box-Muller's cost,
+// where sums of many of them make the law and only the variance has to be exact.
+inline double knot_unit(std::uint64_t key, std::int64_t knot) {
+  const std::uint64_t h = mix64(key ^ mix64(static_cast<std::uint64_t>(knot)));
+  const double sum = static_cast<double>((h & 0xffff) + ((h >> 16) & 0xffff) + ((h >> 32) & 0xffff) + (h >> 48));
+  // Four uniforms on [0, 1) in steps of 2^-16: mean 2 - 2^-15, variance (1 - 2^-32) / 3.
+  constexpr double kMean = 2.0 * 65535.0, kScale = 1.7320508075688772 / 65536.0 / 0.99999999988358467;
+  return (sum - kMean) * kScale;
+}
+
+// A random walk at step n: the sum of |n| steps of zero mean and unit variance, uncorrelated
+// (n < 0: the walk run backwards from 0), a pure function of (key, n) for |n| <= 2^39. Built
+// by Levy's construction: the ends of [0, 2^39] and [-2^39, 0] drawn first, then the middle
+// of the half holding n, given its ends (their mean plus sqrt(length) / 2 times a unit
+// value), down to n: 40 values at most, each dyadic point's keyed by the point itself. The
+// construction is linear, so any two steps' covariance is the walk's, min(|m|, |n|) on one
+// side of 0, in whatever order they are asked; with knot_unit's values the steps are nearly
+// normal (each a sum of ~40 of them).
+inline double random_walk(std::uint64_t key, std::int64_t n) {
+  constexpr std::int64_t kHalfSpan = std::int64_t{1} << 39;
+  if (n > kHalfSpan) n = kHalfSpan;
+  if (n < -kHalfSpan) n = -kHalfSpan;
+  if (n == 0) return 0.0;
+  std::int64_t lo = n > 0 ? 0 : -kHalfSpan, hi = n > 0 ? kHalfSpan : 0;
+  const double end = std::sqrt(static_cast<double>(kHalfSpan)) * knot_unit(key, n > 0 ? hi : lo);
+  double w_lo = n > 0 ? 0.0 : end, w_hi = n > 0 ? end : 0.0;
+  while (n != lo && n != hi) {
+    const std::int64_t mid = lo + (hi - lo) / 2;
+    const double w_mid = 0.5 * (w_lo + w_hi) + 0.5 * std::sqrt(static_cast<double>(hi - lo)) * knot_unit(key, mid);
+    if (n < mid) {
+      hi = mid;
+      w_hi = w_mid;
+    } else {
+      lo = mid;
+      w_lo = w_mid;
+    }
+  }
+  return n == lo ? w_lo : w_hi;
+}
+
 }  // namespace bearing_sim::detail

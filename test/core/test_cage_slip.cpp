@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/condition_indicators.hpp"
 #include "bearing_sim/core/simulation_run.hpp"
 #include "test_support.hpp"
@@ -45,6 +46,23 @@ TEST(CageSlip, SlipLowersTheOuterRaceBallPassLineByTheSlip) {
   // (0.8 s); the interpolated peak is good to a fraction of it.
   EXPECT_NEAR(peak.frequency_hz, 0.97 * bpfo, 0.6);
   EXPECT_GT(peak.snr_db, 10.0);
+}
+
+// The dynamics wraps the cage angle every sample and counts the turns it takes off: angle
+// plus 2 pi turns is the slipping cage's rate times the time (the balls' passages through the
+// unloaded arc are counted on it, docs/model.md 9.5). 1 s at 1800 rpm: ~11.6 turns.
+TEST(CageSlip, TheDynamicsCountsTheCageTurnsItWraps) {
+  const BearingModel model = bearing_6205("imperfections: {cage_slip_percent: 3.0}\n");
+  BearingDynamics dynamics(model, test::load5(1000.0, 0.0, 200.0, 0.0, 0.0), kSpeedRadS, DynamicsOptions{20000.0, 0});
+  for (int i = 0; i < 20000; ++i) dynamics.step();
+  const RollingPhase& p = dynamics.phase();
+  const double unwrapped = p.cage + 2.0 * test::kPi * static_cast<double>(p.cage_turns);
+  const double expected = 0.97 * dynamics.cage_speed_rad_s() * p.time_s;
+  EXPECT_NEAR(p.time_s, 1.0, 1e-12);
+  EXPECT_GE(p.cage_turns, 11);
+  EXPECT_LE(std::abs(p.cage), test::kPi);
+  // 20000 sums of an advance and a wrap, each rounded to ~1e-15 rad.
+  EXPECT_NEAR(unwrapped, expected, 1e-9);
 }
 
 TEST(CageSlip, BallSpacingScatterHasTheConfiguredSpread) {

@@ -265,12 +265,31 @@ TEST(ConfigErrors, AnImperfectionsFileReadsAsTheSameSectionsOfABearingFile) {
   EXPECT_EQ(in_bearing.spalls[0].row, alone.spalls[0].row);
 }
 
+// The balls' spin slip is given in degrees (docs/bearing_file.md): the spec holds radians,
+// and without the keys no slip, counted opposite a load along x.
+TEST(ConfigErrors, TheBallSpinSlipIsReadInDegrees) {
+  const ImperfectionSpec given = imperfections_from_string(
+      "imperfections: {ball_spin_slip_deg: 9, ball_spin_slip_azimuth_deg: -90}\n", kSource, 1);
+  EXPECT_NEAR(given.ball_spin_slip_rad, kPi / 20.0, 1e-15);
+  EXPECT_NEAR(given.ball_spin_slip_azimuth_rad, -kPi / 2.0, 1e-15);
+  EXPECT_FALSE(given.empty());
+  const ImperfectionSpec absent = imperfections_from_string("imperfections: {}\n", kSource, 1);
+  EXPECT_EQ(absent.ball_spin_slip_rad, 0.0);
+  EXPECT_NEAR(absent.ball_spin_slip_azimuth_rad, kPi, 1e-15);
+}
+
 // Its keys are checked as a bearing file's, and a key of neither section is refused by name.
 TEST(ConfigErrors, AnImperfectionsTextWithABadKeyIsRefusedNamingIt) {
   const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
       {"imperfections: {}\ndefect: []\n", {"key 'defect'", "unknown key"}},
       {"defects: [{surface: outer_race, width_mm: 0, depth_um: 5}]\n", {"key 'defects[0].width_mm'", "must be > 0"}},
       {"imperfections: {roughness_row: 1}\n", {"key 'imperfections.roughness_row'", "one row"}},
+      {"imperfections: {ball_spin_slip_deg: -1}\n", {"key 'imperfections.ball_spin_slip_deg'", "[0, 180] deg"}},
+      {"imperfections: {ball_spin_slip_deg: 181}\n", {"key 'imperfections.ball_spin_slip_deg'", "[0, 180] deg"}},
+      {"imperfections: {ball_spin_slip_deg: .nan}\n", {"key 'imperfections.ball_spin_slip_deg'", "finite"}},
+      {"imperfections: {ball_spin_slip_deg: ten}\n", {"key 'imperfections.ball_spin_slip_deg'", "a number"}},
+      {"imperfections: {ball_spin_slip_azimuth_deg: 400}\n",
+       {"key 'imperfections.ball_spin_slip_azimuth_deg'", "[-360, 360] deg"}},
       {"- a list\n", {"expected a YAML mapping"}}};
   for (const auto& [text, words] : cases) {
     SCOPED_TRACE(text);

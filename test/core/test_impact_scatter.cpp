@@ -1,10 +1,12 @@
 // Impacts that scatter about their periodic grid as real ones do (docs/model.md, section 9):
 // the balls' place wander in their cage pockets moves the instants at which they meet a race
-// spall, and a ball spall's wandering spin axis carries it in and out of the rolling track.
+// spall, a ball spall's wandering spin axis carries it in and out of the rolling track, and
+// a ball's spin slips on each passage through the unloaded arc.
 // Checked on the deflection offsets themselves (Imperfections::add_offsets) against the
 // process's closed forms.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -137,6 +139,94 @@ TEST(ImpactScatter, WanderingSpinAxisStrikesTheShareOfTimeTheLatitudeIsOnTheSpal
   spec.ball_spin_axis_wander_rad = 0.0;
   const Imperfections steady(spec, row_of_nine());
   for (int k = 0; k < 20; ++k) EXPECT_TRUE(struck_at(steady, 0.1 * k + 0.05));
+}
+
+// The spin angle at which ball 0's spall is deepest at `phase` (the spin swept over the half
+// turn in which the spall meets a race, time and cage held), from the dip's centroid on the
+// circle of doubled angles (the dip repeats every half turn), in [-pi/2, pi/2).
+double ball_spall_centre(const Imperfections& imp, RollingPhase phase) {
+  constexpr int kSteps = 4000;
+  std::vector<double> out(9);
+  double c = 0.0, s = 0.0;
+  for (int i = 0; i < kSteps; ++i) {
+    phase.ball_spin = kPi * i / kSteps;
+    std::fill(out.begin(), out.end(), 0.0);
+    imp.add_offsets(phase, out.data());
+    c += -out[0] * std::cos(2.0 * phase.ball_spin);
+    s += -out[0] * std::sin(2.0 * phase.ball_spin);
+  }
+  return 0.5 * std::atan2(s, c);
+}
+
+RollingPhase at_cage(double cage, std::int64_t turns) {
+  RollingPhase p;
+  p.cage = cage;
+  p.cage_turns = turns;
+  return p;
+}
+
+// A ball's spin slips by an independent angle of standard deviation sigma on each passage
+// through the middle of the unloaded arc (azimuth pi here; ball 0 sits at azimuth 0 at cage
+// angle 0), and nothing pulls it back: the spall's phase after k passages has moved by a
+// random walk's k sigma^2 of variance, and not at all within a passage. Over 1500 seeds the
+// sample variance has a relative standard error sqrt(2 / 1500) = 3.7 %; 12 % is three of them
+// and more. A walk's 9 passages hold 9 times the variance of one (a phase drawn anew on each
+// passage, not accumulating, would give the same variance after 1 and 9).
+TEST(ImpactScatter, SpinSlipIsARandomWalkOverThePassagesThroughTheUnloadedArc) {
+  const double sigma = 4.0 * kPi / 180.0;
+  Spall s;
+  s.surface = Surface::Ball;
+  s.ball = 0;
+  s.width_m = 0.5e-3;
+  s.depth_m = 20e-6;
+  const int seeds = 1500;
+  double sum1 = 0.0, sum_sq1 = 0.0, sum9 = 0.0, sum_sq9 = 0.0;
+  for (int seed = 1; seed <= seeds; ++seed) {
+    ImperfectionSpec spec;
+    spec.seed = static_cast<std::uint64_t>(seed);
+    spec.spalls.push_back(s);
+    spec.ball_spin_slip_rad = sigma;
+    const Imperfections imp(spec, row_of_nine());
+    // Passage -1 (ball 0 before the first middle of the unloaded arc), 0 and 8.
+    const double before = ball_spall_centre(imp, at_cage(0.0, 0));
+    const double after_one = ball_spall_centre(imp, at_cage(0.0, 1));
+    const double after_nine = ball_spall_centre(imp, at_cage(0.0, 9));
+    if (seed <= 20) {
+      // Within a passage (the ball from azimuth 0 to just short of pi) nothing moves; just past
+      // pi it is the next passage's; a wrapped turn is a counted turn.
+      EXPECT_EQ(ball_spall_centre(imp, at_cage(3.1, 0)), before);
+      EXPECT_EQ(ball_spall_centre(imp, at_cage(3.2, 0)), after_one);
+      EXPECT_NEAR(ball_spall_centre(imp, at_cage(0.5 + kTwoPi, 8)), ball_spall_centre(imp, at_cage(0.5, 9)), 1e-12);
+    }
+    const double d1 = std::remainder(after_one - before, kPi), d9 = std::remainder(after_nine - before, kPi);
+    sum1 += d1;
+    sum_sq1 += d1 * d1;
+    sum9 += d9;
+    sum_sq9 += d9 * d9;
+  }
+  const double var1 = sum_sq1 / seeds, var9 = sum_sq9 / seeds;
+  EXPECT_NEAR(var1, sigma * sigma, 0.12 * sigma * sigma);
+  EXPECT_NEAR(var9, 9.0 * sigma * sigma, 0.12 * 9.0 * sigma * sigma);
+  // No drift: the means within four standard errors of 0.
+  EXPECT_NEAR(sum1 / seeds, 0.0, 4.0 * sigma / std::sqrt(seeds));
+  EXPECT_NEAR(sum9 / seeds, 0.0, 4.0 * 3.0 * sigma / std::sqrt(seeds));
+  // Without slip the spall keeps its phase over any number of passages, and the offsets are
+  // those of a spec without the keys, bit for bit.
+  ImperfectionSpec spec;
+  spec.seed = 5;
+  spec.spalls.push_back(s);
+  const Imperfections plain(spec, row_of_nine());
+  spec.ball_spin_slip_azimuth_rad = 1.0;
+  const Imperfections zero_slip(spec, row_of_nine());
+  EXPECT_EQ(ball_spall_centre(zero_slip, at_cage(0.0, 9)), ball_spall_centre(plain, at_cage(0.0, 0)));
+  for (int k = 0; k < 50; ++k) {
+    RollingPhase p = at_cage(0.1 * k, k);
+    p.ball_spin = 0.37 * k;
+    std::vector<double> a(9, 0.0), b(9, 0.0);
+    plain.add_offsets(p, a.data());
+    zero_slip.add_offsets(p, b.data());
+    EXPECT_EQ(a, b);
+  }
 }
 
 }  // namespace

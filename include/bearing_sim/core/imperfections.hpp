@@ -80,6 +80,15 @@ struct ImperfectionSpec {
   // all while that latitude exceeds its half width.
   double ball_spin_axis_wander_rad = 0.0;  // standard deviation of the spall's latitude
   double ball_spin_axis_wander_correlation_s = 0.1;
+  // A ball's spin phase is kept only while the races drive it: out of the load zone it is
+  // held by the cage and the lubricant alone, slows and skids back up on re-entry, so on
+  // each passage through the unloaded arc it gains or loses an angle of spin. The angles of
+  // successive passages are independent (standard deviation below); nothing pulls the spin
+  // back, so a ball spall's phase is a random walk over the passages (docs/model.md 9.5).
+  double ball_spin_slip_rad = 0.0;
+  // Where a ball counts a passage: the middle of the unloaded arc, as an azimuth of the
+  // bearing frame (the scenarios' radial load along x, azimuth 0, leaves it at pi).
+  double ball_spin_slip_azimuth_rad = 3.14159265358979323846;  // pi
   // The spalls' edges. Rounded (false): the ball's deflection dips as a half-sine, a worn
   // spall's smooth entry and exit. Sharp (true, an EDM pit or a fresh spall): the ball pivots
   // on the nearer edge, its centre drops by min(h, D (1 - 2|x| / w)^2) (D = w^2 / (4 d), the
@@ -89,7 +98,7 @@ struct ImperfectionSpec {
   bool empty() const {
     return waviness.empty() && ball_diameter_variation_m == 0.0 && roughness_rms_m == 0.0 && spalls.empty() &&
            ball_spacing_jitter_m == 0.0 && cage_slip == 0.0 && cage_slip_variation == 0.0 &&
-           ball_place_wander_m == 0.0 && ball_spin_axis_wander_rad == 0.0;
+           ball_place_wander_m == 0.0 && ball_spin_axis_wander_rad == 0.0 && ball_spin_slip_rad == 0.0;
   }
 };
 
@@ -107,6 +116,9 @@ struct RollingPhase {
   double outer_ring = 0.0;
   double ball_spin = 0.0;  // spin of the balls relative to the cage
   double time_s = 0.0;
+  // Whole turns taken off `cage` when the dynamics wraps it: cage + 2 pi cage_turns is the
+  // cage's angle since the start, which counts the balls' passages (ball spin slip).
+  std::int64_t cage_turns = 0;
 };
 
 // Precomputed race profiles and per-ball terms for one bearing.
@@ -205,6 +217,9 @@ class Imperfections {
   // A ball spall's chord at time t: the width and depth struck, from its latitude.
   void struck_chord(std::size_t index, double time_s, double* angular_width, double* depth,
                     double* geometric_depth) const;
+  // The spin angle ball spall `index` (on `ball`) has lost by `phase`: the slips of its
+  // ball's passages through the unloaded arc so far, rad.
+  double spin_slip_rad(std::size_t index, int ball, const RollingPhase& phase) const;
 
   ImperfectionSpec spec_;
   Geometry geometry_;
