@@ -269,11 +269,11 @@ TEST(ConfigErrors, AnImperfectionsFileReadsAsTheSameSectionsOfABearingFile) {
 // and without the keys no slip, counted opposite a load along x.
 TEST(ConfigErrors, TheBallSpinSlipIsReadInDegrees) {
   const ImperfectionSpec given = imperfections_from_string(
-      "imperfections: {ball_spin_slip_deg: 9, ball_spin_slip_azimuth_deg: -90}\n", kSource, 1);
+      "imperfections: {ball_spin_slip_deg: 9, ball_spin_slip_azimuth_deg: -90}\n", kBearingSource, 1);
   EXPECT_NEAR(given.ball_spin_slip_rad, kPi / 20.0, 1e-15);
   EXPECT_NEAR(given.ball_spin_slip_azimuth_rad, -kPi / 2.0, 1e-15);
   EXPECT_FALSE(given.empty());
-  const ImperfectionSpec absent = imperfections_from_string("imperfections: {}\n", kSource, 1);
+  const ImperfectionSpec absent = imperfections_from_string("imperfections: {}\n", kBearingSource, 1);
   EXPECT_EQ(absent.ball_spin_slip_rad, 0.0);
   EXPECT_NEAR(absent.ball_spin_slip_azimuth_rad, kPi, 1e-15);
 }
