@@ -404,13 +404,7 @@ double BearingDynamics::slipping_cage_speed() const {
 }
 
 RollingPhase BearingDynamics::advanced(const RollingPhase& p, double dt) const {
-  const double slipping_cage_speed = this->slipping_cage_speed();
-  return RollingPhase{p.cage + slipping_cage_speed * dt,
-                      p.inner_ring + inner_speed_ * dt,
-                      p.outer_ring + outer_speed_ * dt,
-                      p.ball_spin + spin_speed_ * dt,
-                      p.time_s + dt,
-                      p.cage_turns};
+  return p.advanced(slipping_cage_speed(), inner_speed_, outer_speed_, spin_speed_, dt);
 }
 
 double BearingDynamics::contact_margin_m(const Vector5& q, const Vector5& v, const Vector5& a) const {

@@ -320,12 +320,7 @@ Eigen::VectorXd FlexibleDynamics::load_frame_acceleration(const Eigen::VectorXd&
 }
 
 RollingPhase FlexibleDynamics::advanced(const RollingPhase& p, double dt) const {
-  return RollingPhase{p.cage + cage_speed_ * dt,
-                      p.inner_ring + inner_speed_ * dt,
-                      p.outer_ring + outer_speed_ * dt,
-                      p.ball_spin + spin_speed_ * dt,
-                      p.time_s + dt,
-                      p.cage_turns};
+  return p.advanced(cage_speed_, inner_speed_, outer_speed_, spin_speed_, dt);
 }
 
 Eigen::VectorXd FlexibleDynamics::acceleration(const Eigen::VectorXd& x, const Eigen::VectorXd& v,

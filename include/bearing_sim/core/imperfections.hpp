@@ -119,6 +119,16 @@ struct RollingPhase {
   // Whole turns taken off `cage` when the dynamics wraps it: cage + 2 pi cage_turns is the
   // cage's angle since the start, which counts the balls' passages (ball spin slip).
   std::int64_t cage_turns = 0;
+
+  // The phase dt later at constant speeds (rad/s); the wrapped turns carried over.
+  RollingPhase advanced(double cage_speed, double inner_speed, double outer_speed, double spin_speed, double dt) const {
+    return RollingPhase{cage + cage_speed * dt,
+                        inner_ring + inner_speed * dt,
+                        outer_ring + outer_speed * dt,
+                        ball_spin + spin_speed * dt,
+                        time_s + dt,
+                        cage_turns};
+  }
 };
 
 // Precomputed race profiles and per-ball terms for one bearing.
