@@ -9,6 +9,7 @@ derived numbers only.
     python3 dev/cwru_installation.py /work/cwru                    # the installation, as YAML
     python3 dev/cwru_installation.py /work/cwru --compare sim.csv  # real vs simulated table
     python3 dev/cwru_installation.py /work/cwru --slot-comb        # + the fault records' comb level
+    python3 dev/cwru_installation.py /work/cwru --rolling-noise    # + the fault records' rolling noise
 
 Not executable and not installed: a development script (like cwru_indicators.py, it works on
 the source tree).
@@ -52,6 +53,14 @@ MOUNT_WINDOW = (3200, 3700)
 # own (median over the 36 fault conditions of dev/cwru_rig_compare.py: -2.8 dB; before the
 # mount, the five modes had to add up to 5.6 for it, their residual -4.6 passing 4-6 kHz).
 PATH_LEVEL = 1.0
+# The fault records' rolling noise (--rolling-noise): the random part of each record's power in
+# the band where the path passes it (the mount and the 2.9 kHz mode), read between the impacts:
+# the ROLLING_QUANTILE of the band's power over blocks of ROLLING_BLOCK_S, over the same
+# quantile's share of the mean for Gaussian noise in that band (~0.6). A race fault's impacts
+# ring for ~1 ms once per 6-10 ms, so the lower fifth of 2 ms blocks lies between them.
+ROLLING_BAND_HZ = (2000.0, 4000.0)
+ROLLING_BLOCK_S = 0.002
+ROLLING_QUANTILE = 0.2
 FLOOR_POINTS_HZ = (30, 60, 100, 150, 200, 300, 400, 500, 700, 1000, 1300, 1600, 2000, 2500, 3000,
                    3500, 4000, 4500, 5000, 5500)
 
@@ -210,7 +219,7 @@ def seismic(f_hz, resonance_hz, zeta):
     return (2.0 * zeta * w * s + w * w) / (s * s + 2.0 * zeta * w * s + w * w)
 
 
-def print_installation(directory, slot_comb=False):
+def print_installation(directory, slot_comb=False, rolling_noise=False):
     x, f_r, line, shaft, half, lines, others, floor = measure_normal(directory)
     modes, mount, names, dropped = measure_modes(directory, x)
     mg = lambda v: f'{v / 1e-3:.3g}'
@@ -236,6 +245,14 @@ def print_installation(directory, slot_comb=False):
         print(f'    # The slot-harmonic comb (orders > 100) in the {len(values)} 12 kHz fault records against record 97: '
               f'median {np.median(values):.1f} dB, {values.min():.1f} to {values.max():.1f} dB')
     print(f'    line_harmonics_mg: [{", ".join(mg(v) for v in lines)}]')
+    if rolling_noise:
+        levels, normal_mg = rolling_noise_levels(directory, modes, mount)
+        values = np.array(list(levels.values()))
+        print(f'    # The fault records\' rolling noise, white at the ring, ug/sqrt(Hz) (record 97: {normal_mg:.1f} mg '
+              f'random in {ROLLING_BAND_HZ[0]:.0f}-{ROLLING_BAND_HZ[1]:.0f} Hz, subtracted): ' +
+              ', '.join(f'{r} {v:.0f}' for r, v in levels.items()))
+        print(f'    # rolling_noise_ug_per_sqrt_Hz in the {len(values)} fault records: median {np.median(values):.0f}, '
+              f'{values.min():.0f} to {values.max():.0f}')
     print('    floor:')
     print(f'      frequencies_Hz: [{", ".join(str(v) for v in FLOOR_POINTS_HZ)}]')
     print(f'      density_ug_per_sqrt_Hz: [{", ".join(f"{v * 1e6:.0f}" for v in floor)}]')
@@ -257,14 +274,53 @@ def slot_comb_levels(directory, others):
     x97, rpm97 = normal_record(directory)
     reference = power(x97[-60000:], rpm97)
     levels = {}
+    for record, path in fault_records(directory).items():
+        x, rpm = drive_end(path)
+        levels[record] = 10.0 * np.log10(power(x[-60000:], rpm) / reference)
+    return levels
+
+
+def fault_records(directory):
+    """The 12 kHz drive-end fault records of 0.007-0.021 in (outer race at 6:00): {record number: path}."""
+    records = {}
     for path in sorted(directory.glob('12k_Drive_End_*.mat')):
         name = path.stem
         if not any(f'_{kind}{size}' in name for kind in ('IR', 'B', 'OR') for size in ('007', '014', '021')) or \
                 ('_OR' in name and '@6' not in name):
             continue
-        x, rpm = drive_end(path)
-        levels[name.rsplit('_', 1)[1]] = 10.0 * np.log10(power(x[-60000:], rpm) / reference)
-    return levels
+        records[name.rsplit('_', 1)[1]] = path
+    return records
+
+
+def band_random_power(x):
+    """The random (Gaussian) part of x's power in ROLLING_BAND_HZ, read between impacts (above)."""
+    def quantile_power(y):
+        spectrum = np.fft.rfft(y - y.mean())
+        f = np.fft.rfftfreq(len(y), 1.0 / FS)
+        spectrum[(f < ROLLING_BAND_HZ[0]) | (f >= ROLLING_BAND_HZ[1])] = 0.0
+        band = np.fft.irfft(spectrum, len(y))
+        n = int(round(ROLLING_BLOCK_S * FS))
+        blocks = (band[:len(band) // n * n].reshape(-1, n) ** 2).mean(axis=1)
+        return np.quantile(blocks, ROLLING_QUANTILE)
+    gaussian = np.random.default_rng(1).standard_normal(len(x))
+    gaussian_share = quantile_power(gaussian) / (2.0 * np.diff(ROLLING_BAND_HZ)[0] / FS)
+    return quantile_power(x) / gaussian_share
+
+
+def rolling_noise_levels(directory, modes, mount):
+    """The fault records' rolling noise, ug/sqrt(Hz) of white acceleration at the ring: their random
+    power in ROLLING_BAND_HZ less record 97's, over the band's integral of |H_path T_m|^2."""
+    f = np.arange(ROLLING_BAND_HZ[0], ROLLING_BAND_HZ[1], 0.5)
+    h = (1.0 - sum(m['p'] for m in modes)) + sum(m['p'] * seismic(f, m['f'], m['zeta']) for m in modes)
+    gain = np.sum(np.abs(h * seismic(f, mount['f'], mount['zeta'])) ** 2) * 0.5
+    x97, _ = normal_record(directory)
+    normal = band_random_power(x97[-120000:])
+    levels = {}
+    for record, path in fault_records(directory).items():
+        x, _ = drive_end(path)
+        extra = max(band_random_power(x[-120000:]) - normal, 0.0)
+        levels[record] = np.sqrt(extra / gain) * 1e6
+    return levels, np.sqrt(normal) * 1e3
 
 
 def print_comparison(directory, csv_path, unit):
@@ -293,13 +349,15 @@ def main():
     parser.add_argument('--compare-unit', choices=('m_s2', 'g'), default='m_s2')
     parser.add_argument('--slot-comb', action='store_true',
                         help='also measure the slot-harmonic comb in the 12 kHz fault records against record 97')
+    parser.add_argument('--rolling-noise', action='store_true',
+                        help='also measure the 12 kHz fault records\' rolling noise (white at the ring) beyond record 97\'s')
     args = parser.parse_args()
     if not (args.cwru_dir / NORMAL).is_file():
         sys.exit(f'{args.cwru_dir}: no {NORMAL} (the CWRU normal baseline, record 97)')
     if args.compare:
         print_comparison(args.cwru_dir, args.compare, args.compare_unit)
     else:
-        print_installation(args.cwru_dir, args.slot_comb)
+        print_installation(args.cwru_dir, args.slot_comb, args.rolling_noise)
 
 
 if __name__ == '__main__':

@@ -87,6 +87,8 @@ InstallationProblem installation_problem(const InstallationConfig& c) {
     return {"shaft_modulation_depth", "must be in [0, 1] (a fraction of the bearing's signal)"};
   if (!(std::abs(c.shaft_modulation_phase_rad) <= 2.0 * kPi))
     return {"shaft_modulation_phase_deg", "must be in [-360, 360]"};
+  if (!(c.rolling_noise_m_s2_per_sqrt_hz >= 0.0 && c.rolling_noise_m_s2_per_sqrt_hz <= kMaxFloorDensity_m_s2))
+    return {"rolling_noise_ug_per_sqrt_Hz", "must be in [0, 1e6] ug/sqrt(Hz)"};
   const std::vector<double>& f = c.floor_frequencies_hz;
   const std::vector<double>& d = c.floor_density_m_s2_per_sqrt_hz;
   if (f.size() != d.size()) return {"floor", "frequencies_Hz and density_ug_per_sqrt_Hz must have the same length"};

@@ -43,7 +43,7 @@ InstallationConfig parse_installation_config(const YAML::Node& node, const std::
                                              const std::string& prefix) {
   detail::Reader r(node, source, prefix);
   r.check_keys({"shaft_harmonics_mg", "half_orders_mg", "speed_locked_orders", "line_frequency_Hz", "line_harmonics_mg",
-                "shaft_modulation_depth", "shaft_modulation_phase_deg", "floor"});
+                "shaft_modulation_depth", "shaft_modulation_phase_deg", "floor", "rolling_noise_ug_per_sqrt_Hz"});
   InstallationConfig c;
   c.shaft_harmonics_m_s2 = number_list(r, node, "shaft_harmonics_mg", kMg_m_s2);
   c.half_orders_m_s2 = number_list(r, node, "half_orders_mg", kMg_m_s2);
@@ -61,6 +61,7 @@ InstallationConfig parse_installation_config(const YAML::Node& node, const std::
   c.line_frequency_hz = r.number("line_frequency_Hz", c.line_frequency_hz);
   c.shaft_modulation_depth = r.number("shaft_modulation_depth", c.shaft_modulation_depth);
   c.shaft_modulation_phase_rad = r.number("shaft_modulation_phase_deg", 0.0) * kPi / 180.0;
+  c.rolling_noise_m_s2_per_sqrt_hz = r.number("rolling_noise_ug_per_sqrt_Hz", 0.0) * kUgPerSqrtHz;
   if (const YAML::Node floor = r.map("floor")) {
     detail::Reader f(floor, source, prefix + "floor.");
     f.check_keys({"frequencies_Hz", "density_ug_per_sqrt_Hz"});

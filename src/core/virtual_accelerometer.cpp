@@ -13,6 +13,9 @@ namespace {
 // (exact poles, fitted numerator) no longer resembles the analog path.
 constexpr double kMaxPathResonanceFraction = 0.45;
 constexpr int kMaxAntiAliasOrder = 16;
+// The rolling noise's own stream of the sensor's seed (the installation's are 1-5), so that
+// adding it leaves every other sequence as it was.
+constexpr std::uint32_t kRollingNoiseStream = 6;
 }  // namespace
 
 namespace detail {
@@ -119,6 +122,7 @@ VirtualAccelerometer::VirtualAccelerometer(AccelerometerConfig config, double in
                            input_rate_hz, config_.seed);
   // White noise of one-sided density D over 0..fs/2 has variance D^2 fs/2.
   noise_sigma_m_s2_ = config_.noise_density_m_s2_per_sqrt_hz * std::sqrt(0.5 * input_rate_hz);
+  rolling_noise_sigma_m_s2_ = installation.rolling_noise_m_s2_per_sqrt_hz * std::sqrt(0.5 * input_rate_hz);
   // Two's-complement ADC over +-range: 2^bits codes, -2^(bits-1) .. 2^(bits-1) - 1.
   const double codes = std::ldexp(1.0, config_.adc_bits);
   quantization_step_m_s2_ = 2.0 * config_.range_m_s2 / codes;
@@ -135,6 +139,7 @@ void VirtualAccelerometer::reset() {
   decimation_phase_ = 0;
   clipped_samples_ = 0;
   noise_ = SeededGaussian(config_.seed);
+  rolling_noise_ = SeededGaussian(config_.seed, kRollingNoiseStream);
   background_.reset();
   if (has_floor_) floor_.reset();
 }
@@ -179,6 +184,8 @@ bool VirtualAccelerometer::push_axis_acceleration(double a_m_s2, double* output)
 bool VirtualAccelerometer::push_sample(double a_m_s2, const MachineBackground::Sample& background, double* output) {
   // A NaN would stay in the filter states for good: refuse it.
   if (!std::isfinite(a_m_s2)) throw InvalidInputError("VirtualAccelerometer: non-finite input acceleration");
+  // The rolling noise is the bearing's: it takes the path, and the load's variation with it.
+  if (rolling_noise_sigma_m_s2_ > 0.0) a_m_s2 += rolling_noise_sigma_m_s2_ * rolling_noise_();
   // The shaft-rate load variation modulates the bearing's own vibration at its source.
   if (has_background_) a_m_s2 *= background.bearing_gain;
   double y = has_path_ ? path_.process(a_m_s2) : a_m_s2;

@@ -29,13 +29,19 @@ struct InstallationConfig {
   double shaft_modulation_phase_rad = 0.0;
   std::vector<double> floor_frequencies_hz;  // increasing; empty: no floor
   std::vector<double> floor_density_m_s2_per_sqrt_hz;
+  // The bearing's rolling noise that the contact model leaves out (surface roughness, debris,
+  // an assembly's damage): white acceleration of this one-sided density at the ring, on the
+  // sensing axis, passed through the path and the mount like the bearing's own signal. 0: none.
+  double rolling_noise_m_s2_per_sqrt_hz = 0.0;
 
   bool has_lines() const {
     return !shaft_harmonics_m_s2.empty() || !half_orders_m_s2.empty() || !speed_locked_orders.empty() ||
            !line_harmonics_m_s2.empty();
   }
   bool has_floor() const { return !floor_frequencies_hz.empty(); }
-  bool empty() const { return !has_lines() && !has_floor() && shaft_modulation_depth == 0.0; }
+  bool empty() const {
+    return !has_lines() && !has_floor() && shaft_modulation_depth == 0.0 && rolling_noise_m_s2_per_sqrt_hz == 0.0;
+  }
 };
 
 // What is wrong with an installation, as {key below `installation.`, what}; key empty: nothing.

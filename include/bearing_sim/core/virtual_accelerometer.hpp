@@ -1,7 +1,8 @@
 #pragma once
 // Virtual accelerometer (docs/sensor.md): what a real sensor and its data acquisition
 // record from the ideal ring acceleration of BearingDynamics. Per input sample:
-//   projection onto the sensing axis at the mounting point -> shaft-rate modulation ->
+//   projection onto the sensing axis at the mounting point -> + the bearing's rolling noise ->
+//   shaft-rate modulation ->
 //   transmission path (one or several modes) -> the sensor's mounted resonance -> + the
 //   machine's lines -> sensor noise ->
 //   anti-alias low-pass -> decimation -> + the machine's broadband floor -> clipping to
@@ -108,6 +109,7 @@ class VirtualAccelerometer {
   double quantization_step() const { return quantization_step_m_s2_ * output_scale_; }
   double quantization_step_m_s2() const { return quantization_step_m_s2_; }
   double noise_sigma_m_s2() const { return noise_sigma_m_s2_; }  // per input sample
+  double rolling_noise_sigma_m_s2() const { return rolling_noise_sigma_m_s2_; }  // per input sample
   std::uint64_t clipped_sample_count() const { return clipped_samples_; }
   // The path as digitised, at f_hz (the analog form: modal_transmissibility), the mounted
   // resonance included.
@@ -134,11 +136,13 @@ class VirtualAccelerometer {
   Biquad anti_alias_[8];
   int anti_alias_sections_ = 0;
   double noise_sigma_m_s2_ = 0.0;
+  double rolling_noise_sigma_m_s2_ = 0.0;
   double quantization_step_m_s2_ = 0.0;
   double code_min_ = 0.0, code_max_ = 0.0;
   double output_scale_ = 1.0;  // 1 or the sensitivity
   std::uint64_t clipped_samples_ = 0;
   SeededGaussian noise_;
+  SeededGaussian rolling_noise_;
 };
 
 }  // namespace bearing_sim
