@@ -34,7 +34,7 @@ using bearing_sim::test::kCtScanYaml;
 
 using nlohmann::json;
 
-using bearing_sim::test::read_file;
+using bearing_sim::test::read_text;
 using bearing_sim::test::RunResult;
 
 // A scratch directory for YAML and CSV files, removed at exit of the test.
@@ -518,7 +518,7 @@ TEST_F(ToolTest, SimulateRefusesASpeedOnTheFixedRing) {
   EXPECT_TRUE(contains(r.err, "fixed")) << r.err;
 
   // A file with the inner ring turning: then the outer one must be still.
-  std::string text = read_file(kIns);
+  std::string text = read_text(kIns);
   text.replace(text.find("rotating_ring: outer"), 20, "rotating_ring: inner");
   const std::string path = write("inner.yaml", text);
   const RunResult o = run("simulate --bearing '" + path + "' --force 100,0,0 --outer-rpm 5 --duration 0.01");

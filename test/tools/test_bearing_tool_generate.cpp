@@ -33,7 +33,7 @@
 #include "tool_runner.hpp"
 #include "tool_test_files.hpp"
 
-using bearing_sim::test::read_file;
+using bearing_sim::test::read_text;
 using bearing_sim::test::run_bearing_tool;
 
 namespace {
@@ -99,7 +99,7 @@ std::string Generate::dir_, Generate::scenario_, Generate::summary_;
 
 // float32 (samples, 3) of an .npy file, after checking its header.
 std::vector<float> read_npy(const std::string& path, std::uint64_t* rows) {
-  const std::string bytes = read_file(path);
+  const std::string bytes = read_text(path);
   EXPECT_EQ(bytes.substr(0, 8), std::string("\x93NUMPY\x01\x00", 8));
   const std::size_t header_len = static_cast<unsigned char>(bytes[8]) | (static_cast<unsigned char>(bytes[9]) << 8);
   EXPECT_EQ((10 + header_len) % 64, 0u) << "data aligned to 64 bytes";
@@ -137,7 +137,7 @@ std::vector<float> bag_samples(const std::vector<bearing_sim::VibrationChunk>& c
 }
 
 void expect_same_bytes(const std::string& a, const std::string& b) {
-  const std::string x = read_file(a), y = read_file(b);
+  const std::string x = read_text(a), y = read_text(b);
   EXPECT_FALSE(x.empty()) << a;
   EXPECT_TRUE(x == y) << a << " and " << b << " differ";
 }
@@ -236,7 +236,7 @@ TEST_F(Generate, NpyCsvAndJsonEqualTheBag) {
     EXPECT_EQ(n, kSamples);
     EXPECT_EQ(mismatches, 0u);
   }
-  const nlohmann::json j = nlohmann::json::parse(read_file(stem + ".json"));
+  const nlohmann::json j = nlohmann::json::parse(read_text(stem + ".json"));
   EXPECT_EQ(j["scenario"]["name"], "gen_test");
   EXPECT_EQ(j["seed"], 5);
   EXPECT_EQ(j["channels"]["vibration"]["samples"], kSamples);
@@ -268,8 +268,8 @@ TEST_F(Generate, SameSeedSameBytesOtherSeedDiffers) {
   ASSERT_EQ(c.exit_code, 0) << c.err;
   // The sensor noise follows the seed (this bearing has no random imperfections, so the
   // ideal acceleration does not depend on it).
-  EXPECT_NE(read_file(dir_ + "/a/gen_test.bag"), read_file(dir_ + "/c/gen_test.bag"));
-  EXPECT_NE(read_file(dir_ + "/a/gen_test_vibration.npy"), read_file(dir_ + "/c/gen_test_vibration.npy"));
+  EXPECT_NE(read_text(dir_ + "/a/gen_test.bag"), read_text(dir_ + "/c/gen_test.bag"));
+  EXPECT_NE(read_text(dir_ + "/a/gen_test_vibration.npy"), read_text(dir_ + "/c/gen_test_vibration.npy"));
   const auto labels = messages<bearing_sim::ScenarioState>(dir_ + "/c/gen_test.bag", "/bearing/scenario_state");
   ASSERT_FALSE(labels.empty());
   EXPECT_EQ(labels[0].seed, 6u);

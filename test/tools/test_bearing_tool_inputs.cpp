@@ -27,7 +27,7 @@ using bearing_sim::test::kConfigDir;
 using bearing_sim::test::kCtBearingYaml;
 using bearing_sim::test::kCtScanYaml;
 
-using bearing_sim::test::read_file;
+using bearing_sim::test::read_text;
 using bearing_sim::test::RunResult;
 
 
@@ -37,8 +37,8 @@ class ToolInputTest : public bearing_sim::test::ToolScratchTest {
   // The CT bearing file with one line replaced (the key must be in it).
   std::string ct_with(const std::string& key, const std::string& value) {
     const std::string text =
-        std::regex_replace(read_file(kCtBearingYaml), std::regex("(^|\n)( *)" + key + ":[^\n]*"), "$1$2" + key + ": " + value);
-    EXPECT_NE(text, read_file(kCtBearingYaml)) << key;
+        std::regex_replace(read_text(kCtBearingYaml), std::regex("(^|\n)( *)" + key + ":[^\n]*"), "$1$2" + key + ": " + value);
+    EXPECT_NE(text, read_text(kCtBearingYaml)) << key;
     return write("ct_" + key + ".yaml", text);
   }
 
@@ -66,7 +66,7 @@ TEST_F(ToolInputTest, FilesThatAreNoRegularFilesAreRefusedNamingThem) {
 }
 
 TEST_F(ToolInputTest, AKeyWrittenTwiceIsRefusedNamingFileKeyAndLines) {
-  std::string text = read_file(kCtBearingYaml);
+  std::string text = read_text(kCtBearingYaml);
   text.insert(0, "balls_per_row: 10\n");  // a stale line above the real one (now line 2 + its old number)
   const std::string path = write("twice.yaml", text);
   const RunResult r = run("static --bearing '" + path + "' --force 6800,0,0");

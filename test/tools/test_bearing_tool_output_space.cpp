@@ -22,7 +22,7 @@
 #include "tool_test_files.hpp"
 
 using namespace bearing_sim;
-using bearing_sim::test::read_file;
+using bearing_sim::test::read_text;
 using bearing_sim::test::RunResult;
 using bearing_sim::test::ToolScratchTest;
 
@@ -96,7 +96,7 @@ TEST_F(OutputSize, SimulateCsvBetweenItsNarrowestAndItsEstimate) {
   const RunResult r = run("simulate --bearing '" + source_file("config/bearings/deep_groove_6205.yaml") +
                           "' --force 2000,0,100 --inner-rpm 1800 --duration 0.2 --rate 20000 --csv '" + csv + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::string header = read_file(csv).substr(0, read_file(csv).find('\n') + 1);
+  const std::string header = read_text(csv).substr(0, read_text(csv).find('\n') + 1);
   const double estimate = tool::time_series_csv_bytes(rows, 10, static_cast<double>(header.size()));
   // Narrowest: a time of 1 character ("0"), numbers without a sign (16 characters and a comma).
   const double narrowest = static_cast<double>(header.size()) + rows * (1.0 + 10.0 * 17.0 + 1.0);

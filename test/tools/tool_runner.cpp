@@ -1,15 +1,6 @@
 #include "tool_runner.hpp"
 
-#include <sstream>
-
 namespace bearing_sim::test {
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 std::string bearing_tool_path() { return BEARING_TOOL_PATH; }
 

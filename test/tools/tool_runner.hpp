@@ -9,13 +9,11 @@
 #include <gtest/gtest.h>
 
 #include "command_runner.hpp"
+#include "test_support.hpp"  // read_text
 
 namespace bearing_sim::test {
 
 using RunResult = CommandResult;
-
-// The whole text of a file ("" when it cannot be read).
-std::string read_file(const std::string& path);
 
 // The built bearing_tool's path.
 std::string bearing_tool_path();
