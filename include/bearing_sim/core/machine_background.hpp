@@ -29,8 +29,9 @@ struct InstallationConfig {
   double shaft_modulation_phase_rad = 0.0;
   std::vector<double> floor_frequencies_hz;  // increasing; empty: no floor
   std::vector<double> floor_density_m_s2_per_sqrt_hz;
-  // The bearing's rolling noise that the contact model leaves out (surface roughness, debris,
-  // an assembly's damage): white acceleration of this one-sided density at the ring, on the
+  // The bearing's rolling noise that the contact model leaves out (its roughness is a frozen
+  // profile, a line comb; real rolling over rough surfaces, debris and an assembly's damage is
+  // random): white acceleration of this one-sided density at the ring, on the
   // sensing axis, passed through the path and the mount like the bearing's own signal. 0: none.
   double rolling_noise_m_s2_per_sqrt_hz = 0.0;
 
