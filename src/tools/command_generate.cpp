@@ -25,6 +25,7 @@
 #include "finite_data_guard.hpp"
 #include "job_size.hpp"
 #include "output_size.hpp"
+#include "dataset_files.hpp"
 #include "output_space.hpp"
 #include "tool_common.hpp"
 
@@ -79,16 +80,12 @@ void run_job(Job& job, const GenerateOptions& o, std::mutex& print_mutex) {
   sinks.push_back(std::make_unique<FiniteDataGuard>(job.simulation->info().scenario));  // before any writer
   for (const std::string& f : o.formats) {
     if (f == "bag") {
-      sinks.push_back(std::make_unique<DatasetBagWriter>(stem + ".bag"));
-      job.outputs.push_back(stem + ".bag");
+      sinks.push_back(std::make_unique<DatasetBagWriter>(dataset_files(stem, f).front()));
     } else {
       const auto format = f == "npy" ? DatasetPlainWriter::Format::Npy : DatasetPlainWriter::Format::Csv;
-      auto w = std::make_unique<DatasetPlainWriter>(stem, format);
-      job.outputs.push_back(stem + "_vibration." + f);
-      job.outputs.push_back(stem + "_vibration_ideal." + f);
-      job.outputs.push_back(w->sidecar_path());
-      sinks.push_back(std::move(w));
+      sinks.push_back(std::make_unique<DatasetPlainWriter>(stem, format));
     }
+    for (const std::string& file : dataset_files(stem, f)) job.outputs.push_back(file);
   }
   std::vector<runtime::DatasetSink*> raw;
   for (auto& s : sinks) raw.push_back(s.get());
@@ -175,9 +172,14 @@ void run(const GenerateOptions& o) {
   std::vector<PlannedOutput> outputs;
   for (const Job& job : jobs) {
     const BearingConfig bearing = load_bearing_config(job.simulation->scenario().bearing_file());
-    outputs.push_back({"--out '" + o.out_dir + "'", o.out_dir + "/" + file_stem(job.simulation->info().scenario),
-                       dataset_output_bytes(job.simulation->info(), settings, job.simulation->scenario(),
-                                            bearing.rows * bearing.balls_per_row, o.formats)});
+    const std::string stem = o.out_dir + "/" + file_stem(job.simulation->info().scenario);
+    PlannedOutput planned{"--out '" + o.out_dir + "'", stem,
+                          dataset_output_bytes(job.simulation->info(), settings, job.simulation->scenario(),
+                                               bearing.rows * bearing.balls_per_row, o.formats)};
+    // A run into an --out that holds a former run's files replaces them: their space comes back.
+    for (const std::string& f : o.formats)
+      for (const std::string& file : dataset_files(stem, f)) planned.replaces.push_back(file);
+    outputs.push_back(planned);
   }
   check_output_space(outputs);
   prepare_out_dir(o.out_dir);

@@ -3,6 +3,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "dataset_files.hpp"
 #include "dataset_info_json.hpp"
 
 namespace bearing_sim::tool {
@@ -14,12 +15,12 @@ DatasetPlainWriter::~DatasetPlainWriter() {
     if (c->csv) std::fclose(c->csv);
 }
 
-std::string DatasetPlainWriter::sidecar_path() const {
-  return stem_ + (format_ == Format::Csv ? "_csv.json" : ".json");
-}
+std::string DatasetPlainWriter::extension() const { return format_ == Format::Npy ? "npy" : "csv"; }
 
-void DatasetPlainWriter::open(Channel& c, const std::string& suffix, std::uint64_t rows) {
-  c.path = stem_ + suffix + (format_ == Format::Npy ? ".npy" : ".csv");
+std::string DatasetPlainWriter::sidecar_path() const { return dataset_sidecar_path(stem_, extension()); }
+
+void DatasetPlainWriter::open(Channel& c, const std::string& path, std::uint64_t rows) {
+  c.path = path;
   if (format_ == Format::Npy) {
     c.npy = std::make_unique<NpyFloatWriter>(c.path, rows, 3);
     return;
@@ -31,10 +32,10 @@ void DatasetPlainWriter::open(Channel& c, const std::string& suffix, std::uint64
 
 void DatasetPlainWriter::begin(const runtime::DatasetInfo& info) {
   info_ = info;
-  open(measured_, "_vibration", info.measured_samples);
+  open(measured_, dataset_vibration_path(stem_, extension()), info.measured_samples);
   measured_.rate_hz = info.measured_rate_hz;
   measured_.first_time_s = (info.decimation_ratio - 1) / info.sample_rate_hz;
-  open(ideal_, "_vibration_ideal", info.ideal_samples);
+  open(ideal_, dataset_ideal_path(stem_, extension()), info.ideal_samples);
   ideal_.rate_hz = info.sample_rate_hz;
   labels_ = {{"time_s", nlohmann::json::array()},
              {"phase", nlohmann::json::array()},

@@ -18,7 +18,7 @@ class DatasetPlainWriter : public runtime::DatasetSink {
  public:
   enum class Format { Npy, Csv };
   // Files `<stem>_vibration.<ext>`, `<stem>_vibration_ideal.<ext>` and `<stem>.json` (or
-  // `<stem>_csv.json` for CSV, so that both formats can sit in one directory).
+  // `<stem>_csv.json` for CSV, so that both formats can sit in one directory): dataset_files.hpp.
   DatasetPlainWriter(std::string stem, Format format);
   ~DatasetPlainWriter() override;
 
@@ -38,7 +38,8 @@ class DatasetPlainWriter : public runtime::DatasetSink {
     std::FILE* csv = nullptr;
     std::uint64_t rows = 0;
   };
-  void open(Channel& c, const std::string& suffix, std::uint64_t rows);
+  std::string extension() const;  // "npy" or "csv"
+  void open(Channel& c, const std::string& path, std::uint64_t rows);
   void write(Channel& c, const runtime::SampleChunk& chunk);
   void close(Channel& c);
 

@@ -38,6 +38,16 @@ std::string byte_size_text(double bytes) {
   return text;
 }
 
+double allocated_bytes(const std::vector<std::string>& paths) {
+  double bytes = 0.0;
+  for (const std::string& p : paths) {
+    struct stat st {};
+    // st_blocks counts 512-byte units whatever the filesystem's block size (POSIX).
+    if (::stat(p.c_str(), &st) == 0 && S_ISREG(st.st_mode)) bytes += 512.0 * static_cast<double>(st.st_blocks);
+  }
+  return bytes;
+}
+
 void check_output_space(const std::string& what, double needed_bytes, const std::string& directory,
                         double available_bytes) {
   if (needed_bytes * (1.0 + kOutputSpaceMargin) + kOutputSpaceReserveBytes <= available_bytes) return;
@@ -67,9 +77,8 @@ void check_output_space(const std::vector<PlannedOutput>& outputs) {
     }
     if (f.what.find(o.what) == std::string::npos) f.what += (f.what.empty() ? "" : ", ") + o.what;
     f.needed += o.bytes;
-    // A file the output replaces frees its space.
-    const std::uintmax_t old_size = fs::file_size(o.path, ec);
-    if (!ec) f.available += static_cast<double>(old_size);
+    // The files the output replaces free their space.
+    f.available += allocated_bytes(o.replaces.empty() ? std::vector<std::string>{o.path} : o.replaces);
   }
   for (const auto& entry : filesystems) {
     const Filesystem& f = entry.second;

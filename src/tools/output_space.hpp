@@ -15,9 +15,16 @@ constexpr double kOutputSpaceReserveBytes = 100e6;
 
 struct PlannedOutput {
   std::string what;    // how a refusal names it: the option and its value, e.g. "--csv '/tmp/a.csv'"
-  std::string path;    // the file
+  std::string path;    // the file (or the stem of the files)
   double bytes = 0.0;  // its estimated size
+  // The files it overwrites, when they are not `path` itself (generate's files of a stem):
+  // their space comes back.
+  std::vector<std::string> replaces = {};
 };
+
+// The disk space the files at `paths` take (their allocated blocks, what removing or truncating
+// them frees: less than the size of a sparse file); 0 for a path that is not a regular file.
+double allocated_bytes(const std::vector<std::string>& paths);
 
 // "12.4 GB", "830 kB": decimal units (1 GB = 1e9 bytes), three significant digits.
 std::string byte_size_text(double bytes);
@@ -31,7 +38,7 @@ void check_output_space(const std::string& what, double needed_bytes, const std:
 
 // The same for files on disk: outputs on one filesystem are added up, against the space
 // std::filesystem::space gives for the nearest existing directory of each path, plus the
-// size of a file the output would replace.
+// space of the files the output would replace (allocated_bytes).
 void check_output_space(const std::vector<PlannedOutput>& outputs);
 
 }  // namespace bearing_sim::tool

@@ -3,18 +3,22 @@
 // built tool writes on short runs: a text file lies between the narrowest and the widest its
 // number formats print (the estimate is the widest), an NPY file is exact, a bag below its
 // estimate by at most the estimate's allowances. The refusal's rule against its closed form, with
-// the free space given; and a generate run no disk could hold, refused for space before
-// anything is written.
+// the free space given; the files a rerun replaces, whose space comes back; and a generate
+// run no disk could hold, refused for space before anything is written.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <random>
+#include <set>
 #include <string>
 
 #include "bearing_sim/core/bearing_config.hpp"
 #include "bearing_sim/core/scenario.hpp"
 #include "bearing_sim/runtime/scenario_simulation.hpp"
+#include "dataset_files.hpp"
 #include "output_size.hpp"
 #include "output_space.hpp"
 #include "tool_common.hpp"
@@ -173,6 +177,34 @@ TEST_F(OutputSize, GenerateFilesAgainstTheirEstimates) {
   double written = 0.0;
   for (const auto& f : fs::directory_iterator(dir_ + "/out")) written += file_bytes(f.path().string());
   EXPECT_LE(written, total);
+  // The files a second run into the same --out replaces (whose space its check counts as free)
+  // are exactly the files this run wrote.
+  std::set<std::string> named, found;
+  for (const char* format : {"bag", "npy", "csv"})
+    for (const std::string& file : tool::dataset_files(stem, format)) named.insert(file);
+  for (const auto& f : fs::directory_iterator(dir_ + "/out")) found.insert(f.path().string());
+  EXPECT_EQ(named, found);
+}
+
+TEST_F(OutputSize, AReplacedFileFreesTheSpaceItTakes) {
+  // 1 MiB of random bytes (no filesystem compresses them): its blocks hold at least its size and,
+  // with a filesystem's block rounding and preallocation, less than twice it.
+  const std::string path = dir_ + "/replaced.bin";
+  {
+    std::ofstream out(path, std::ios::binary);
+    std::mt19937_64 bits(7);
+    for (int i = 0; i < (1 << 20) / 8; ++i) {
+      const std::uint64_t word = bits();
+      out.write(reinterpret_cast<const char*>(&word), sizeof word);
+    }
+  }
+  ASSERT_EQ(fs::file_size(path), 1u << 20);
+  const double bytes = tool::allocated_bytes({path});
+  EXPECT_GE(bytes, 1 << 20);
+  EXPECT_LT(bytes, 2 << 20);
+  // A missing file and a directory free nothing; files add up.
+  EXPECT_EQ(tool::allocated_bytes({dir_ + "/missing.bin", dir_}), 0.0);
+  EXPECT_EQ(tool::allocated_bytes({path, path, dir_ + "/missing.bin"}), 2.0 * bytes);
 }
 
 TEST_F(OutputSize, AGenerateRunNoDiskHoldsIsRefusedBeforeAnythingIsWritten) {
