@@ -378,6 +378,8 @@ TEST(MachineBackground, RollingNoiseTakesThePathAndTheMount) {
       measured += psd[k];
     }
     EXPECT_NEAR(measured / expected, 1.0, 0.05) << band.first << "-" << band.second << " Hz";
+    std::printf("rolling noise %4.0f-%4.0f Hz: density measured / closed form %.4f\n", band.first, band.second,
+                measured / expected);
   }
   // The other sequences stay as they were (the rolling noise draws from a stream of its own):
   // a rolling noise far below one ADC step moves a sample by at most one step, and only where
