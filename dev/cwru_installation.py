@@ -21,6 +21,7 @@ Source: CWRU Bearing Data Center, Case Western Reserve University,
 https://engineering.case.edu/bearingdatacenter (records named below).
 """
 import argparse
+import functools
 import pathlib
 import sys
 
@@ -292,33 +293,42 @@ def fault_records(directory):
     return records
 
 
-def band_random_power(x):
-    """The random (Gaussian) part of x's power in ROLLING_BAND_HZ, read between impacts (above)."""
-    def quantile_power(y):
-        spectrum = np.fft.rfft(y - y.mean())
-        f = np.fft.rfftfreq(len(y), 1.0 / FS)
-        spectrum[(f < ROLLING_BAND_HZ[0]) | (f >= ROLLING_BAND_HZ[1])] = 0.0
-        band = np.fft.irfft(spectrum, len(y))
-        n = int(round(ROLLING_BLOCK_S * FS))
-        blocks = (band[:len(band) // n * n].reshape(-1, n) ** 2).mean(axis=1)
-        return np.quantile(blocks, ROLLING_QUANTILE)
-    gaussian = np.random.default_rng(1).standard_normal(len(x))
-    gaussian_share = quantile_power(gaussian) / (2.0 * np.diff(ROLLING_BAND_HZ)[0] / FS)
-    return quantile_power(x) / gaussian_share
+def band_quantile_power(y):
+    """The ROLLING_QUANTILE of y's power in ROLLING_BAND_HZ over blocks of ROLLING_BLOCK_S."""
+    spectrum = np.fft.rfft(y - y.mean())
+    f = np.fft.rfftfreq(len(y), 1.0 / FS)
+    spectrum[(f < ROLLING_BAND_HZ[0]) | (f >= ROLLING_BAND_HZ[1])] = 0.0
+    band = np.fft.irfft(spectrum, len(y))
+    n = int(round(ROLLING_BLOCK_S * FS))
+    blocks = (band[:len(band) // n * n].reshape(-1, n) ** 2).mean(axis=1)
+    return np.quantile(blocks, ROLLING_QUANTILE)
+
+
+@functools.lru_cache(maxsize=None)
+def gaussian_quantile_share(samples):
+    """band_quantile_power of `samples` of unit white noise over its band power
+    2 (f_high - f_low) / FS (~0.6); computed once per length."""
+    gaussian = np.random.default_rng(1).standard_normal(samples)
+    return band_quantile_power(gaussian) / (2.0 * np.diff(ROLLING_BAND_HZ)[0] / FS)
 
 
 def rolling_noise_levels(directory, modes, mount):
     """The fault records' rolling noise, ug/sqrt(Hz) of white acceleration at the ring: their random
-    power in ROLLING_BAND_HZ less record 97's, over the band's integral of |H_path T_m|^2."""
+    power in ROLLING_BAND_HZ (read between impacts, above) less record 97's, over the band's
+    integral of |H_path T_m|^2."""
     f = np.arange(ROLLING_BAND_HZ[0], ROLLING_BAND_HZ[1], 0.5)
     h = (1.0 - sum(m['p'] for m in modes)) + sum(m['p'] * seismic(f, m['f'], m['zeta']) for m in modes)
     gain = np.sum(np.abs(h * seismic(f, mount['f'], mount['zeta'])) ** 2) * 0.5
+    def random_power(x):  # the last 10 s at most
+        x = x[-120000:]
+        return band_quantile_power(x) / gaussian_quantile_share(len(x))
+
     x97, _ = normal_record(directory)
-    normal = band_random_power(x97[-120000:])
+    normal = random_power(x97)
     levels = {}
     for record, path in fault_records(directory).items():
         x, _ = drive_end(path)
-        extra = max(band_random_power(x[-120000:]) - normal, 0.0)
+        extra = max(random_power(x) - normal, 0.0)
         levels[record] = np.sqrt(extra / gain) * 1e6
     return levels, np.sqrt(normal) * 1e3
 

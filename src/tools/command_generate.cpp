@@ -21,11 +21,11 @@
 #include "bearing_sim/runtime/scenario_simulation.hpp"
 #include "commands.hpp"
 #include "dataset_bag_writer.hpp"
+#include "dataset_files.hpp"
 #include "dataset_plain_writer.hpp"
 #include "finite_data_guard.hpp"
 #include "job_size.hpp"
 #include "output_size.hpp"
-#include "dataset_files.hpp"
 #include "output_space.hpp"
 #include "tool_common.hpp"
 
@@ -65,6 +65,17 @@ std::string file_stem(const std::string& scenario_name) {
   return stem;
 }
 
+// A job's files in --out: <out>/<stem> and what each format adds to it (dataset_files.hpp).
+std::string output_stem(const GenerateOptions& o, const Job& job) {
+  return o.out_dir + "/" + file_stem(job.simulation->info().scenario);
+}
+std::vector<std::string> output_files(const GenerateOptions& o, const Job& job) {
+  std::vector<std::string> files;
+  for (const std::string& f : o.formats)
+    for (const std::string& file : dataset_files(output_stem(o, job), f)) files.push_back(file);
+  return files;
+}
+
 void prepare_out_dir(const std::string& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -75,7 +86,7 @@ void prepare_out_dir(const std::string& dir) {
 }
 
 void run_job(Job& job, const GenerateOptions& o, std::mutex& print_mutex) {
-  const std::string stem = o.out_dir + "/" + file_stem(job.simulation->info().scenario);
+  const std::string stem = output_stem(o, job);
   std::vector<std::unique_ptr<runtime::DatasetSink>> sinks;
   sinks.push_back(std::make_unique<FiniteDataGuard>(job.simulation->info().scenario));  // before any writer
   for (const std::string& f : o.formats) {
@@ -85,8 +96,8 @@ void run_job(Job& job, const GenerateOptions& o, std::mutex& print_mutex) {
       const auto format = f == "npy" ? DatasetPlainWriter::Format::Npy : DatasetPlainWriter::Format::Csv;
       sinks.push_back(std::make_unique<DatasetPlainWriter>(stem, format));
     }
-    for (const std::string& file : dataset_files(stem, f)) job.outputs.push_back(file);
   }
+  job.outputs = output_files(o, job);
   std::vector<runtime::DatasetSink*> raw;
   for (auto& s : sinks) raw.push_back(s.get());
   using Clock = std::chrono::steady_clock;
@@ -172,14 +183,11 @@ void run(const GenerateOptions& o) {
   std::vector<PlannedOutput> outputs;
   for (const Job& job : jobs) {
     const BearingConfig bearing = load_bearing_config(job.simulation->scenario().bearing_file());
-    const std::string stem = o.out_dir + "/" + file_stem(job.simulation->info().scenario);
-    PlannedOutput planned{"--out '" + o.out_dir + "'", stem,
-                          dataset_output_bytes(job.simulation->info(), settings, job.simulation->scenario(),
-                                               bearing.rows * bearing.balls_per_row, o.formats)};
     // A run into an --out that holds a former run's files replaces them: their space comes back.
-    for (const std::string& f : o.formats)
-      for (const std::string& file : dataset_files(stem, f)) planned.replaces.push_back(file);
-    outputs.push_back(planned);
+    outputs.push_back({"--out '" + o.out_dir + "'", output_stem(o, job),
+                       dataset_output_bytes(job.simulation->info(), settings, job.simulation->scenario(),
+                                            bearing.rows * bearing.balls_per_row, o.formats),
+                       output_files(o, job)});
   }
   check_output_space(outputs);
   prepare_out_dir(o.out_dir);
