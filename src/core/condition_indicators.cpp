@@ -9,6 +9,8 @@
 #include "envelope_evidence.hpp"
 #include "fault_evidence.hpp"
 #include "fixed_decimals.hpp"
+#include "impact_intervals.hpp"
+#include "number_text.hpp"
 
 namespace bearing_sim {
 
@@ -130,6 +132,10 @@ Diagnosis diagnose(const ConditionIndicators& c, const DiagnosisThresholds& t) {
   for (const FaultIndicator& f : c.faults) {
     if (!f.suspected) continue;
     const SpectralPeak& p = f.envelope_peak;
+    if (f.intervals.found) {
+      findings.push_back({HealthLevel::Warn, 0.0, "ball defect suspected: " + f.note});
+      continue;
+    }
     const std::string what = f.kind == FaultKind::Cage ? "cage defect (or a ball defect's cage-rate modulation)"
                                                        : std::string(fault_kind_name(f.kind)) + " defect";
     findings.push_back({HealthLevel::Warn, p.snr_db,
@@ -275,6 +281,27 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
   c.fault_snr_db_used = chosen.fault_snr_db_used;
   c.evidence_snr_db_used = chosen.evidence_snr_db_used;
   c.faults = std::move(chosen.faults);
+  // Rule 14: nothing in either envelope spectrum, yet an impulsive band: a ball struck
+  // intermittently, at a rate its slip changes from run to run, is looked for in the times
+  // between consecutive impacts.
+  const auto ball = std::find_if(c.faults.begin(), c.faults.end(),
+                                 [](const FaultIndicator& f) { return f.kind == FaultKind::Ball; });
+  const double ball_hz = fault_frequency_hz(freq, FaultKind::Ball);
+  if (o.thresholds.ball_impact_intervals && chosen.verdict.outcome == VerdictOutcome::None &&
+      c.envelope_band_kurtosis >= o.thresholds.impulsive_band_kurtosis && ball != c.faults.end() &&
+      ball->resolvable && ball_hz > 0.0) {
+    ball->intervals = impact_intervals(band_envelope(x, fs, c.envelope_low_hz, c.envelope_high_hz), fs,
+                                       1.0 / ball_hz, o.thresholds);
+    const ImpactIntervals& iv = ball->intervals;
+    if (iv.found) {
+      ball->suspected = true;
+      ball->note = "struck intermittently: " + std::to_string(iv.in_window) + " of the intervals between " +
+                   std::to_string(iv.impacts) + " impacts within " +
+                   detail::fixed_decimals(100.0 * o.thresholds.interval_tolerance, 0) + " % of 1 / (2xBSF) = " +
+                   detail::fixed_decimals(1e3 * iv.period_s, 2) + " ms, " + detail::fixed_decimals(iv.expected, 1) +
+                   " expected there by the density around (chance " + detail::format_number(iv.chance) + ")";
+    }
+  }
   c.diagnosis = diagnose(c, o.thresholds);
   return c;
 }

@@ -81,6 +81,17 @@ py::dict analyze(const PyBearing& b, py::array_t<double, py::array::c_style | py
     e["impulsiveness_required"] = fi.impulsiveness_required;
     e["impulsive"] = fi.impulsive;
     e["note"] = fi.note;
+    if (fi.intervals.tested) {  // rule 14, the ball series
+      py::dict iv;
+      iv["period_s"] = fi.intervals.period_s;
+      iv["impacts"] = fi.intervals.impacts;
+      iv["in_window"] = fi.intervals.in_window;
+      iv["around"] = fi.intervals.around;
+      iv["expected"] = fi.intervals.expected;
+      iv["chance"] = fi.intervals.chance;
+      iv["found"] = fi.intervals.found;
+      e["impact_intervals"] = iv;
+    }
     faults.append(e);
   }
   d["faults"] = faults;

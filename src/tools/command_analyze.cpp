@@ -225,7 +225,7 @@ void run(const AnalyzeCliOptions& o) {
   const ConditionIndicators c = analyze_vibration(signal.values, rate, f, a);
 
   nlohmann::json faults = nlohmann::json::array();
-  for (const FaultIndicator& fi : c.faults)
+  for (const FaultIndicator& fi : c.faults) {
     faults.push_back({{"fault", fault_kind_name(fi.kind)},
                       {"label", fault_frequency_label(fi.kind)},
                       {"suspected", fi.suspected},
@@ -241,6 +241,12 @@ void run(const AnalyzeCliOptions& o) {
                       {"impulsiveness_required", fi.impulsiveness_required},
                       {"impulsive", fi.impulsive},
                       {"note", fi.note}});
+    if (fi.intervals.tested)  // rule 14, the ball series
+      faults.back()["impact_intervals"] = {{"period_s", fi.intervals.period_s},   {"impacts", fi.intervals.impacts},
+                                           {"in_window", fi.intervals.in_window}, {"around", fi.intervals.around},
+                                           {"expected", fi.intervals.expected},   {"chance", fi.intervals.chance},
+                                           {"found", fi.intervals.found}};
+  }
   const nlohmann::json result = {{"bearing", bearing_json(model, o.bearing)},
                                  {"csv", o.csv},
                                  {"column", signal.column},

@@ -57,6 +57,21 @@ struct DiagnosisThresholds {
   double line_chance_max = 0.1;
   // The neighbourhood (+- this fraction of the frequency) that line_chance counts lines in.
   double line_neighbourhood_rel = 0.2;
+  // Rule 14 (docs/health.md): where the envelope spectrum names nothing and the band is
+  // impulsive, a spalled ball struck intermittently is looked for in the times between
+  // consecutive impacts. An impact is an envelope maximum over impact_over_median x the
+  // envelope's median (a Rayleigh envelope of Gaussian noise exceeds 4 x its median with
+  // probability 1.5e-5); intervals within +-interval_tolerance of 1 / (2 x BSF) are counted
+  // against the density of intervals around (+-4 x the tolerance). The tolerance holds the
+  // ball's speed scatter from pass to pass (slip in and out of the load zone, a few %) and
+  // the envelope peak's place in a burst (a few cycles of a 2-6 kHz resonance: 3 % of the
+  // 6205's 7 ms). Found: at least intervals_min in the window and a Poisson chance of that
+  // many at the surrounding density of at most interval_chance_max.
+  bool ball_impact_intervals = true;
+  double impact_over_median = 4.0;
+  double interval_tolerance = 0.07;
+  double intervals_min = 10.0;
+  double interval_chance_max = 1e-3;
   double kurtosis_warn = 6.0;                 // impulsive signal -> WARN (Gaussian noise: 3); <= 0 disables
   VelocityZone warn_zone = VelocityZone::C;   // velocity zone at or above: WARN
   VelocityZone error_zone = VelocityZone::D;  // ... ERROR
@@ -130,6 +145,19 @@ struct EvidenceLine {
   bool found = false;      // a local maximum with snr_db >= its threshold
 };
 const char* fault_kind_name(FaultKind kind);        // "outer race", "inner race", "ball", "cage"
+
+// Rule 14 (docs/health.md): the intervals between consecutive impacts in the band envelope
+// against one period (1 / (2 x BSF) for a spalled ball).
+struct ImpactIntervals {
+  bool tested = false;         // asked: nothing in the envelope spectrum, an impulsive band
+  double period_s = 0.0;       // the period looked for
+  std::size_t impacts = 0;     // envelope maxima over impact_over_median x its median
+  std::size_t in_window = 0;   // consecutive intervals within +-interval_tolerance of the period
+  std::size_t around = 0;      // within +-4 x the tolerance, outside the window
+  double expected = 0.0;       // in the window at the density around: (around + 1/2) / 3
+  double chance = 1.0;         // Poisson P(count >= in_window) at that expectation
+  bool found = false;          // in_window >= intervals_min and chance <= interval_chance_max
+};
 const char* fault_frequency_label(FaultKind kind);  // "BPFO", "BPFI", "2xBSF", "FTF"
 
 struct FaultIndicator {
@@ -154,6 +182,7 @@ struct FaultIndicator {
   bool impulsiveness_required = false;
   bool impulsive = true;
   double band_kurtosis = 0.0;  // the envelope band's spectral kurtosis
+  ImpactIntervals intervals;   // the ball series only (rule 14)
   // Fundamental found (fault_snr_db) AND 2nd harmonic found (evidence_snr_db) AND, when
   // sidebands_required, at least one sideband found (evidence_snr_db) AND, when
   // impulsiveness_required, an impulsive band; AND not withdrawn beside another series
