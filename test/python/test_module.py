@@ -225,6 +225,46 @@ def test_analyze_a_modulated_carrier():
     assert lone['harmonics_found'] == 1 and not lone['suspected']
 
 
+def test_analyze_names_a_ball_struck_intermittently_from_its_impact_intervals():
+    # Runs of 2-4 strikes half a ball-spin period apart, each run's period off by up to 7 %
+    # (the ball's slip), the runs at random times, each strike of random strength ringing a
+    # 3.5 kHz resonance under noise: the envelope spectrum finds nothing, the intervals between
+    # impacts name the ball (docs/health.md, rule 14). The same impacts at random times: nothing.
+    b = bearing_sim.load_bearing(B6205)
+    rate, fr = 12000.0, 1772.0 / 60.0
+    period = 1.0 / (2.0 * b.frequencies(2 * math.pi * fr)['ball_spin_hz'])
+    rng = np.random.default_rng(1)
+    impacts = []
+    t = 0.01
+    while t < 10.0:
+        run, run_period = int(rng.integers(2, 5)), period * (1.0 + rng.uniform(-0.07, 0.07))
+        impacts += [t + k * run_period for k in range(run)]
+        t += (run - 1) * run_period + rng.uniform(2.0, 12.0) * period
+
+    def signal(at):
+        at = np.sort(np.asarray(at))
+        time = np.arange(int(10.0 * rate)) / rate
+        last = np.searchsorted(at, time, side='right') - 1
+        since = time - at[np.maximum(last, 0)]
+        strength = np.exp(rng.normal(0.0, 0.7, at.size))[np.maximum(last, 0)]
+        wn = 2 * math.pi * 3500.0
+        ring = np.where(last >= 0, strength * np.exp(-0.03 * wn * since) * np.sin(wn * since), 0.0)
+        return ring + rng.normal(0.0, 0.2, time.size)
+
+    r = bearing_sim.analyze(signal(impacts), rate, b, inner_rad_s=2 * math.pi * fr)
+    ball = r['faults'][2]
+    intervals = ball['impact_intervals']
+    assert ball['label'] == '2xBSF' and ball['suspected'], r['reason']
+    assert intervals['found'] and intervals['period_s'] == pytest.approx(period, rel=0.01)
+    assert intervals['in_window'] >= 10 and intervals['chance'] <= 1e-3
+    assert intervals['expected'] == pytest.approx((intervals['around'] + 0.5) / 3.0)
+    assert r['verdict']['outcome'] == 'fault' and r['verdict']['kinds'] == ['ball']
+    assert 'struck intermittently' in r['reason']
+    scattered = bearing_sim.analyze(signal(rng.uniform(0.0, 10.0, len(impacts))), rate, b,
+                                    inner_rad_s=2 * math.pi * fr)
+    assert scattered['verdict']['outcome'] == 'none', scattered['reason']
+
+
 def test_modes_agree_with_an_independent_eigensolver():
     # A body on one bearing at its centre of mass: the frequencies are those of
     # M^-1/2 K M^-1/2 with K the 5x5 stiffness embedded in 6x6 (rz free).
