@@ -299,7 +299,8 @@ ConditionIndicators analyze_vibration(const std::vector<double>& accel, double f
                    std::to_string(iv.impacts) + " impacts within " +
                    detail::fixed_decimals(100.0 * o.thresholds.interval_tolerance, 0) + " % of 1 / (2xBSF) = " +
                    detail::fixed_decimals(1e3 * iv.period_s, 2) + " ms, " + detail::fixed_decimals(iv.expected, 1) +
-                   " expected there by the density around (chance " + detail::format_number(iv.chance) + ")";
+                   " expected there by the density around (chance " + detail::format_number(iv.chance) +
+                   "), their median " + detail::fixed_decimals(iv.median_ratio, 3) + " x the period";
     }
   }
   c.diagnosis = diagnose(c, o.thresholds);

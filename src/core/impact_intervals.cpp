@@ -52,17 +52,26 @@ ImpactIntervals impact_intervals(const std::vector<double>& e, double fs, double
   }
   r.impacts = kept.size();
   const double tol = t.interval_tolerance;
+  std::vector<double> in_window;
   for (auto a = kept.begin(), b = std::next(a); a != kept.end() && b != kept.end(); ++a, ++b) {
-    const double off = std::abs(static_cast<double>(*b - *a) / period - 1.0);
+    const double ratio = static_cast<double>(*b - *a) / period;
+    const double off = std::abs(ratio - 1.0);
     if (off < tol)
-      ++r.in_window;
+      in_window.push_back(ratio);
     else if (off < 4.0 * tol)
       ++r.around;
+  }
+  r.in_window = in_window.size();
+  if (!in_window.empty()) {
+    const auto mid = in_window.begin() + static_cast<long>(in_window.size() / 2);
+    std::nth_element(in_window.begin(), mid, in_window.end());
+    r.median_ratio = *mid;
   }
   // The neighbourhood is 3 windows wide; the half keeps an empty one from giving certainty.
   r.expected = (static_cast<double>(r.around) + 0.5) / 3.0;
   r.chance = poisson_upper_tail(r.in_window, r.expected);
-  r.found = static_cast<double>(r.in_window) >= t.intervals_min && r.chance <= t.interval_chance_max;
+  r.found = static_cast<double>(r.in_window) >= t.intervals_min && r.chance <= t.interval_chance_max &&
+            std::abs(r.median_ratio - 1.0) <= 0.5 * tol;
   return r;
 }
 

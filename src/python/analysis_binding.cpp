@@ -89,6 +89,7 @@ py::dict analyze(const PyBearing& b, py::array_t<double, py::array::c_style | py
       iv["around"] = fi.intervals.around;
       iv["expected"] = fi.intervals.expected;
       iv["chance"] = fi.intervals.chance;
+      iv["median_ratio"] = fi.intervals.median_ratio;
       iv["found"] = fi.intervals.found;
       e["impact_intervals"] = iv;
     }

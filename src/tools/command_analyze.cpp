@@ -245,6 +245,7 @@ void run(const AnalyzeCliOptions& o) {
       faults.back()["impact_intervals"] = {{"period_s", fi.intervals.period_s},   {"impacts", fi.intervals.impacts},
                                            {"in_window", fi.intervals.in_window}, {"around", fi.intervals.around},
                                            {"expected", fi.intervals.expected},   {"chance", fi.intervals.chance},
+                                           {"median_ratio", fi.intervals.median_ratio},
                                            {"found", fi.intervals.found}};
   }
   const nlohmann::json result = {{"bearing", bearing_json(model, o.bearing)},

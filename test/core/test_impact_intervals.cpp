@@ -67,7 +67,27 @@ TEST(ImpactIntervals, CountsTheIntervalsWithinRunsOfStrikes) {
   EXPECT_EQ(r.around, 0u);
   EXPECT_NEAR(r.expected, 0.5 / 3.0, 1e-12);
   EXPECT_NEAR(r.chance, poisson_upper_tail(expected_in_window, 0.5 / 3.0), 1e-15);
+  EXPECT_NEAR(r.median_ratio, 1.0, 1.0 / period);  // the strikes rounded to samples
   EXPECT_TRUE(r.found);
+}
+
+// A strictly periodic impulsive source near the ball's period (a shaft order 5 x f_r lies 6 %
+// from the 6205's 2 x BSF): every interval lies in the +-7 % window, but off its centre by
+// more than half the tolerance, so it is not the ball; 2 % off (a ball's slip), it is.
+TEST(ImpactIntervals, PeriodicSourceOffTheBallsPeriodIsNotTheBall) {
+  const double fs = 12000.0, period_s = 0.00708;
+  const double period = period_s * fs;
+  for (double ratio : {1.055, 0.945, 1.02}) {
+    std::mt19937_64 rng(7);
+    std::vector<std::size_t> at;
+    for (double t = 10.0; t < 10.0 * fs - 10.0; t += ratio * period) at.push_back(static_cast<std::size_t>(t));
+    const ImpactIntervals r = impact_intervals(spiky_envelope(static_cast<std::size_t>(10.0 * fs), at, &rng), fs,
+                                               period_s, DiagnosisThresholds{});
+    EXPECT_EQ(r.in_window, at.size() - 1) << ratio;
+    EXPECT_LT(r.chance, 1e-100) << ratio;
+    EXPECT_NEAR(r.median_ratio, ratio, 1.0 / period) << ratio;
+    EXPECT_EQ(r.found, std::abs(ratio - 1.0) <= 0.035) << ratio;
+  }
 }
 
 // Impacts at random times (a Poisson process of the same mean rate): the share of intervals in

@@ -65,8 +65,11 @@ struct DiagnosisThresholds {
   // against the density of intervals around (+-4 x the tolerance). The tolerance holds the
   // ball's speed scatter from pass to pass (slip in and out of the load zone, a few %) and
   // the envelope peak's place in a burst (a few cycles of a 2-6 kHz resonance: 3 % of the
-  // 6205's 7 ms). Found: at least intervals_min in the window and a Poisson chance of that
-  // many at the surrounding density of at most interval_chance_max.
+  // 6205's 7 ms). Found: at least intervals_min in the window, a Poisson chance of that
+  // many at the surrounding density of at most interval_chance_max, and the window's
+  // intervals centred on the period (their median within half the tolerance): a ball's mean
+  // speed is the kinematic one within its slip, while another periodic source near the
+  // period (a shaft order 5 x f_r lies 6 % from the 6205's 2 x BSF) sits off centre.
   bool ball_impact_intervals = true;
   double impact_over_median = 4.0;
   double interval_tolerance = 0.07;
@@ -156,7 +159,10 @@ struct ImpactIntervals {
   std::size_t around = 0;      // within +-4 x the tolerance, outside the window
   double expected = 0.0;       // in the window at the density around: (around + 1/2) / 3
   double chance = 1.0;         // Poisson P(count >= in_window) at that expectation
-  bool found = false;          // in_window >= intervals_min and chance <= interval_chance_max
+  double median_ratio = 0.0;   // median of the window's intervals / the period (0: none)
+  // in_window >= intervals_min, chance <= interval_chance_max and the median ratio within
+  // half the tolerance of 1
+  bool found = false;
 };
 const char* fault_frequency_label(FaultKind kind);  // "BPFO", "BPFI", "2xBSF", "FTF"
 
