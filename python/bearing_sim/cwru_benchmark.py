@@ -9,9 +9,11 @@ DIR holds the .mat files as the CWRU Bearing Data Center publishes them
 (https://engineering.case.edu/bearingdatacenter; not shipped with this package), named by
 their record number ('105.mat') or descriptively ('12k_Drive_End_IR007_0_105.mat'): the
 record number is the last number in the name. Each record of config/cwru/records.csv found
-there is analysed: its drive-end channel (g -> m/s^2) with config/bearings/cwru_6205_drive_end.yaml
-at the file's shaft speed (its RPM variable, else the table's nominal speed for its load).
-Fan-end records are skipped.
+there is analysed at the file's shaft speed (its RPM variable, else the table's nominal speed for
+its load): a drive-end record's drive-end channel (g -> m/s^2) with
+config/bearings/cwru_6205_drive_end.yaml, a fan-end record's fan-end channel with
+config/bearings/cwru_6203_fan_end.yaml. The fan-end set is counted apart: nothing of the
+analyser was set on it.
 
 Writes into OUTDIR: records.csv (a row per record: metadata, Smith & Randall's grade, the
 verdict and its class and scores, the evidence of BPFO, BPFI, 2xBSF and FTF), summary.json
@@ -35,7 +37,7 @@ import bearing_sim
 from bearing_sim import cwru_records, cwru_report, cwru_scoring
 from bearing_sim.config_files import config_file
 
-BEARING_FILES = {'DE': 'bearings/cwru_6205_drive_end.yaml'}  # per channel; only the drive end
+BEARING_FILES = {'DE': 'bearings/cwru_6205_drive_end.yaml', 'FE': 'bearings/cwru_6203_fan_end.yaml'}  # per channel
 
 
 def evidence(result):
@@ -55,7 +57,7 @@ def evidence(result):
 def analyse_record(path, meta, grade, bearing, window_s):
     """The row of one record file; an error row when it cannot be read or analysed."""
     row = {'record': meta['record'], 'file': path.name, 'sample_rate_hz': int(meta['sample_rate_hz']),
-           'fault': meta['fault'], 'size_in': meta['size_in'] or '', 'position': meta['position'],
+           'channel': meta['channel'], 'fault': meta['fault'], 'size_in': meta['size_in'] or '', 'position': meta['position'],
            'load_hp': meta['load_hp'], 'smith_randall_best': grade.get('best', ''),
            'smith_randall_group': grade.get('group', ''), 'error': ''}
     try:

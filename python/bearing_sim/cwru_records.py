@@ -10,7 +10,6 @@ import re
 from bearing_sim.config_files import config_file
 
 G = 9.80665  # m/s^2 per g: CWRU's accelerometer channels are in g
-FAN_END_NOTE = 'fan-end record: out of scope (the benchmark analyses the drive-end records)'
 
 
 def read_table(path):
@@ -67,8 +66,7 @@ def find_records(directory, table, wanted=None):
         if record is None:
             notes.append((path.name, 'no record number in the name'))
         elif record not in table:
-            why = FAN_END_NOTE if 'fan' in path.name.lower() else 'not a record of the metadata table'
-            notes.append((path.name, why))
+            notes.append((path.name, 'not a record of the metadata table'))
         elif wanted and record not in wanted:
             continue
         elif record in found:

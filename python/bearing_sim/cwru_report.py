@@ -8,14 +8,15 @@ import pathlib
 from bearing_sim.cwru_scoring import COUNT_KEYS, RULES
 
 SERIES = ('BPFO', 'BPFI', '2xBSF', 'FTF')
-COLUMNS = (['record', 'file', 'sample_rate_hz', 'fault', 'size_in', 'position', 'load_hp', 'rpm', 'rpm_source',
+COLUMNS = (['record', 'file', 'sample_rate_hz', 'channel', 'fault', 'size_in', 'position', 'load_hp', 'rpm', 'rpm_source',
             'smith_randall_best', 'smith_randall_group', 'outcome', 'kinds', 'class', 'right_alone', 'wrong_named',
             'cannot_tell', 'verdict_source', 'verdict_text', 'health', 'kurtosis', 'envelope_band_hz']
            + [f'{s}_{c}' for s in SERIES for c in ('h1_snr_db', 'h2_snr_db', 'h3_snr_db', 'suspected', 'note')]
            + ['variable', 'notes', 'error'])
 SOURCES = """\
 Data: CWRU Bearing Data Center, Case Western Reserve University,
-https://engineering.case.edu/bearingdatacenter (drive-end channel, in g, x 9.80665).
+https://engineering.case.edu/bearingdatacenter (each record's own end: drive-end channel and
+bearing, or fan-end channel and bearing for the fan-end set; in g, x 9.80665).
 Grades: W. A. Smith and R. B. Randall, Rolling element bearing diagnostics using the Case
 Western Reserve University data: a benchmark study, Mechanical Systems and Signal Processing
 64-65 (2015) 100-131, Table B2 (their best method; Y clearly, P partially, N not diagnosable).
@@ -51,8 +52,9 @@ def describe(c):
 
 def summary_lines(summary):
     lines = [f"window: {summary['window_s'] or 'whole record'}{' s' if summary['window_s'] else ''}"]
-    for title, key in (('all records', 'all'), ('graded SKF records (Smith & Randall)', 'graded_skf')):
-        for fault, c in summary[key].items():
+    for title, key in (('all records', 'all'), ('fan-end records (6203, counted apart)', 'fan_end'),
+                       ('graded SKF records (Smith & Randall)', 'graded_skf')):
+        for fault, c in summary.get(key, {}).items():
             name = title if fault == 'all' else f'  {_fault_name(fault)}'
             lines.append(f"{name} ({c['records']}): {describe(c)}")
     for group, c in summary['smith_randall_groups'].items():
@@ -85,7 +87,8 @@ def markdown(rows, summary):
     out = ['### CWRU benchmark', '', SOURCES, f"Window: {summary['window_s'] or 'the whole record'}"
            f"{' s' if summary['window_s'] else ''}.", '', '#### Counts', '']
     named = [(title if fault == 'all' else f'{title}: {_fault_name(fault)}', c)
-             for title, key in (('all', 'all'), ('graded SKF', 'graded_skf')) for fault, c in summary[key].items()]
+             for title, key in (('all', 'all'), ('fan end', 'fan_end'), ('graded SKF', 'graded_skf'))
+             for fault, c in summary.get(key, {}).items()]
     named += [(f'Smith & Randall {group}', c) for group, c in summary['smith_randall_groups'].items()]
     out += _table(['records', 'n', 'right type alone', 'wrong type named', 'cannot tell, truth among',
                    'cannot tell, truth not among', 'nothing found', 'errors'],

@@ -113,11 +113,14 @@ def confusion(rows):
 
 
 def summarise(rows):
-    """Counts of all records, of those Smith & Randall graded (their SKF records), per grade
-    group of theirs, and the confusion matrix."""
+    """Counts of all records, of the fan-end records (their own bearing and channel), of those
+    Smith & Randall graded (their SKF drive-end records), per grade group of theirs, and the
+    confusion matrix."""
     graded = [r for r in rows if r['smith_randall_group']]
+    fan_end = [r for r in rows if r.get('channel') == 'FE']
     return {'scoring': RULES,
             'all': counts_by_fault(rows),
+            'fan_end': counts_by_fault(fan_end) if fan_end else {},
             'graded_skf': counts_by_fault(graded),
             'smith_randall_groups': {g: counts([r for r in graded if r['smith_randall_group'] == g]) for g in 'YPN'},
             'confusion': confusion(rows)}

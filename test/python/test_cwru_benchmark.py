@@ -15,13 +15,14 @@ from bearing_sim import cwru_benchmark, cwru_records, cwru_scoring
 
 G = 9.80665
 BPFO_PER_REV = 3.5848  # CWRU's drive-end 6205: BPFO / f_r
+FAN_END_BPFO_PER_REV = 3.0530  # the fan-end 6203 (CWRU's bearing page)
 
 
-def outer_race_train(rpm, fs=12000.0, duration_s=3.0, seed=1):
+def outer_race_train(rpm, fs=12000.0, duration_s=3.0, seed=1, bpfo_per_rev=BPFO_PER_REV):
     """Impacts at BPFO, each ringing a 3 kHz resonance (5 % damped), over a little noise; in g."""
     n = int(fs * duration_s)
     impacts = np.zeros(n)
-    bpfo = BPFO_PER_REV * rpm / 60.0
+    bpfo = bpfo_per_rev * rpm / 60.0
     impacts[(np.arange(0.0, duration_s, 1.0 / bpfo) * fs).astype(int)] = 1.0
     t = np.arange(int(0.02 * fs)) / fs
     wn = 2.0 * math.pi * 3000.0
@@ -33,14 +34,20 @@ def outer_race_train(rpm, fs=12000.0, duration_s=3.0, seed=1):
 @pytest.fixture(scope='module')
 def run(tmp_path_factory):
     """The command on record 130 (outer race, own speed), record 97 (normal, 48 kHz, no RPM
-    variable), a file that is not MATLAB and a fan-end record."""
+    variable), a file that is not MATLAB, a fan-end record (294: outer race of the 6203, its
+    own channel) and a file of no record of the table."""
     data = tmp_path_factory.mktemp('cwru')
     scipy.io.savemat(data / '130.mat', {'X130_DE_time': outer_race_train(1797.0)[:, None],
                                         'X130_FE_time': np.zeros((10, 1)), 'X130RPM': np.array([[1797]])})
     noise = 0.05 * np.random.default_rng(2).standard_normal(int(48000 * 2.0))
     scipy.io.savemat(data / 'normal_0_97.mat', {'X097_DE_time': noise[:, None]})
     (data / '12k_Drive_End_OR007@6_1_131.mat').write_bytes(b'not a MATLAB file')
-    (data / '12k_Fan_End_IR007_0_278.mat').write_bytes(b'')
+    # The fan-end channel holds the 6203's BPFO train, the drive-end one noise: read the wrong
+    # channel or the wrong bearing and the outer race is not found.
+    scipy.io.savemat(data / '12k_Fan_End_OR007@6_0_294.mat',
+                     {'X294_FE_time': outer_race_train(1797.0, bpfo_per_rev=FAN_END_BPFO_PER_REV)[:, None],
+                      'X294_DE_time': noise[:12000 * 3, None], 'X294RPM': np.array([[1797]])})
+    (data / '12k_Drive_End_XX_999.mat').write_bytes(b'')
     out = tmp_path_factory.mktemp('out')
     assert cwru_benchmark.main([str(data), '--out', str(out)]) == 0
     with open(out / 'records.csv', newline='') as f:
@@ -61,7 +68,10 @@ def test_record_number_is_the_last_number_of_the_name():
 
 def test_tables():
     table = cwru_records.metadata()
-    assert len(table) == 116 and 157 not in table and 216 not in table
+    assert len(table) == 161 and 157 not in table and 216 not in table
+    assert sum(row['channel'] == 'FE' for row in table.values()) == 45
+    assert {k: table[310][k] for k in ('channel', 'fault', 'size_in', 'position', 'load_hp', 'nominal_rpm')} == {
+        'channel': 'FE', 'fault': 'outer race', 'size_in': 0.014, 'position': '@3', 'load_hp': 0, 'nominal_rpm': 1797.0}
     assert {k: table[130][k] for k in ('sample_rate_hz', 'channel', 'fault', 'size_in', 'position', 'load_hp')} == {
         'sample_rate_hz': 12000.0, 'channel': 'DE', 'fault': 'outer race', 'size_in': 0.007, 'position': '@6',
         'load_hp': 0}
@@ -137,13 +147,23 @@ def test_outer_race_train_is_outer_alone(run):
     assert float(r['BPFO_h1_snr_db']) > 20.0
 
 
+def test_fan_end_record_is_read_from_its_own_channel_with_its_own_bearing(run):
+    rows, _, _ = run
+    r = rows[294]
+    assert (r['channel'], r['variable'], r['rpm_source'], r['smith_randall_best']) == ('FE', 'X294_FE_time', 'file', '')
+    assert (r['class'], r['right_alone'], r['BPFO_suspected']) == ('outer', '1', '1')
+    assert float(r['BPFO_h1_snr_db']) > 20.0
+
+
 def test_counts_and_confusion(run):
     rows, summary, out = run
     assert rows[131]['error'] and not rows[131]['class']  # the bad file: an error row
-    assert 278 not in rows and summary['skipped_files'][0]['file'] == '12k_Fan_End_IR007_0_278.mat'
+    assert 999 not in rows and summary['skipped_files'][0]['file'] == '12k_Drive_End_XX_999.mat'
     m = summary['confusion']
     cell = {(t, c): n for t, counts in zip(m['rows'], m['counts']) for c, n in zip(m['columns'], counts)}
-    assert cell[('outer', 'outer')] == 1 and cell[('none', 'none')] == 1 and sum(cell.values()) == 2
+    assert cell[('outer', 'outer')] == 2 and cell[('none', 'none')] == 1 and sum(cell.values()) == 3
+    fan_end = summary['fan_end']['all']
+    assert (fan_end['records'], fan_end['right_alone']) == (1, 1)
     graded = summary['graded_skf']['all']
     assert (graded['records'], graded['right_alone'], graded['errors']) == (2, 1, 1)  # 130, and 131 in error
     assert summary['smith_randall_groups']['Y']['right_alone'] == 1
