@@ -57,8 +57,8 @@ def evidence(result):
 def analyse_record(path, meta, grade, bearing, window_s):
     """The row of one record file; an error row when it cannot be read or analysed."""
     row = {'record': meta['record'], 'file': path.name, 'sample_rate_hz': int(meta['sample_rate_hz']),
-           'channel': meta['channel'], 'fault': meta['fault'], 'size_in': meta['size_in'] or '', 'position': meta['position'],
-           'load_hp': meta['load_hp'], 'smith_randall_best': grade.get('best', ''),
+           'channel': meta['channel'], 'fault': meta['fault'], 'size_in': meta['size_in'] or '',
+           'position': meta['position'], 'load_hp': meta['load_hp'], 'smith_randall_best': grade.get('best', ''),
            'smith_randall_group': grade.get('group', ''), 'error': ''}
     try:
         record = cwru_records.load_record(path, meta)

@@ -8,9 +8,9 @@ import pathlib
 from bearing_sim.cwru_scoring import COUNT_KEYS, RULES
 
 SERIES = ('BPFO', 'BPFI', '2xBSF', 'FTF')
-COLUMNS = (['record', 'file', 'sample_rate_hz', 'channel', 'fault', 'size_in', 'position', 'load_hp', 'rpm', 'rpm_source',
-            'smith_randall_best', 'smith_randall_group', 'outcome', 'kinds', 'class', 'right_alone', 'wrong_named',
-            'cannot_tell', 'verdict_source', 'verdict_text', 'health', 'kurtosis', 'envelope_band_hz']
+COLUMNS = (['record', 'file', 'sample_rate_hz', 'channel', 'fault', 'size_in', 'position', 'load_hp', 'rpm',
+            'rpm_source', 'smith_randall_best', 'smith_randall_group', 'outcome', 'kinds', 'class', 'right_alone',
+            'wrong_named', 'cannot_tell', 'verdict_source', 'verdict_text', 'health', 'kurtosis', 'envelope_band_hz']
            + [f'{s}_{c}' for s in SERIES for c in ('h1_snr_db', 'h2_snr_db', 'h3_snr_db', 'suspected', 'note')]
            + ['variable', 'notes', 'error'])
 SOURCES = """\

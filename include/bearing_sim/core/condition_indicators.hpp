@@ -148,6 +148,7 @@ struct EvidenceLine {
   bool found = false;      // a local maximum with snr_db >= its threshold
 };
 const char* fault_kind_name(FaultKind kind);        // "outer race", "inner race", "ball", "cage"
+const char* fault_frequency_label(FaultKind kind);  // "BPFO", "BPFI", "2xBSF", "FTF"
 
 // Rule 14 (docs/health.md): the intervals between consecutive impacts in the band envelope
 // against one period (1 / (2 x BSF) for a spalled ball).
@@ -164,7 +165,6 @@ struct ImpactIntervals {
   // half the tolerance of 1
   bool found = false;
 };
-const char* fault_frequency_label(FaultKind kind);  // "BPFO", "BPFI", "2xBSF", "FTF"
 
 struct FaultIndicator {
   FaultKind kind = FaultKind::OuterRace;
@@ -192,7 +192,7 @@ struct FaultIndicator {
   // Fundamental found (fault_snr_db) AND 2nd harmonic found (evidence_snr_db) AND, when
   // sidebands_required, at least one sideband found (evidence_snr_db) AND, when
   // impulsiveness_required, an impulsive band; AND not withdrawn beside another series
-  // (docs/health.md, "Evidence").
+  // (docs/health.md, "Evidence"); or, for the ball where no series is, intervals.found (rule 14).
   bool suspected = false;
   // Why a series is not suspected or what else explains it (empty when nothing to say).
   std::string note;
