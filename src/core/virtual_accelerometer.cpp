@@ -23,6 +23,7 @@ namespace detail {
 AccelerometerProblem accelerometer_config_problem(const AccelerometerConfig& c) {
   if (!c.mount_point_m.allFinite()) return {"mount_point_mm", "must be finite"};
   if (!c.axis.allFinite() || c.axis.norm() < 1e-9) return {"axis", "must be a finite, non-zero vector"};
+  if (!(std::abs(c.cross_axis_coupling) <= 1.0)) return {"cross_axis_coupling", "must be in [-1, 1]"};
   if (!(c.path_resonance_hz >= 0.0) || !std::isfinite(c.path_resonance_hz))
     return {"path_resonance_Hz", "must be >= 0 (0: no transmission path)"};
   // Mounts and housings have 0.5-20 % of critical damping; below 1e-4 the resonance never
@@ -105,6 +106,7 @@ VirtualAccelerometer::VirtualAccelerometer(AccelerometerConfig config, double in
 
   axis_ = config_.axis.normalized();
   lever_ = config_.mount_point_m.cross(axis_);
+  translation_direction_ = axis_ + config_.cross_axis_coupling * Eigen::Vector3d::UnitZ().cross(axis_);
   has_path_ = !modes.empty();
   if (has_path_) path_ = TransmissionPath(modes, input_rate_hz);
   has_mount_ = config_.mount_resonance_hz > 0.0;
@@ -151,13 +153,15 @@ std::complex<double> VirtualAccelerometer::path_response(double f_hz) const {
 
 double VirtualAccelerometer::ideal_axis_acceleration(const Vector5& a, double ring_angle_rad) const {
   // a_point = a_t + alpha x r, alpha = (theta_x'', theta_y'', 0); (alpha x r).n = alpha.(r x n).
-  Eigen::Vector3d n = axis_, lever = lever_;
+  // The translation is read along n + coupling (z x n): the structure's cross-axis response.
+  Eigen::Vector3d n = translation_direction_, lever = lever_;
   if (config_.mount == SensorMount::MovingRing) {
     // The sensor turns with the ring: rotate r and n (hence r x n) by the ring angle about z.
     // The constant centripetal term is left out (an ICP sensor is AC-coupled), as are the
     // Coriolis terms of order ring speed x tilt rate (tiny against the vibration).
     const double c = std::cos(ring_angle_rad), s = std::sin(ring_angle_rad);
-    n = Eigen::Vector3d(c * axis_.x() - s * axis_.y(), s * axis_.x() + c * axis_.y(), axis_.z());
+    const Eigen::Vector3d& d = translation_direction_;
+    n = Eigen::Vector3d(c * d.x() - s * d.y(), s * d.x() + c * d.y(), d.z());
     lever = Eigen::Vector3d(c * lever_.x() - s * lever_.y(), s * lever_.x() + c * lever_.y(), lever_.z());
   }
   return a(0) * n.x() + a(1) * n.y() + a(2) * n.z() + a(3) * lever.x() + a(4) * lever.y();

@@ -53,7 +53,7 @@ Eigen::Vector3d vector3(const detail::Reader& r, const YAML::Node& map, const st
 AccelerometerConfig parse_accelerometer_config(const YAML::Node& sensor, const std::string& source) {
   if (!sensor || !sensor.IsMap()) throw ConfigError(source + ": key 'sensor': expected a YAML mapping of sensor keys");
   detail::Reader r(sensor, source, "sensor.");
-  r.check_keys({"name", "mount", "mount_point_mm", "axis", "path_resonance_Hz", "path_damping_ratio", "path_modes",
+  r.check_keys({"name", "mount", "mount_point_mm", "axis", "cross_axis_coupling", "path_resonance_Hz", "path_damping_ratio", "path_modes",
                 "mount_resonance_Hz", "mount_damping_ratio", "sensitivity_mV_per_g", "noise_density_ug_per_sqrt_Hz",
                 "range_g", "adc_bits", "output_rate_Hz", "anti_alias_cutoff_fraction", "anti_alias_order", "seed",
                 "output_unit", "installation"});
@@ -65,6 +65,7 @@ AccelerometerConfig parse_accelerometer_config(const YAML::Node& sensor, const s
   else r.fail("mount", "must be housing or moving_ring, got '" + mount + "'");
   c.mount_point_m = vector3(r, sensor, "mount_point_mm", c.mount_point_m * 1e3) * 1e-3;
   c.axis = vector3(r, sensor, "axis", c.axis);
+  c.cross_axis_coupling = r.number("cross_axis_coupling", c.cross_axis_coupling);
   c.path_resonance_hz = r.number("path_resonance_Hz", c.path_resonance_hz);
   c.path_damping_ratio = r.number("path_damping_ratio", c.path_damping_ratio);
   if (r.has("path_modes")) {

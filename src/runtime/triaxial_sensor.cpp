@@ -3,9 +3,22 @@
 namespace bearing_sim {
 namespace runtime {
 
+Eigen::Matrix3d triaxial_frame(const Eigen::Vector3d& axis) {
+  const Eigen::Vector3d e0 = axis.normalized();
+  // The bearing's z without its part along e0 (x when the axis is axial).
+  Eigen::Vector3d e2 = Eigen::Vector3d::UnitZ() - e0.z() * e0;
+  if (e2.norm() < 1e-6) e2 = Eigen::Vector3d::UnitX() - e0.x() * e0;
+  e2.normalize();
+  Eigen::Matrix3d frame;
+  frame.col(0) = e0;
+  frame.col(1) = e2.cross(e0);
+  frame.col(2) = e2;
+  return frame;
+}
+
 AccelerometerConfig triaxial_channel_config(const AccelerometerConfig& config, int axis) {
   AccelerometerConfig c = config;
-  c.axis = Eigen::Vector3d::Unit(axis);
+  c.axis = triaxial_frame(config.axis).col(axis);
   c.seed = config.seed + static_cast<std::uint64_t>(axis);
   if (axis > 0) c.name = config.name + (axis == 1 ? " (y)" : " (z)");
   return c;

@@ -322,6 +322,42 @@ TEST(VirtualAccelerometer, SensorOnTheMovingRingTurnsWithIt) {
   EXPECT_NEAR(axial.ideal_axis_acceleration(tilt_y, 0.0), -1.0, 1e-15);
 }
 
+TEST(VirtualAccelerometer, CrossAxisCouplingReadsTheRadialAccelerationAcrossTheAxis) {
+  // Read along n + k (z x n): for n = x the across direction is y, for n = -x it is -y; the
+  // axial direction and the tilt lever (taken along n alone) are not coupled.
+  AccelerometerConfig config = quiet_config(10000.0, 0.0);
+  config.mount_point_m = Eigen::Vector3d(-0.026, 0.0, 0.0);
+  config.cross_axis_coupling = 0.6;
+  Vector5 ax, ay, az, tilt_y;
+  ax << 1, 0, 0, 0, 0;
+  ay << 0, 1, 0, 0, 0;
+  az << 0, 0, 1, 0, 0;
+  tilt_y << 0, 0, 0, 0, 2.0;
+  config.axis = Eigen::Vector3d(1, 0, 0);
+  VirtualAccelerometer down(config, 10000.0);
+  EXPECT_NEAR(down.ideal_axis_acceleration(ax, 0.0), 1.0, 1e-15);
+  EXPECT_NEAR(down.ideal_axis_acceleration(ay, 0.0), 0.6, 1e-15);
+  EXPECT_NEAR(down.ideal_axis_acceleration(az, 0.0), 0.0, 1e-15);
+  // alpha x r = (0, 0, -theta_y'' r_x): along z only, which a radial sensor does not read.
+  EXPECT_NEAR(down.ideal_axis_acceleration(tilt_y, 0.0), 0.0, 1e-15);
+  config.axis = Eigen::Vector3d(-2, 0, 0);  // normalized on use
+  VirtualAccelerometer up(config, 10000.0);
+  EXPECT_NEAR(up.ideal_axis_acceleration(ax, 0.0), -1.0, 1e-15);
+  EXPECT_NEAR(up.ideal_axis_acceleration(ay, 0.0), -0.6, 1e-15);
+  // Through the chain (linear): a 200 Hz tone across the axis comes out at 0.6 x its amplitude.
+  std::vector<double> out;
+  double y = 0.0;
+  for (int i = 0; i < 5000; ++i)
+    if (down.push(ay * std::sin(2.0 * kPi * 200.0 * i / 10000.0), 0.0, &y)) out.push_back(y);
+  EXPECT_NEAR(tone_amplitude(out, 10000.0, 200.0, 0.4), 0.6, 1e-3);
+  // On the moving ring the coupled direction turns too: at 90 deg n = y, z x n = -x.
+  config.axis = Eigen::Vector3d(1, 0, 0);
+  config.mount = SensorMount::MovingRing;
+  VirtualAccelerometer turning(config, 10000.0);
+  EXPECT_NEAR(turning.ideal_axis_acceleration(ay, kPi / 2), 1.0, 1e-15);
+  EXPECT_NEAR(turning.ideal_axis_acceleration(ax, kPi / 2), -0.6, 1e-15);
+}
+
 TEST(VirtualAccelerometer, SensitivityScalesToVolts) {
   AccelerometerConfig config;  // default noise on: the same seed gives the same noise
   config.noise_density_m_s2_per_sqrt_hz = 1e-2;
@@ -391,6 +427,8 @@ TEST(VirtualAccelerometer, BadConfigNamesTheKey) {
   expect_sensor_error("sensor:\n  axis: [0, 0, 0]\n", "sensor.axis");
   expect_sensor_error("sensor:\n  axis: [1, 0]\n", "sensor.axis");
   expect_sensor_error("sensor:\n  mount: shaft\n", "sensor.mount");
+  expect_sensor_error("sensor:\n  cross_axis_coupling: 1.5\n", "sensor.cross_axis_coupling");
+  expect_sensor_error("sensor:\n  cross_axis_coupling: .nan\n", "sensor.cross_axis_coupling");
   expect_sensor_error("sensor:\n  noise_density_ug_per_sqrt_Hz: -1\n", "sensor.noise_density_ug_per_sqrt_Hz");
   expect_sensor_error("sensor:\n  output_unit: g\n", "sensor.output_unit");
   expect_sensor_error("sensor: {}\nbearing: x\n", "bearing");

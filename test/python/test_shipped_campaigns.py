@@ -39,7 +39,7 @@ def test_cwru_rig_runs_are_labelled_none_inner_ball_outer_with_the_drive_end_sen
     for label, index in first_run_of_each_class(campaign, classes).items():
         run = campaign.definition(index)
         sensor = yaml.safe_load(run.derived_files['sensor_file'][1])['sensor']
-        assert sensor['output_unit'] == 'm_s2' and sensor['axis'] == [1.0, 0.0, 0.0]
+        assert sensor['output_unit'] == 'm_s2' and sensor['axis'] == [-1.0, 0.0, 0.0]  # positive up
         record = run_index(str(CWRU_RIG), text, str(tmp_path), index)
         assert record['status'] == 'ok', record.get('error')
         labels = record['labels']

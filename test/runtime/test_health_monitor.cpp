@@ -239,6 +239,30 @@ TEST(TriaxialSensor, ThreeAxesAtTheMountingPointIncludingTheTiltLever) {
   EXPECT_NEAR(y[2], 1.0, q);
 }
 
+TEST(TriaxialSensor, ChannelsFollowTheSensorsOwnAxesRightHanded) {
+  // Positive up at 12 o'clock, the load down: channels along -x, -y, z.
+  AccelerometerConfig c = quiet_sensor(10000.0);
+  c.axis = Eigen::Vector3d(-1.0, 0.0, 0.0);
+  TriaxialSensor sensor(c, 10000.0);
+  DynamicSample s;
+  s.acceleration << 1.0, 2.0, 3.0, 0.0, 4.0;  // the point sees (1, 2, 1), as above
+  Eigen::Vector3d y = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 4000; ++i) sensor.push(s, &y);
+  const double q = 2.0 * 50.0 * kStandardGravity_m_s2 / std::pow(2.0, 24);
+  EXPECT_NEAR(y[0], -1.0, q);
+  EXPECT_NEAR(y[1], -2.0, q);
+  EXPECT_NEAR(y[2], 1.0, q);
+  // Any axis: an orthonormal, right-handed frame with channel 0 along it.
+  for (const Eigen::Vector3d& axis : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(0, 0, -3),
+                                      Eigen::Vector3d(1, 2, 3), Eigen::Vector3d(-0.3, 0.1, 0.0)}) {
+    const Eigen::Matrix3d f = triaxial_frame(axis);
+    EXPECT_LT((f.transpose() * f - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+    EXPECT_NEAR(f.determinant(), 1.0, 1e-12);
+    EXPECT_LT((f.col(0) - axis.normalized()).norm(), 1e-15);
+  }
+  EXPECT_LT((triaxial_frame(Eigen::Vector3d(1, 0, 0)) - Eigen::Matrix3d::Identity()).norm(), 1e-15);
+}
+
 TEST(TriaxialSensor, ChannelsHaveIndependentNoise) {
   AccelerometerConfig c = quiet_sensor(10000.0);
   c.noise_density_m_s2_per_sqrt_hz = 1e-3;

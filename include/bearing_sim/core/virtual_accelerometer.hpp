@@ -42,6 +42,10 @@ struct AccelerometerConfig {
   SensorMount mount = SensorMount::Housing;
   Eigen::Vector3d mount_point_m = Eigen::Vector3d::Zero();  // bearing frame
   Eigen::Vector3d axis = Eigen::Vector3d::UnitX();          // sensing direction (normalized on use)
+  // The structure's response at the sensor to ring acceleration across its axis, in the
+  // bearing plane (along z x axis), per unit of the response along it: a housing's modes are
+  // not aligned with the sensor, so a horizontal force also moves a vertical sensor. 0: none.
+  double cross_axis_coupling = 0.0;
   // Transmission path between the ring and the sensor's seismic element (seismic
   // transmissibility, biquad.hpp). 0 Hz: no path (rigid, stud-mounted on the ring).
   // With path_modes, these are its dominant mode's (an envelope band's centre).
@@ -125,6 +129,7 @@ class VirtualAccelerometer {
   int decimation_ratio_ = 1;
   int decimation_phase_ = 0;
   Eigen::Vector3d axis_ = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d translation_direction_ = Eigen::Vector3d::UnitX();  // axis + coupling (z x axis)
   Eigen::Vector3d lever_ = Eigen::Vector3d::Zero();  // r x n: the tilt pick-up
   bool has_path_ = false;
   TransmissionPath path_;

@@ -1,10 +1,11 @@
 #pragma once
 // The node's virtual sensor (docs/node.md, sensor): a triaxial accelerometer, i.e. three
 // core VirtualAccelerometer channels at the sensor file's mounting point, along the
-// bearing frame's x, y and z (for mount: moving_ring, the ring's axes at angle 0, turning
-// with it). The file's `axis` is not used: a triaxial sensor has all three. Each channel
-// has its own noise stream (seed, seed + 1, seed + 2), as three independent sensing
-// elements would. ROS-free.
+// sensor's own axes (triaxial_frame; for mount: moving_ring at ring angle 0, turning with
+// it): channel 0 along the file's `axis`, the direction of a real sensor's positive output;
+// for the default axis (1, 0, 0) the bearing frame's x, y and z. Each channel has its own
+// noise stream (seed, seed + 1, seed + 2), as three independent sensing elements would.
+// ROS-free.
 #include <array>
 #include <cstdint>
 
@@ -35,7 +36,14 @@ class TriaxialSensor {
   std::array<VirtualAccelerometer, 3> channels_;
 };
 
-// The config of channel `axis` (0 x, 1 y, 2 z) of a triaxial sensor built from `config`.
+// The sensor's axes in the bearing frame, as columns: 0 along `axis`, 2 the bearing's z made
+// square to it (x for an axial sensor), 1 = 2 x 0 (right-handed). For a radial axis (1, 0, 0)
+// the identity; for (-1, 0, 0), a sensor whose positive output points up at 12 o'clock
+// while the load points down, (-x, -y, z).
+Eigen::Matrix3d triaxial_frame(const Eigen::Vector3d& axis);
+
+// The config of channel `axis` (0, 1, 2: triaxial_frame's columns) of a triaxial sensor
+// built from `config`.
 AccelerometerConfig triaxial_channel_config(const AccelerometerConfig& config, int axis);
 
 }  // namespace runtime
