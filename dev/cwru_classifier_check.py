@@ -211,7 +211,8 @@ def learners(seed, workers):
     scaled = lambda model: make_pipeline(StandardScaler(), model)
     return {'random forest': lambda: RandomForestClassifier(300, class_weight='balanced', random_state=seed,
                                                             n_jobs=workers),
-            'extra trees': lambda: ExtraTreesClassifier(300, class_weight='balanced', random_state=seed, n_jobs=workers),
+            'extra trees': lambda: ExtraTreesClassifier(300, class_weight='balanced', random_state=seed,
+                                                        n_jobs=workers),
             'gradient boosting': lambda: HistGradientBoostingClassifier(random_state=seed),
             'k nearest (15)': lambda: scaled(KNeighborsClassifier(15)),
             'logistic regression': lambda: scaled(LogisticRegression(max_iter=3000, class_weight='balanced')),

@@ -425,7 +425,8 @@ def main(argv=None):
     wall_s = time.perf_counter() - start
     target_lines, passed = targets(rows)
     notes = [f'Simulation: {shown(args.bearing)}, {cwru_indicators.RADIAL_LOAD_N:g} N radial, '
-             f'{args.axial_preload_n:g} N axial and {args.shaft_rate_load_n:g} N turning with the shaft at {RIG_SHAFT_RATE_LOAD_RPM:g} rpm (an unbalance), the real '
+             f'{args.axial_preload_n:g} N axial and {args.shaft_rate_load_n:g} N turning with the shaft at '
+             f'{RIG_SHAFT_RATE_LOAD_RPM:g} rpm (an unbalance), the real '
              f"file's speed, dynamics at {args.dynamics_rate_hz / 1000:g} kHz, sensor {sensor_note}; seed {args.seed}.",
              f'Window: the last {args.window_s:g} s of each record (the real ones hold ~10 s); record 97 (48 kHz) '
              f'decimated to 12 kHz. {len(rows)} conditions, {wall_s:.0f} s of wall time on '
