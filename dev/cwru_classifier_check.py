@@ -250,15 +250,14 @@ def battery(args, train_features, train_labels, records):
         for learner, make in learners(args.seed, args.workers).items():
             classify(make().fit(matrix(names, train_features), train_labels), names, records)
             row(subset, learner)
-    from sklearn.ensemble import RandomForestClassifier
+    forest = learners(args.seed, args.workers)['random forest']
     condition = lambda r: (r['truth'], r['size_in'], r['position'])
     for subset, keep in FEATURE_SETS.items():
         names = [n for n in sorted(train_features[0]) if keep(n)]
         for r in records:
             others = [q for q in records if condition(q) != condition(r)]
-            model = RandomForestClassifier(300, class_weight='balanced', random_state=args.seed, n_jobs=args.workers)
-            model.fit(matrix(names, [w for q in others for w in q['windows']]),
-                      [q['truth'] for q in others for _ in q['windows']])
+            model = forest().fit(matrix(names, [w for q in others for w in q['windows']]),
+                                 [q['truth'] for q in others for _ in q['windows']])
             prediction = dict(record=r['record'], truth=r['truth'], windows=r['windows'])
             classify(model, names, [prediction])
             r['reference'] = prediction['predicted']

@@ -53,10 +53,10 @@ Eigen::Vector3d vector3(const detail::Reader& r, const YAML::Node& map, const st
 AccelerometerConfig parse_accelerometer_config(const YAML::Node& sensor, const std::string& source) {
   if (!sensor || !sensor.IsMap()) throw ConfigError(source + ": key 'sensor': expected a YAML mapping of sensor keys");
   detail::Reader r(sensor, source, "sensor.");
-  r.check_keys({"name", "mount", "mount_point_mm", "axis", "cross_axis_coupling", "path_resonance_Hz", "path_damping_ratio", "path_modes",
-                "mount_resonance_Hz", "mount_damping_ratio", "sensitivity_mV_per_g", "noise_density_ug_per_sqrt_Hz",
-                "range_g", "adc_bits", "output_rate_Hz", "anti_alias_cutoff_fraction", "anti_alias_order", "seed",
-                "output_unit", "installation"});
+  r.check_keys({"name", "mount", "mount_point_mm", "axis", "cross_axis_coupling", "path_resonance_Hz",
+                "path_damping_ratio", "path_modes", "mount_resonance_Hz", "mount_damping_ratio", "sensitivity_mV_per_g",
+                "noise_density_ug_per_sqrt_Hz", "range_g", "adc_bits", "output_rate_Hz", "anti_alias_cutoff_fraction",
+                "anti_alias_order", "seed", "output_unit", "installation"});
   AccelerometerConfig c;
   c.name = r.text("name", c.name);
   const std::string mount = r.text("mount", "housing");

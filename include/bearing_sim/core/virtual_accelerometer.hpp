@@ -112,7 +112,7 @@ class VirtualAccelerometer {
   // ADC step in the output unit (m/s^2 or V) and in m/s^2.
   double quantization_step() const { return quantization_step_m_s2_ * output_scale_; }
   double quantization_step_m_s2() const { return quantization_step_m_s2_; }
-  double noise_sigma_m_s2() const { return noise_sigma_m_s2_; }  // per input sample
+  double noise_sigma_m_s2() const { return noise_sigma_m_s2_; }                  // per input sample
   double rolling_noise_sigma_m_s2() const { return rolling_noise_sigma_m_s2_; }  // per input sample
   std::uint64_t clipped_sample_count() const { return clipped_samples_; }
   // The path as digitised, at f_hz (the analog form: modal_transmissibility), the mounted
@@ -130,7 +130,7 @@ class VirtualAccelerometer {
   int decimation_phase_ = 0;
   Eigen::Vector3d axis_ = Eigen::Vector3d::UnitX();
   Eigen::Vector3d translation_direction_ = Eigen::Vector3d::UnitX();  // axis + coupling (z x axis)
-  Eigen::Vector3d lever_ = Eigen::Vector3d::Zero();  // r x n: the tilt pick-up
+  Eigen::Vector3d lever_ = Eigen::Vector3d::Zero();                   // r x n: the tilt pick-up
   bool has_path_ = false;
   TransmissionPath path_;
   bool has_mount_ = false;
