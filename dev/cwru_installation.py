@@ -10,6 +10,7 @@ derived numbers only.
     python3 dev/cwru_installation.py /work/cwru --compare sim.csv  # real vs simulated table
     python3 dev/cwru_installation.py /work/cwru --slot-comb        # + the fault records' comb level
     python3 dev/cwru_installation.py /work/cwru --rolling-noise    # + the fault records' rolling noise
+    python3 dev/cwru_installation.py /work/cwru --mode-spread      # + the path's peaks record by record
 
 Not executable and not installed: a development script (like cwru_indicators.py, it works on
 the source tree).
@@ -164,13 +165,11 @@ def measure_normal(directory):
     return x, f_r, line, shaft, half, lines, others, floor_density(x, FLOOR_POINTS_HZ)
 
 
-def measure_modes(directory, normal_x):
-    """The path's modes from the fault records: the geometric mean over records of the
-    fault-record PSD (lines removed) less the normal record's, normalised per record (impacts excite the path
-    with a nearly flat spectrum: what the path's |H|^2 shapes). In each window: the peak's
-    frequency, its half-power width (damping ratio zeta = width / (2 f)) and its height."""
+def record_shapes(directory, normal_x):
+    """Per MODE_RECORDS record: its Welch density, lines removed, less the normal record's,
+    normalised by its power ({record number: density}), and the frequencies."""
     f, p0 = welch(normal_x, 2048)
-    logs, names = [], []
+    shapes = {}
     for path in sorted(directory.glob('12k_Drive_End_*.mat')):
         if not any(f'_{tag}_' in path.name for tag in MODE_RECORDS):
             continue
@@ -178,17 +177,48 @@ def measure_modes(directory, normal_x):
         _, p = welch(x, 2048)
         # A running median over 7 bins (41 Hz) removes the lines (3 bins wide), not the modes.
         p = scipy.ndimage.median_filter(p, size=7, mode='nearest')
-        logs.append(np.log(np.maximum(p - p0, 1e-16) / np.sum(p)))
-        names.append(path.stem.rsplit('_', 1)[1])
-    shape = np.exp(np.mean(logs, axis=0))
+        shapes[path.stem.rsplit('_', 1)[1]] = np.maximum(p - p0, 1e-16) / np.sum(p)
+    return f, shapes
+
+
+def window_peak(f, shape, lo, hi):
+    """The bin of shape's maximum in [lo, hi] Hz, None when it lies within two bins of the
+    window's edge: the flank of a mode outside the window, not a mode (4.0-4.4 kHz: the 3.4
+    kHz mode's flank at 4008 Hz)."""
+    inside = np.flatnonzero((f >= lo) & (f <= hi))
+    i = inside[np.argmax(shape[inside])]
+    return None if i <= inside[1] or i >= inside[-2] else i
+
+
+def print_mode_spread(directory, normal_x):
+    """How far each window's peak moves from record to record (each assembly's path): its
+    10th and 90th percentiles over the records that show it, against their median."""
+    f, shapes = record_shapes(directory, normal_x)
+    for lo, hi in MODE_WINDOWS:
+        peaks = [f[i] for i in (window_peak(f, v, lo, hi) for v in shapes.values()) if i is not None]
+        if not peaks:
+            print(f'#   {lo}-{hi} Hz: no record shows a peak inside the window')
+            continue
+        median = np.median(peaks)
+        p10, p90 = np.percentile(peaks, [10, 90])
+        print(f'#   {lo}-{hi} Hz: the peak in {len(peaks)} of {len(shapes)} records, median {median:.0f} Hz, '
+              f'10th / 90th percentile {100 * (p10 / median - 1):+.1f} / {100 * (p90 / median - 1):+.1f} %')
+
+
+def measure_modes(directory, normal_x):
+    """The path's modes from the fault records: the geometric mean over records of the
+    fault-record PSD (lines removed) less the normal record's, normalised per record (impacts excite the path
+    with a nearly flat spectrum: what the path's |H|^2 shapes). In each window: the peak's
+    frequency, its half-power width (damping ratio zeta = width / (2 f)) and its height."""
+    f, shapes = record_shapes(directory, normal_x)
+    names = list(shapes)
+    shape = np.exp(np.mean([np.log(v) for v in shapes.values()], axis=0))
     modes, dropped = [], []
     for lo, hi in MODE_WINDOWS:
-        inside = np.flatnonzero((f >= lo) & (f <= hi))
-        i = inside[np.argmax(shape[inside])]
-        # A maximum within two bins of the window's edge is the flank of a mode outside the
-        # window, not a mode (4.0-4.4 kHz: the 3.4 kHz mode's flank at 4008 Hz).
-        if i <= inside[1] or i >= inside[-2]:
-            dropped.append((lo, hi, float(f[i])))
+        i = window_peak(f, shape, lo, hi)
+        if i is None:
+            inside = np.flatnonzero((f >= lo) & (f <= hi))
+            dropped.append((lo, hi, float(f[inside[np.argmax(shape[inside])]])))
             continue
         half = shape[i] / 2.0
         a, b = i, i
@@ -220,7 +250,7 @@ def seismic(f_hz, resonance_hz, zeta):
     return (2.0 * zeta * w * s + w * w) / (s * s + 2.0 * zeta * w * s + w * w)
 
 
-def print_installation(directory, slot_comb=False, rolling_noise=False):
+def print_installation(directory, slot_comb=False, rolling_noise=False, mode_spread=False):
     x, f_r, line, shaft, half, lines, others, floor = measure_normal(directory)
     modes, mount, names, dropped = measure_modes(directory, x)
     mg = lambda v: f'{v / 1e-3:.3g}'
@@ -246,6 +276,9 @@ def print_installation(directory, slot_comb=False, rolling_noise=False):
         print(f'    # The slot-harmonic comb (orders > 100) in the {len(values)} 12 kHz fault records against record 97: '
               f'median {np.median(values):.1f} dB, {values.min():.1f} to {values.max():.1f} dB')
     print(f'    line_harmonics_mg: [{", ".join(mg(v) for v in lines)}]')
+    if mode_spread:
+        print('    # The path\'s peaks record by record (each assembly):')
+        print_mode_spread(directory, x)
     if rolling_noise:
         levels, normal_mg = rolling_noise_levels(directory, modes, mount)
         values = np.array(list(levels.values()))
@@ -361,13 +394,15 @@ def main():
                         help='also measure the slot-harmonic comb in the 12 kHz fault records against record 97')
     parser.add_argument('--rolling-noise', action='store_true',
                         help='also measure the 12 kHz fault records\' rolling noise (white at the ring) beyond record 97\'s')
+    parser.add_argument('--mode-spread', action='store_true',
+                        help="also measure how far the path's peaks move from record to record")
     args = parser.parse_args()
     if not (args.cwru_dir / NORMAL).is_file():
         sys.exit(f'{args.cwru_dir}: no {NORMAL} (the CWRU normal baseline, record 97)')
     if args.compare:
         print_comparison(args.cwru_dir, args.compare, args.compare_unit)
     else:
-        print_installation(args.cwru_dir, args.slot_comb, args.rolling_noise)
+        print_installation(args.cwru_dir, args.slot_comb, args.rolling_noise, args.mode_spread)
 
 
 if __name__ == '__main__':

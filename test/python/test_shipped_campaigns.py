@@ -13,6 +13,7 @@ from conftest import SOURCE
 
 CAMPAIGNS = sorted((SOURCE / 'config' / 'campaigns').glob('*.yaml'))
 CWRU_RIG = SOURCE / 'config' / 'campaigns' / 'cwru_rig.yaml'
+FILE_SENSOR = yaml.safe_load((SOURCE / 'config' / 'sensors' / 'cwru_drive_end_accelerometer.yaml').read_text())['sensor']
 
 
 @pytest.mark.parametrize('path', CAMPAIGNS, ids=[p.name for p in CAMPAIGNS])
@@ -40,6 +41,16 @@ def test_cwru_rig_runs_are_labelled_none_inner_ball_outer_with_the_drive_end_sen
         run = campaign.definition(index)
         sensor = yaml.safe_load(run.derived_files['sensor_file'][1])['sensor']
         assert sensor['output_unit'] == 'm_s2' and sensor['axis'] == [-1.0, 0.0, 0.0]  # positive up
+        # The path's resonances are the run's draws, each within 5 % of the sensor file's.
+        drawn = run.parameters
+        assert sensor['mount_resonance_Hz'] == drawn['mount_resonance_Hz']
+        assert abs(sensor['mount_resonance_Hz'] / FILE_SENSOR['mount_resonance_Hz'] - 1.0) <= 0.05
+        modes = sensor['path_modes']
+        assert [m['frequency_Hz'] for m in modes] == [drawn[f'path_mode_{k}_Hz'] for k in range(1, len(modes) + 1)]
+        for mode, measured in zip(modes, FILE_SENSOR['path_modes']):
+            assert abs(mode['frequency_Hz'] / measured['frequency_Hz'] - 1.0) <= 0.05
+            assert (mode['damping_ratio'], mode['participation']) == (measured['damping_ratio'],
+                                                                     measured['participation'])
         record = run_index(str(CWRU_RIG), text, str(tmp_path), index)
         assert record['status'] == 'ok', record.get('error')
         labels = record['labels']
