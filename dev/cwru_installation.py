@@ -182,12 +182,12 @@ def record_shapes(directory, normal_x):
 
 
 def window_peak(f, shape, lo, hi):
-    """The bin of shape's maximum in [lo, hi] Hz, None when it lies within two bins of the
-    window's edge: the flank of a mode outside the window, not a mode (4.0-4.4 kHz: the 3.4
-    kHz mode's flank at 4008 Hz)."""
+    """The bin of shape's maximum in [lo, hi] Hz and whether it is a mode: a maximum within
+    two bins of the window's edge is the flank of a mode outside the window (4.0-4.4 kHz: the
+    3.4 kHz mode's flank at 4008 Hz)."""
     inside = np.flatnonzero((f >= lo) & (f <= hi))
     i = inside[np.argmax(shape[inside])]
-    return None if i <= inside[1] or i >= inside[-2] else i
+    return i, inside[1] < i < inside[-2]
 
 
 def print_mode_spread(directory, normal_x):
@@ -195,7 +195,7 @@ def print_mode_spread(directory, normal_x):
     10th and 90th percentiles over the records that show it, against their median."""
     f, shapes = record_shapes(directory, normal_x)
     for lo, hi in MODE_WINDOWS:
-        peaks = [f[i] for i in (window_peak(f, v, lo, hi) for v in shapes.values()) if i is not None]
+        peaks = [f[i] for i, is_mode in (window_peak(f, v, lo, hi) for v in shapes.values()) if is_mode]
         if not peaks:
             print(f'#   {lo}-{hi} Hz: no record shows a peak inside the window')
             continue
@@ -215,10 +215,9 @@ def measure_modes(directory, normal_x):
     shape = np.exp(np.mean([np.log(v) for v in shapes.values()], axis=0))
     modes, dropped = [], []
     for lo, hi in MODE_WINDOWS:
-        i = window_peak(f, shape, lo, hi)
-        if i is None:
-            inside = np.flatnonzero((f >= lo) & (f <= hi))
-            dropped.append((lo, hi, float(f[inside[np.argmax(shape[inside])]])))
+        i, is_mode = window_peak(f, shape, lo, hi)
+        if not is_mode:
+            dropped.append((lo, hi, float(f[i])))
             continue
         half = shape[i] / 2.0
         a, b = i, i
