@@ -190,10 +190,10 @@ def window_peak(f, shape, lo, hi):
     return i, inside[1] < i < inside[-2]
 
 
-def print_mode_spread(directory, normal_x):
+def print_mode_spread(f, shapes):
     """How far each window's peak moves from record to record (each assembly's path): its
-    10th and 90th percentiles over the records that show it, against their median."""
-    f, shapes = record_shapes(directory, normal_x)
+    10th and 90th percentiles over the records (record_shapes) that show it, against their
+    median."""
     for lo, hi in MODE_WINDOWS:
         peaks = [f[i] for i, is_mode in (window_peak(f, v, lo, hi) for v in shapes.values()) if is_mode]
         if not peaks:
@@ -205,12 +205,12 @@ def print_mode_spread(directory, normal_x):
               f'10th / 90th percentile {100 * (p10 / median - 1):+.1f} / {100 * (p90 / median - 1):+.1f} %')
 
 
-def measure_modes(directory, normal_x):
+def measure_modes(f, shapes):
     """The path's modes from the fault records: the geometric mean over records of the
-    fault-record PSD (lines removed) less the normal record's, normalised per record (impacts excite the path
-    with a nearly flat spectrum: what the path's |H|^2 shapes). In each window: the peak's
-    frequency, its half-power width (damping ratio zeta = width / (2 f)) and its height."""
-    f, shapes = record_shapes(directory, normal_x)
+    fault-record PSD (lines removed) less the normal record's, normalised per record (record_shapes;
+    impacts excite the path with a nearly flat spectrum: what the path's |H|^2 shapes). In each
+    window: the peak's frequency, its half-power width (damping ratio zeta = width / (2 f)) and
+    its height."""
     names = list(shapes)
     shape = np.exp(np.mean([np.log(v) for v in shapes.values()], axis=0))
     modes, dropped = [], []
@@ -251,7 +251,8 @@ def seismic(f_hz, resonance_hz, zeta):
 
 def print_installation(directory, slot_comb=False, rolling_noise=False, mode_spread=False):
     x, f_r, line, shaft, half, lines, others, floor = measure_normal(directory)
-    modes, mount, names, dropped = measure_modes(directory, x)
+    f, shapes = record_shapes(directory, x)
+    modes, mount, names, dropped = measure_modes(f, shapes)
     mg = lambda v: f'{v / 1e-3:.3g}'
     print(f'# From {NORMAL} (record 97, 0 hp): f_r {f_r:.3f} Hz (file: 1796 rpm), line {line:.3f} Hz')
     print(f'# Path modes from records {", ".join(names)}')
@@ -277,7 +278,7 @@ def print_installation(directory, slot_comb=False, rolling_noise=False, mode_spr
     print(f'    line_harmonics_mg: [{", ".join(mg(v) for v in lines)}]')
     if mode_spread:
         print('    # The path\'s peaks record by record (each assembly):')
-        print_mode_spread(directory, x)
+        print_mode_spread(f, shapes)
     if rolling_noise:
         levels, normal_mg = rolling_noise_levels(directory, modes, mount)
         values = np.array(list(levels.values()))
