@@ -13,7 +13,8 @@ from conftest import SOURCE
 
 CAMPAIGNS = sorted((SOURCE / 'config' / 'campaigns').glob('*.yaml'))
 CWRU_RIG = SOURCE / 'config' / 'campaigns' / 'cwru_rig.yaml'
-FILE_SENSOR = yaml.safe_load((SOURCE / 'config' / 'sensors' / 'cwru_drive_end_accelerometer.yaml').read_text())['sensor']
+CWRU_SENSOR = SOURCE / 'config' / 'sensors' / 'cwru_drive_end_accelerometer.yaml'
+FILE_SENSOR = yaml.safe_load(CWRU_SENSOR.read_text(encoding='utf-8'))['sensor']
 
 
 @pytest.mark.parametrize('path', CAMPAIGNS, ids=[p.name for p in CAMPAIGNS])
