@@ -74,6 +74,7 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
   g.ball_diameter_m = d;
   g.outer_race_radius_m = c.pitch_diameter_m / 2.0 + d / 2.0 * cos_a0_;
   g.inner_race_radius_m = c.pitch_diameter_m / 2.0 - d / 2.0 * cos_a0_;
+  g.cos_contact_angle = cos_a0_;
   g.base_azimuth = base_azimuth_;
   try {
     imperfections_ = Imperfections(c.imperfections, g);

@@ -16,12 +16,6 @@
 
 namespace bearing_sim {
 namespace {
-// Depth a ball of diameter d can reach in a spall of length w: it drops until it rests
-// on both edges, w^2 / (4 d) for w << d, never more than the spall is deep.
-double effective_depth(double width_m, double depth_m, double ball_diameter_m) {
-  return std::min(depth_m, width_m * width_m / (4.0 * ball_diameter_m));
-}
-
 // Round to nearest, ties to even: std::nearbyint in the default rounding mode, bit for bit,
 // without its library call (the sum's rounding does it; |x| < 2^51).
 inline double round_to_nearest(double x) {
@@ -324,9 +318,15 @@ void Imperfections::struck_chord(std::size_t index, double time_s, double* angul
   }
   const double width = *angular_width * std::sqrt(chord);
   const double width_m = width * 0.5 * geometry_.ball_diameter_m;
-  *geometric_depth = width_m * width_m / (4.0 * geometry_.ball_diameter_m);
-  *depth = std::min(*depth, *geometric_depth);
+  *geometric_depth = drop_depth(width_m, Surface::Ball);
   *angular_width = width;
+}
+
+double Imperfections::drop_depth(double width_m, Surface race) const {
+  const double curvature = race == Surface::OuterRace   ? -geometry_.cos_contact_angle / geometry_.outer_race_radius_m
+                           : race == Surface::InnerRace ? geometry_.cos_contact_angle / geometry_.inner_race_radius_m
+                                                        : 0.0;
+  return 0.125 * width_m * width_m * (2.0 / geometry_.ball_diameter_m + curvature);
 }
 
 double Imperfections::spin_slip_rad(std::size_t index, int ball, const RollingPhase& phase) const {
@@ -355,9 +355,10 @@ void Imperfections::spall_size(const Spall& s, double time_s, double* angular_wi
       spall_limit(s.surface, geometry_.ball_diameter_m, geometry_.outer_race_radius_m, geometry_.inner_race_radius_m);
   // Growth stops at the largest spall the bearing holds.
   const double width = grown_size(s.width_m, s.width_growth_m_per_s, age, limit.max_width_m);
-  *depth = effective_depth(width, grown_size(s.depth_m, s.depth_growth_m_per_s, age, limit.max_depth_m),
-                           geometry_.ball_diameter_m);
-  *geometric_depth = width * width / (4.0 * geometry_.ball_diameter_m);
+  // A ball drops until it rests on both edges, never more than the spall is deep.
+  *geometric_depth = drop_depth(width, s.surface);
+  *depth = grown_size(s.depth_m, s.depth_growth_m_per_s, age, limit.max_depth_m);
+  if (s.surface != Surface::Ball) *depth = std::min(*depth, *geometric_depth);
   const double radius = s.surface == Surface::Ball        ? 0.5 * geometry_.ball_diameter_m
                         : s.surface == Surface::OuterRace ? geometry_.outer_race_radius_m
                                                           : geometry_.inner_race_radius_m;
@@ -484,7 +485,11 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
       double spin = phase.ball_spin + ball_phase_[s.ball] - s.position_rad;
       if (spec_.ball_spin_slip_rad > 0.0) spin -= spin_slip_rad(i, s.ball, phase);
       const double x = std::remainder(spin, kPi);
-      out[entry] -= spall_dip(x, angular_width, depth, sharp, geometric_depth);
+      // Even half turns face the outer race, odd ones the inner: the drop against its curvature.
+      const bool outer = (std::lround((spin - x) / kPi) & 1) == 0;
+      const double chord_m = angular_width * 0.5 * geometry_.ball_diameter_m;
+      geometric_depth = drop_depth(chord_m, outer ? Surface::OuterRace : Surface::InnerRace);
+      out[entry] -= spall_dip(x, angular_width, std::min(depth, geometric_depth), sharp, geometric_depth);
     } else {
       // Only the few balls within half a width of the spall centre: find them by index,
       // since the balls of a row are evenly spaced.

@@ -107,21 +107,31 @@ TEST(Spall, ABallOverARaceSpallLosesTheEffectiveDepth) {
 }
 
 TEST(Spall, AShallowWideSpallIsLimitedByHowFarTheBallCanDrop) {
-  // A 0.5 mm wide, 50 um deep spall: the ball rests on both edges, w^2 / (4 d) = 7.87 um.
+  // A 0.5 mm wide, 50 um deep spall: the ball rests on both edges, where the gap between the
+  // ball (radius r) and the race (radius R at the contact) across w is w^2 / 8 (1 / r - 1 / R)
+  // on the outer race, which curves towards the ball (6.54 um), w^2 / 8 (1 / r + 1 / R) on the
+  // inner race (9.88 um); w^2 / (4 d) = 7.87 um on a flat one.
+  const double w = 0.5e-3, r = 0.5 * 7.94e-3, dm = 39.04e-3;
   const BearingModel a(deep_groove(""));
-  const BearingModel b(
-      deep_groove("defects:\n  - {surface: outer_race, position_deg: 0, width_mm: 0.5, depth_um: 50}\n"));
   const Vector5 q = solve_static(a, test::load5(1000.0, 0, 0, 0, 0)).displacement;
-  const double drop = a.ball_states(q, 0.0)[0].deflection_m - b.ball_states(q, 0.0)[0].deflection_m;
-  EXPECT_NEAR(drop, 0.5e-3 * 0.5e-3 / (4.0 * 7.94e-3), 1e-12);
+  for (const char* race : {"outer_race", "inner_race"}) {
+    const BearingModel b(deep_groove(std::string("defects:\n  - {surface: ") + race +
+                                     ", position_deg: 0, width_mm: 0.5, depth_um: 50}\n"));
+    const double drop = a.ball_states(q, 0.0)[0].deflection_m - b.ball_states(q, 0.0)[0].deflection_m;
+    const bool outer = race[0] == 'o';
+    const double race_radius = outer ? 0.5 * dm + r : 0.5 * dm - r;  // contact angle 0
+    EXPECT_NEAR(drop, w * w / 8.0 * (1.0 / r + (outer ? -1.0 : 1.0) / race_radius), 1e-12) << race;
+  }
 }
 
-// A sharp-edged pit (an EDM fault: 0.021 in wide, 0.011 in deep) under ball 0: the ball pivots
-// on the nearer edge, so its centre drops as the exact circle geometry has it,
-// r - sqrt(r^2 - u^2), u = w/2 - |s| its distance along the race from that edge (s from the
-// centre), deepest, w^2 / (4 d), at the centre where it rests on both. The model's parabola
-// u^2 / (2 r) is that to a relative u^2 / (4 r^2) <= 0.12 % (u <= w / 2 = 0.27 mm, r = 3.97 mm):
-// tolerance 0.2 % of the drop. Past the edge nothing changes.
+// A sharp-edged pit (an EDM fault: 0.021 in wide, 0.011 in deep) in the outer race under ball
+// 0: the ball pivots on the nearer edge, so its centre drops as the exact geometry of the ball
+// (radius r) touching the edge of the race (radius R) has it: at an angle D = u / R from the
+// edge (u = w/2 - |s| its distance along the race from that edge, s from the centre) its centre
+// lies R cos D - sqrt(r^2 - R^2 sin^2 D) from the race's centre, against R - r on the intact
+// race; deepest, w^2 / 8 (1 / r - 1 / R), at the centre where it rests on both. The model's
+// parabola u^2 / 2 (1 / r - 1 / R) is that to 0.13 % here (u <= w / 2 = 0.27 mm, r = 3.97 mm,
+// R = 23.5 mm): tolerance 0.2 % of the drop. Past the edge nothing changes.
 TEST(Spall, ABallOverASharpEdgedSpallDropsAsItPivotsOnTheNearerEdge) {
   const double w = 0.5334e-3, r = 0.5 * 7.94e-3;
   const double outer_race_radius = 0.5 * (39.04e-3 + 7.94e-3);  // dm / 2 + d / 2 (contact angle 0)
@@ -134,20 +144,21 @@ TEST(Spall, ABallOverASharpEdgedSpallDropsAsItPivotsOnTheNearerEdge) {
     const double s = f * 0.5 * w;  // along the race from the pit's centre
     const double cage = s / outer_race_radius;
     const double drop = a.ball_states(q, cage)[0].deflection_m - b.ball_states(q, cage)[0].deflection_m;
-    const double u = 0.5 * w - std::abs(s);
-    const double exact = r - std::sqrt(r * r - u * u);
+    const double angle = (0.5 * w - std::abs(s)) / outer_race_radius, R = outer_race_radius;
+    const double exact = R * std::cos(angle) - std::sqrt(r * r - R * R * std::sin(angle) * std::sin(angle)) - (R - r);
     EXPECT_NEAR(drop, exact, 2e-3 * exact) << "at " << f << " of the half width";
   }
-  EXPECT_NEAR(a.ball_states(q, 0.0)[0].deflection_m - b.ball_states(q, 0.0)[0].deflection_m, w * w / (4.0 * 7.94e-3),
-              1e-12);
+  EXPECT_NEAR(a.ball_states(q, 0.0)[0].deflection_m - b.ball_states(q, 0.0)[0].deflection_m,
+              w * w / 8.0 * (1.0 / r - 1.0 / outer_race_radius), 1e-12);
   const double past = 0.51 * w / outer_race_radius;
   EXPECT_DOUBLE_EQ(a.ball_states(q, past)[0].deflection_m, b.ball_states(q, past)[0].deflection_m);
 }
 
 TEST(Spall, ASharpEdgedSpallShallowerThanTheBallCanDropHasAFlatFloor) {
-  // 2 mm wide, 5 um deep: resting on both edges the ball would drop 126 um; it reaches the
-  // floor, 5 um, wherever the pivoting drop (1 - 2|x|/w)^2 126 um exceeds it, and drops less
-  // only within 0.2 (= sqrt(5 / 126)) of the half width from the edges.
+  // 2 mm wide, 5 um deep: resting on both edges the ball would drop
+  // D = w^2 / 8 (1 / r - 1 / R) = 105 um; it reaches the floor, 5 um, wherever the pivoting
+  // drop (1 - 2|x|/w)^2 D exceeds it, and drops less only within 0.22 (= sqrt(5 / 105)) of the
+  // half width from the edges.
   const BearingModel a(deep_groove(""));
   const BearingModel b(
       deep_groove("imperfections: {spall_edges: sharp}\n"
@@ -157,8 +168,8 @@ TEST(Spall, ASharpEdgedSpallShallowerThanTheBallCanDropHasAFlatFloor) {
   for (const double f : {0.0, 0.5, 0.79, 0.9}) {
     const double cage = f * 0.5 * w / outer_race_radius;
     const double drop = a.ball_states(q, cage)[0].deflection_m - b.ball_states(q, cage)[0].deflection_m;
-    const double u = 1.0 - f;
-    EXPECT_NEAR(drop, std::min(5e-6, w * w / (4.0 * d) * u * u), 1e-12) << "at " << f << " of the half width";
+    const double u = 1.0 - f, full_drop = w * w / 8.0 * (2.0 / d - 1.0 / outer_race_radius);
+    EXPECT_NEAR(drop, std::min(5e-6, full_drop * u * u), 1e-12) << "at " << f << " of the half width";
   }
 }
 

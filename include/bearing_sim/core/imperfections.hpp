@@ -91,7 +91,7 @@ struct ImperfectionSpec {
   double ball_spin_slip_azimuth_rad = 3.14159265358979323846;  // pi
   // The spalls' edges. Rounded (false): the ball's deflection dips as a half-sine, a worn
   // spall's smooth entry and exit. Sharp (true, an EDM pit or a fresh spall): the ball pivots
-  // on the nearer edge, its centre drops by min(h, D (1 - 2|x| / w)^2) (D = w^2 / (4 d), the
+  // on the nearer edge, its centre drops by min(h, D (1 - 2|x| / w)^2) (D = drop_depth, the
   // drop resting on both edges), steepest where it meets the far edge (docs/model.md 9.6).
   bool spall_sharp_edges = false;
   std::vector<Spall> spalls;
@@ -140,6 +140,9 @@ class Imperfections {
     double ball_diameter_m = 0.0;
     double outer_race_radius_m = 0.0;  // at the contact, for arc lengths
     double inner_race_radius_m = 0.0;
+    // cos of the unloaded contact angle: a race's curvature along the rolling direction in the
+    // contact plane is cos a0 / its radius at the contact (the ball's drop into a spall).
+    double cos_contact_angle = 1.0;
     std::vector<double> base_azimuth;  // of every ball at cage angle 0, in [0, 2 pi)
   };
   Imperfections() = default;
@@ -179,7 +182,8 @@ class Imperfections {
     double sin_half_width;          // sin(w / 2); w <= pi / 2
     double pi_over_width, depth;    // rad^-1, m
     // Sharp edges (ImperfectionSpec::spall_sharp_edges): the dip is
-    // min(depth, geometric_depth (1 - 2|x| / w)^2), geometric_depth = w^2 / (4 d) in metres.
+    // min(depth, geometric_depth (1 - 2|x| / w)^2), geometric_depth the drop resting on both
+    // edges (drop_depth), in metres.
     bool sharp_edges;
     double geometric_depth;
     int row;
@@ -216,15 +220,23 @@ class Imperfections {
 
  private:
   void validate(const Spall& s) const;
-  // Width, effective depth and the depth w^2 / (4 d) resting on both edges of a spall at time t.
+  // Width, effective depth and the drop resting on both edges (drop_depth) of a spall at time
+  // t. For a ball spall, which meets both races, against a flat race: depth is the spall's own
+  // and add_offsets takes the drop against the race it faces.
   void spall_size(const Spall& s, double time_s, double* angular_width, double* depth, double* geometric_depth) const;
+  // How far a ball's centre drops into a spall w long when it rests on both edges: the gap
+  // between the ball and the race across w, w^2 / 8 (2 / d + k), k the race's curvature along
+  // the rolling direction (the outer race curves towards the ball, -cos a0 / R_o; the inner
+  // away from it, +cos a0 / R_i; a flat race 0, w^2 / (4 d)).
+  double drop_depth(double width_m, Surface race) const;
   // A growing spall's window terms at time t (spall_windows).
   void grown_window(const Spall& s, double time_s, SpallWindow* w) const;
   // How far the ball nearest race spall `index` is from its even place at time t, as an
   // angle, for a spall of that angular width (bounded so that the nearest ball changes only
   // while no ball is over the spall). `start` is cage - ring - spall position.
   double place_shift_rad(std::size_t index, const Spall& s, double start, double angular_width, double time_s) const;
-  // A ball spall's chord at time t: the width and depth struck, from its latitude.
+  // A ball spall's chord at time t: the width struck, from its latitude, and its drop
+  // against a flat race (geometric_depth; depth 0 while the track misses the spall).
   void struck_chord(std::size_t index, double time_s, double* angular_width, double* depth,
                     double* geometric_depth) const;
   // The spin angle ball spall `index` (on `ball`) has lost by `phase`: the slips of its
