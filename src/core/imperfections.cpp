@@ -302,24 +302,19 @@ double Imperfections::place_shift_rad(std::size_t index, const Spall& s, double 
   return std::clamp(shift, -bound, bound);
 }
 
-void Imperfections::struck_chord(std::size_t index, double time_s, double* angular_width, double* depth,
-                                 double* geometric_depth) const {
+void Imperfections::struck_chord(std::size_t index, double time_s, double* angular_width, double* depth) const {
   if (spec_.ball_spin_axis_wander_rad <= 0.0) return;
   const std::uint64_t key = detail::mix64(spec_.seed ^ 0x3c6ef372fe94f82bull) ^ detail::mix64(index);
   const double latitude =
       spec_.ball_spin_axis_wander_rad * detail::smooth_normal(key, time_s / spec_.ball_spin_axis_wander_correlation_s);
-  // The spall as a disc of the given width: the chord at this latitude, and the depth a ball
-  // reaches in it (w^2 / (4 D), the spall's depth at most).
+  // The spall as a disc of the given width: the chord at this latitude.
   const double half_width = 0.5 * *angular_width;
   const double chord = 1.0 - (latitude * latitude) / (half_width * half_width);
   if (chord <= 0.0) {
     *depth = 0.0;
     return;
   }
-  const double width = *angular_width * std::sqrt(chord);
-  const double width_m = width * 0.5 * geometry_.ball_diameter_m;
-  *geometric_depth = drop_depth(width_m, Surface::Ball);
-  *angular_width = width;
+  *angular_width *= std::sqrt(chord);
 }
 
 double Imperfections::drop_depth(double width_m, Surface race) const {
@@ -480,7 +475,7 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
       // The spot faces the outer and the inner race once each per spin turn.
       const int entry = set.entry_of_ball[s.ball];
       if (entry < 0) continue;
-      struck_chord(i, phase.time_s, &angular_width, &depth, &geometric_depth);
+      struck_chord(i, phase.time_s, &angular_width, &depth);
       if (depth <= 0.0) continue;
       double spin = phase.ball_spin + ball_phase_[s.ball] - s.position_rad;
       if (spec_.ball_spin_slip_rad > 0.0) spin -= spin_slip_rad(i, s.ball, phase);

@@ -221,8 +221,8 @@ class Imperfections {
  private:
   void validate(const Spall& s) const;
   // Width, effective depth and the drop resting on both edges (drop_depth) of a spall at time
-  // t. For a ball spall, which meets both races, against a flat race: depth is the spall's own
-  // and add_offsets takes the drop against the race it faces.
+  // t. For a ball spall, which meets both races, depth is the spall's own and the drop that of
+  // a flat race: add_offsets takes the chord's drop against the race it faces.
   void spall_size(const Spall& s, double time_s, double* angular_width, double* depth, double* geometric_depth) const;
   // How far a ball's centre drops into a spall w long when it rests on both edges: the gap
   // between the ball and the race across w, w^2 / 8 (2 / d + k), k the race's curvature along
@@ -235,10 +235,9 @@ class Imperfections {
   // angle, for a spall of that angular width (bounded so that the nearest ball changes only
   // while no ball is over the spall). `start` is cage - ring - spall position.
   double place_shift_rad(std::size_t index, const Spall& s, double start, double angular_width, double time_s) const;
-  // A ball spall's chord at time t: the width struck, from its latitude, and its drop
-  // against a flat race (geometric_depth; depth 0 while the track misses the spall).
-  void struck_chord(std::size_t index, double time_s, double* angular_width, double* depth,
-                    double* geometric_depth) const;
+  // A ball spall's chord at time t: the width struck, from its latitude (depth 0 while the
+  // track misses the spall).
+  void struck_chord(std::size_t index, double time_s, double* angular_width, double* depth) const;
   // The spin angle ball spall `index` (on `ball`) has lost by `phase`: the slips of its
   // ball's passages through the unloaded arc so far, rad.
   double spin_slip_rad(std::size_t index, int ball, const RollingPhase& phase) const;
