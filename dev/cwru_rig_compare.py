@@ -69,21 +69,20 @@ FAULT_TEST_SLOT_COMB_DB = -22.0
 # the path and the mount, its density is FAULT_TEST_ROLLING_NOISE_UG (the median over the 36
 # fault records, dev/cwru_installation.py --rolling-noise); the normal record has none.
 FAULT_TEST_ROLLING_NOISE_UG = 132.0
-# The rig's load that turns with the shaft (unbalance, coupling misalignment, runout): the
+# The rig's load that turns with the shaft (unbalance, coupling misalignment, runout) and its
+# axial preload (a motor's wave spring: its bearings carry it all around), set together. The
 # strength of the real outer-race faults' impacts at 6:00 varies once per turn, by
 # dev/cwru_measures.pass_scatter's depth 0.19-0.24 (0.007 in, records 130-133) and 0.83-0.89
-# (0.021 in, 234-237). A force turning with the shaft, RIG_SHAFT_RATE_LOAD_N at the 0 hp speed
-# (an unbalance: it goes as the speed squared), gives the two sizes' depths at 0 and 3 hp with
-# the least summed squared log error: 28 N, the vertex of the parabola through 22, 27 and 32 N
-# (docs/cwru_rig.md). The inner race fault at 90 deg from it (not known on a real assembly).
-RIG_SHAFT_RATE_LOAD_N = 28.0
-# The rig's axial preload (a motor's wave spring: its bearings carry it all around): the real
-# outer-race faults at 3:00 and 12:00 (144-147, 156-160, 246-249, 258-261) strike as the ones at
-# 6:00 do, which a bearing under its radial load alone cannot (its upper half runs unloaded).
-# With the sensor file's cross-axis coupling, 15 N gives the 0.021 in faults' RMS at the three
-# positions with the least summed squared log error over 8, 15 and 25 N (x 1.34, 1.07, 0.81 of
-# the real at 6:00, 3:00, 12:00; docs/cwru_rig.md).
-RIG_AXIAL_PRELOAD_N = 15.0
+# (0.021 in, 234-237); the real faults at 3:00 and 12:00 (144-147, 156-160, 246-249, 258-261)
+# strike as the ones at 6:00 do, which a bearing under its radial load alone cannot (its upper
+# half runs unloaded). A force turning with the shaft, RIG_SHAFT_RATE_LOAD_N at the 0 hp speed
+# (an unbalance: it goes as the speed squared), and the preload give the least summed squared
+# log error of the two sizes' depths at 0 and 3 hp and of the 0.021 in faults' RMS at the three
+# positions (with the sensor file's cross-axis coupling): 80 N and 8 N over a grid of 4-25 N by
+# 28-160 N (x 1.48, 1.26, 0.85 of the real RMS at 6:00, 3:00, 12:00; docs/cwru_rig.md). The
+# inner race fault at 90 deg from the turning load (not known on a real assembly).
+RIG_SHAFT_RATE_LOAD_N = 80.0
+RIG_AXIAL_PRELOAD_N = 8.0
 RIG_SHAFT_RATE_LOAD_RPM = 1797.0
 UNBALANCE_RADIUS_M = 0.05      # as config/campaigns/cwru_rig.yaml gives its unbalance
 UNBALANCE_PHASE_DEG = 90.0

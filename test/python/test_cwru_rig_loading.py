@@ -52,5 +52,5 @@ def test_a_fault_at_three_oclock_reaches_the_vertical_sensor_through_the_couplin
 def test_impacts_at_six_oclock_read_positive_up():
     # The sensor file's axis points up (the real 0.021 in records at 6 o'clock, 234-237:
     # skewness +0.09 to +0.13; read along +x, down, the simulation's sign is the opposite).
-    # Under the radial load alone (+0.29); the rig's 15 N preload brings it to +0.02.
+    # Under the radial load alone (+0.29); a 15 N preload brings it to +0.02.
     assert skew(run(0.0, 0.0)) > 0.1
