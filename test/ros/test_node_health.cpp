@@ -15,6 +15,7 @@
 #include "bearing_sim/core/quasi_static.hpp"
 #include "bearing_sim/core/virtual_accelerometer.hpp"
 #include "node_test_support.hpp"
+#include "service_calls.hpp"
 
 using bearing_sim::BearingHealth;
 using bearing_sim::VibrationChunk;
@@ -174,7 +175,7 @@ bool inject(const std::string& surface, double position_rad, int ball, double wi
   srv->request.ball = ball;
   srv->request.width_m = width_m;
   srv->request.depth_m = depth_m;
-  return ros::service::call("inject_defect", *srv);
+  return bearing_sim::test::call_until_answered("inject_defect", *srv);
 }
 
 constexpr double kWindowS = 2.0;  // ~health_window_s of ct_gantry.launch
@@ -276,7 +277,7 @@ TEST(NodeHealth, InjectedInnerRaceSpallIsDiagnosedAndClearingReturnsToOk) {
   EXPECT_NE(d.message.find("inner race defect suspected: envelope peak at"), std::string::npos) << d.message;
 
   std_srvs::Trigger clear;
-  ASSERT_TRUE(ros::service::call("clear_defects", clear));
+  ASSERT_TRUE(bearing_sim::test::call_until_answered("clear_defects", clear));
   EXPECT_TRUE(clear.response.success);
   const double cleared_at = f.sim_time();
   // Within two windows the analysed signal no longer contains the spall.

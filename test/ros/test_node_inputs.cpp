@@ -11,6 +11,7 @@
 #include "bearing_sim/core/frequencies.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "node_test_support.hpp"
+#include "service_calls.hpp"
 
 using namespace node_test;
 
@@ -288,7 +289,7 @@ TEST_F(NodeInputs, BadReconfigureValuesAndDefectGrowthsAreRefused) {
       srv.request.width_m = 1e-3;
       srv.request.depth_m = 10e-6;
       (which == 0 ? srv.request.width_growth_m_per_s : srv.request.depth_growth_m_per_s) = w;
-      ASSERT_TRUE(ros::service::call("inject_defect", srv));
+      ASSERT_TRUE(bearing_sim::test::call_until_answered("inject_defect", srv));
       EXPECT_FALSE(srv.response.success) << "growth " << w;
       EXPECT_NE(srv.response.message.find("growth"), std::string::npos) << srv.response.message;
       EXPECT_EQ(srv.response.defects_present, 0u);
@@ -351,7 +352,7 @@ TEST_F(NodeInputs, InjectDefectRefusesAbsurdSpallsAndOneBeyondTheCap) {
     srv.request.position_rad = position_rad;
     srv.request.width_m = width_m;
     srv.request.depth_m = depth_m;
-    EXPECT_TRUE(ros::service::call("inject_defect", srv));
+    EXPECT_TRUE(bearing_sim::test::call_until_answered("inject_defect", srv));
     return srv.response;
   };
   auto r = inject(1e300, 1e-3, 10e-6);
@@ -373,7 +374,7 @@ TEST_F(NodeInputs, InjectDefectRefusesAbsurdSpallsAndOneBeyondTheCap) {
   EXPECT_NE(r.message.find("64 spalls are present, at most 64"), std::string::npos) << r.message;
   EXPECT_EQ(r.defects_present, 64u);
   std_srvs::Trigger clear;
-  ASSERT_TRUE(ros::service::call("clear_defects", clear));
+  ASSERT_TRUE(bearing_sim::test::call_until_answered("clear_defects", clear));
   EXPECT_NE(clear.response.message.find("cleared 64 defect(s)"), std::string::npos) << clear.response.message;
   // The node ran on: a healthy bearing at the static equilibrium again.
   const std::uint64_t after = recorder().next_index();

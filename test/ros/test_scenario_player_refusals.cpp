@@ -22,6 +22,7 @@
 #include "bearing_sim/InputRejection.h"
 #include "bearing_sim/ScenarioState.h"
 #include "command_runner.hpp"
+#include "service_calls.hpp"
 
 using namespace bearing_sim;
 
@@ -47,19 +48,7 @@ PlayerRun run_player(const std::string& name) {
   return {r.exit_code, r.out + r.err};
 }
 
-// A service call that a busy machine's transport dropped (the node's handlers always answer
-// true: a false is the connection's) is made again, the service waited for, within 120 s.
-template <class Service>
-bool call_until_answered(const std::string& name, Service& srv) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(120.0);
-  while (true) {
-    if (ros::service::call(name, srv)) return true;
-    const ros::WallDuration left = end - ros::WallTime::now();
-    if (left <= ros::WallDuration(0.0)) return false;
-    ros::service::waitForService(ros::NodeHandle().resolveName(name), ros::Duration(left.toSec()));
-    ros::WallDuration(0.1).sleep();
-  }
-}
+using bearing_sim::test::call_until_answered;
 
 class ScenarioPlayerRefusals : public ::testing::Test {
  protected:
