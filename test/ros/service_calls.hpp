@@ -6,10 +6,10 @@
 
 namespace bearing_sim::test {
 
-// A call the transport dropped (the node's handlers always answer true: a refusal is
-// success false in the response, so a false is the connection's) is made again, the service
-// waited for, within `timeout_s`. Only for calls that may be repeated: a dropped answer to a
-// call that did reach the node repeats its effect.
+// A call the transport dropped is made again, the service waited for, within `timeout_s`: the
+// node's handlers and dynamic_reconfigure's answer true (a refusal is success false in the
+// response), so a false is the connection's. Only for calls that may be repeated: a dropped
+// answer to a call that did reach the node repeats its effect.
 template <class Service>
 bool call_until_answered(const std::string& name, Service& srv, double timeout_s = 120.0) {
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);

@@ -8,6 +8,7 @@
 #include "bearing_sim/core/bearing_dynamics.hpp"
 #include "bearing_sim/core/quasi_static.hpp"
 #include "node_test_support.hpp"
+#include "service_calls.hpp"
 
 using namespace node_test;
 
@@ -20,7 +21,7 @@ bool reconfigure(const std::string& name, double value) {
   p.name = name;
   p.value = value;
   srv.request.config.doubles.push_back(p);
-  return ros::service::call("bearing_sim_node/set_parameters", srv);
+  return bearing_sim::test::call_until_answered("bearing_sim_node/set_parameters", srv);
 }
 
 void settle(std::uint64_t from, double seconds) {

@@ -66,7 +66,7 @@ bool reconfigure(const std::string& name, double value, bool is_int = false,
     p.value = value;
     srv.request.config.doubles.push_back(p);
   }
-  const bool ok = ros::service::call("bearing_sim_node/set_parameters", srv);
+  const bool ok = bearing_sim::test::call_until_answered("bearing_sim_node/set_parameters", srv);
   if (applied) *applied = srv.response.config;
   return ok;
 }
