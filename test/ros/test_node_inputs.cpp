@@ -346,13 +346,14 @@ TEST_F(NodeInputs, RingTemperatureDifferenceReachesTheModelAndBadValuesAreRefuse
 // a micrometre (1e-300 m was accepted as "0.00 mm wide" and counted), and the spall after the
 // 64 a bearing may hold at once (10,000 calls put the node 15 s behind real time).
 TEST_F(NodeInputs, InjectDefectRefusesAbsurdSpallsAndOneBeyondTheCap) {
-  const auto inject = [](double position_rad, double width_m, double depth_m) {
+  bearing_sim::test::PersistentService<bearing_sim::InjectDefect> service("inject_defect");
+  const auto inject = [&service](double position_rad, double width_m, double depth_m) {
     bearing_sim::InjectDefect srv;
     srv.request.surface = "outer_race";
     srv.request.position_rad = position_rad;
     srv.request.width_m = width_m;
     srv.request.depth_m = depth_m;
-    EXPECT_TRUE(bearing_sim::test::call_until_answered("inject_defect", srv));
+    EXPECT_TRUE(service.call(srv));
     return srv.response;
   };
   auto r = inject(1e300, 1e-3, 10e-6);
