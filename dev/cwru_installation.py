@@ -66,10 +66,10 @@ ROLLING_BAND_HZ = (2000.0, 4000.0)
 ROLLING_BLOCK_S = 0.002
 ROLLING_QUANTILE = 0.2
 # How strongly an assembly's path passes its low modes against the 2.9 kHz one (--mode-balance):
-# the power in BALANCE_LOW_HZ over that in BALANCE_HIGH_HZ (Welch, lines removed as in
-# record_shapes), the median over a record's 1 s windows, in the records of every 12 kHz fault
-# condition of 0.007-0.021 in but those whose fault the signal does not show (the machine's
-# background fills them: docs/cwru_rig.md).
+# the power in BALANCE_LOW_HZ over that in BALANCE_HIGH_HZ (modal_density), the median over a
+# record's 1 s windows, in the records of every 12 kHz fault condition of 0.007-0.021 in but
+# those whose fault the signal does not show (the machine's background fills them:
+# docs/cwru_rig.md).
 BALANCE_LOW_HZ = (950.0, 1500.0)
 BALANCE_HIGH_HZ = (2500.0, 3000.0)
 BALANCE_UNSEEN = ('B007', 'OR014@6')
@@ -175,6 +175,12 @@ def measure_normal(directory):
     return x, f_r, line, shaft, half, lines, others, floor_density(x, FLOOR_POINTS_HZ)
 
 
+def modal_density(x):
+    """Welch density of 2048 points with the lines removed, the path's modes kept: a running
+    median over 7 bins (41 Hz) removes the lines (3 bins wide), not the modes. (f, density)."""
+    f, p = welch(x, 2048)
+    return f, scipy.ndimage.median_filter(p, size=7, mode='nearest')
+
 def record_shapes(directory, normal_x):
     """Per MODE_RECORDS record: its Welch density, lines removed, less the normal record's,
     normalised by its power ({record number: density}), and the frequencies."""
@@ -184,9 +190,7 @@ def record_shapes(directory, normal_x):
         if not any(f'_{tag}_' in path.name for tag in MODE_RECORDS):
             continue
         x, _ = drive_end(path)
-        _, p = welch(x, 2048)
-        # A running median over 7 bins (41 Hz) removes the lines (3 bins wide), not the modes.
-        p = scipy.ndimage.median_filter(p, size=7, mode='nearest')
+        _, p = modal_density(x)
         shapes[path.stem.rsplit('_', 1)[1]] = np.maximum(p - p0, 1e-16) / np.sum(p)
     return f, shapes
 
@@ -397,11 +401,10 @@ def print_comparison(directory, csv_path, unit):
 
 def mode_balance_db(x):
     """A record's power in BALANCE_LOW_HZ over that in BALANCE_HIGH_HZ, dB: the median over its
-    1 s windows (Welch densities of 2048 points, lines removed by a 7-bin running median)."""
+    1 s windows (modal_density)."""
     values = []
     for start in range(0, x.size - int(FS) + 1, int(FS)):
-        f, p = welch(x[start:start + int(FS)], 2048)
-        p = scipy.ndimage.median_filter(p, size=7, mode='nearest')
+        f, p = modal_density(x[start:start + int(FS)])
         band = lambda b: p[(f >= b[0]) & (f < b[1])].sum()
         values.append(10.0 * np.log10(band(BALANCE_LOW_HZ) / band(BALANCE_HIGH_HZ)))
     return float(np.median(values))
