@@ -75,6 +75,8 @@ BearingModel::BearingModel(BearingConfig config) : config_(std::move(config)) {
   g.outer_race_radius_m = c.pitch_diameter_m / 2.0 + d / 2.0 * cos_a0_;
   g.inner_race_radius_m = c.pitch_diameter_m / 2.0 - d / 2.0 * cos_a0_;
   g.cos_contact_angle = cos_a0_;
+  g.outer_groove_radius_m = c.outer_groove_curvature * d;
+  g.inner_groove_radius_m = c.inner_groove_curvature * d;
   g.base_azimuth = base_azimuth_;
   try {
     imperfections_ = Imperfections(c.imperfections, g);
@@ -455,8 +457,10 @@ double BearingModel::split_by_deflection(const Vector5& q, const RollingPhase& p
                                          BallArrays* near_contact, BallArrays* clear) const {
   thread_local std::vector<double> deflection;
   thread_local std::vector<int> near_entries, clear_entries;
-  // Without the spalls' dips: an upper bound of the deflection, which the margin tracks.
+  // Without the spalls' dips: an upper bound of the deflection once their rims' height is
+  // added, which the margin tracks.
   deflections(q, phase, balls_, &deflection, false);
+  margin_m += imperfections_.max_rim_height_m();
   const std::size_t n = balls_.size();
   near_entries.resize(n);
   clear_entries.resize(n);

@@ -31,10 +31,16 @@ namespace hn = hwy::HWY_NAMESPACE;
 template <class D, class V, class M>
 HWY_NOINLINE V WindowDip(D d, V sin_x, M inside, const Imperfections::SpallWindow& w) {
   if (w.sharp_edges) {  // min(depth, geometric_depth (1 - 2|x| / width)^2)
-    const V u = hn::NegMulAdd(hn::Abs(hn::Asin(d, sin_x)), hn::Set(d, w.pi_over_width * (2.0 / bearing_sim::kPi)),
-                              hn::Set(d, 1.0));
-    return hn::IfThenElseZero(inside,
-                              hn::Min(hn::Set(d, w.depth), hn::Mul(hn::Set(d, w.geometric_depth), hn::Mul(u, u))));
+    const V ax = hn::Abs(hn::Asin(d, sin_x));
+    const V u = hn::NegMulAdd(ax, hn::Set(d, w.pi_over_width * (2.0 / bearing_sim::kPi)), hn::Set(d, 1.0));
+    const V pit = hn::Sub(hn::Min(hn::Set(d, w.depth), hn::Mul(hn::Set(d, w.geometric_depth), hn::Mul(u, u))),
+                          hn::Set(d, w.pit_lift));
+    if (w.rim_height == 0.0) return hn::IfThenElseZero(inside, pit);
+    // Past the edge, the rim: -h sin^2(pi (|x| - w/2) / r).
+    const V half = hn::Set(d, w.half_width);
+    const V v = hn::Sin(d, hn::Mul(hn::Sub(ax, half), hn::Set(d, w.rim_pi_over_width)));
+    const V rim = hn::Mul(hn::Set(d, -w.rim_height), hn::Mul(v, v));
+    return hn::IfThenElseZero(inside, hn::IfThenElse(hn::Lt(ax, half), pit, rim));
   }
   return hn::IfThenElseZero(
       inside, hn::Mul(hn::Set(d, w.depth), hn::Cos(d, hn::Mul(hn::Asin(d, sin_x), hn::Set(d, w.pi_over_width)))));
@@ -188,8 +194,14 @@ ContactSums contact_sums_scalar(const ContactKernelInput& in) {
       const double cos_x = cphi * w.cos_centre + sphi * w.sin_centre;
       if (cos_x > 0.0 && std::abs(sin_x) < w.sin_half_width && pz == w.row_groove_centre_z) {
         if (w.sharp_edges) {
-          const double u = 1.0 - std::abs(std::asin(sin_x)) * (w.pi_over_width * (2.0 / bearing_sim::kPi));
-          offset -= std::min(w.depth, w.geometric_depth * u * u);
+          const double ax = std::abs(std::asin(sin_x));
+          if (w.rim_height == 0.0 || ax < w.half_width) {
+            const double u = 1.0 - ax * (w.pi_over_width * (2.0 / bearing_sim::kPi));
+            offset -= std::min(w.depth, w.geometric_depth * u * u) - w.pit_lift;
+          } else {  // the rim
+            const double v = std::sin((ax - w.half_width) * w.rim_pi_over_width);
+            offset += w.rim_height * v * v;
+          }
         } else {
           offset -= w.depth * std::cos(std::asin(sin_x) * w.pi_over_width);
         }

@@ -41,11 +41,23 @@ inline double ring_angle(const RollingPhase& phase, Surface race) {
 // Dip of a spall centred at 0 of angular width w, at angle x (|x| < w/2): a half-sine of the
 // effective depth (rounded edges), or with sharp edges the ball's drop pivoting on the nearer
 // edge, geometric_depth (1 - 2|x| / w)^2, at most the effective depth (the spall's floor).
-inline double spall_dip(double x, double angular_width, double depth, bool sharp_edges, double geometric_depth) {
-  if (!(std::abs(x) < 0.5 * angular_width)) return 0.0;
+// Sharp edges with a rim of height h and angular width r: -h sin^2(pi (|x| - w/2) / r) for
+// w/2 <= |x| < w/2 + r (the rim raises the ball).
+inline double spall_dip(double x, double angular_width, double depth, bool sharp_edges, double geometric_depth,
+                        double rim_height = 0.0, double rim_angle = 0.0, double pit_lift = 0.0) {
+  const double ax = std::abs(x), half = 0.5 * angular_width;
+  if (!(ax < half)) {
+    if (!(rim_height > 0.0 && ax < half + rim_angle)) return 0.0;
+    if (half == 0.0) {  // a ring rim passed beside its pit: one bump, 2 r long
+      const double c = std::cos(0.5 * kPi * ax / rim_angle);
+      return -rim_height * c * c;
+    }
+    const double v = std::sin(kPi * (ax - half) / rim_angle);
+    return -rim_height * v * v;
+  }
   if (!sharp_edges) return depth * std::cos(kPi * x / angular_width);
-  const double u = 1.0 - 2.0 * std::abs(x) / angular_width;
-  return std::min(depth, geometric_depth * u * u);
+  const double u = 1.0 - ax / half;
+  return std::min(depth, geometric_depth * u * u) - pit_lift;
 }
 }  // namespace
 
@@ -216,6 +228,13 @@ void Imperfections::validate(const Spall& s) const {
   if (!(s.depth_growth_m_per_s >= 0.0 && s.depth_growth_m_per_s <= max_depth_rate))
     throw InvalidInputError("defect: depth growth must be finite and in [0, " + std::to_string(max_depth_rate * 1e6) +
                             "] um/s (the largest spall in no less than 1 s)");
+  // The pit grown to its largest and its rims within a quarter turn either side of its centre
+  // (the windows' asin, and a ball spall meets a race every half turn).
+  const double largest = s.width_growth_m_per_s > 0.0 ? limit.max_width_m : s.width_m;
+  const double reach = 0.5 * largest / surface_radius(s.surface) + rim_angle(s);
+  if (!(reach < 0.5 * kPi))
+    throw InvalidInputError("defect: the spall's half width with its rims spans " + number(reach * 180.0 / kPi) +
+                            " deg of its surface, less than 90 is possible (narrower rims: spall_rim_width_um)");
 }
 
 void Imperfections::add_spall(const Spall& spall) {
@@ -225,7 +244,7 @@ void Imperfections::add_spall(const Spall& spall) {
   shape.fixed = spall.width_growth_m_per_s == 0.0 && spall.depth_growth_m_per_s == 0.0;
   if (shape.fixed) {
     spall_size(spall, spall.created_at_s, &shape.angular_width, &shape.depth, &shape.geometric_depth);
-    shape.sin_half_width = std::sin(0.5 * shape.angular_width);
+    shape.sin_half_width = std::sin(0.5 * shape.angular_width + rim_angle(spall));
     shape.pi_over_width = kPi / shape.angular_width;
   }
   spalls_.push_back(spall);
@@ -263,9 +282,14 @@ int Imperfections::spall_windows(const RollingPhase& phase, SpallWindow* windows
       w.geometric_depth = shape.geometric_depth;
       w.sin_half_width = shape.sin_half_width;
       w.pi_over_width = shape.pi_over_width;
+      w.half_width = 0.5 * shape.angular_width;
     } else {
       grown_window(s, phase.time_s, &w);
     }
+    const double rim = rim_angle(s);
+    w.rim_height = rim > 0.0 ? spec_.spall_rim_height_m : 0.0;
+    w.rim_pi_over_width = rim > 0.0 ? kPi / rim : 0.0;
+    w.pit_lift = spec_.spall_round_pits ? w.rim_height : 0.0;
     double centre = ring_angle(phase, s.surface) + s.position_rad;
     if (spec_.ball_place_wander_m > 0.0)
       centre -= place_shift_rad(i, s, phase.cage - centre, std::asin(w.sin_half_width) * 2.0, phase.time_s);
@@ -302,19 +326,11 @@ double Imperfections::place_shift_rad(std::size_t index, const Spall& s, double 
   return std::clamp(shift, -bound, bound);
 }
 
-void Imperfections::struck_chord(std::size_t index, double time_s, double* angular_width, double* depth) const {
-  if (spec_.ball_spin_axis_wander_rad <= 0.0) return;
+double Imperfections::struck_latitude(std::size_t index, double time_s) const {
+  if (spec_.ball_spin_axis_wander_rad <= 0.0) return 0.0;
   const std::uint64_t key = detail::mix64(spec_.seed ^ 0x3c6ef372fe94f82bull) ^ detail::mix64(index);
-  const double latitude =
-      spec_.ball_spin_axis_wander_rad * detail::smooth_normal(key, time_s / spec_.ball_spin_axis_wander_correlation_s);
-  // The spall as a disc of the given width: the chord at this latitude.
-  const double half_width = 0.5 * *angular_width;
-  const double chord = 1.0 - (latitude * latitude) / (half_width * half_width);
-  if (chord <= 0.0) {
-    *depth = 0.0;
-    return;
-  }
-  *angular_width *= std::sqrt(chord);
+  return spec_.ball_spin_axis_wander_rad *
+         detail::smooth_normal(key, time_s / spec_.ball_spin_axis_wander_correlation_s);
 }
 
 double Imperfections::drop_depth(double width_m, Surface race) const {
@@ -322,6 +338,13 @@ double Imperfections::drop_depth(double width_m, Surface race) const {
                            : race == Surface::InnerRace ? geometry_.cos_contact_angle / geometry_.inner_race_radius_m
                                                         : 0.0;
   return 0.125 * width_m * width_m * (2.0 / geometry_.ball_diameter_m + curvature);
+}
+
+double Imperfections::rim_crest_span() const { return spec_.spall_rim_height_m > 0.0 ? spec_.spall_rim_width_m : 0.0; }
+
+double Imperfections::across_drop(double width_m, Surface race) const {
+  const double groove = race == Surface::OuterRace ? geometry_.outer_groove_radius_m : geometry_.inner_groove_radius_m;
+  return 0.125 * width_m * width_m * (2.0 / geometry_.ball_diameter_m - 1.0 / groove);
 }
 
 double Imperfections::spin_slip_rad(std::size_t index, int ball, const RollingPhase& phase) const {
@@ -339,8 +362,19 @@ double Imperfections::spin_slip_rad(std::size_t index, int ball, const RollingPh
 void Imperfections::grown_window(const Spall& s, double time_s, SpallWindow* w) const {
   double angular_width = 0.0;
   spall_size(s, time_s, &angular_width, &w->depth, &w->geometric_depth);
-  w->sin_half_width = std::sin(0.5 * angular_width);
+  w->sin_half_width = std::sin(0.5 * angular_width + rim_angle(s));
   w->pi_over_width = kPi / angular_width;
+  w->half_width = 0.5 * angular_width;
+}
+
+double Imperfections::surface_radius(Surface surface) const {
+  return surface == Surface::Ball        ? 0.5 * geometry_.ball_diameter_m
+         : surface == Surface::OuterRace ? geometry_.outer_race_radius_m
+                                         : geometry_.inner_race_radius_m;
+}
+
+double Imperfections::rim_angle(const Spall& s) const {
+  return spec_.spall_rim_height_m > 0.0 ? spec_.spall_rim_width_m / surface_radius(s.surface) : 0.0;
 }
 
 void Imperfections::spall_size(const Spall& s, double time_s, double* angular_width, double* depth,
@@ -353,11 +387,12 @@ void Imperfections::spall_size(const Spall& s, double time_s, double* angular_wi
   // A ball drops until it rests on both edges, never more than the spall is deep.
   *geometric_depth = drop_depth(width, s.surface);
   *depth = grown_size(s.depth_m, s.depth_growth_m_per_s, age, limit.max_depth_m);
-  if (s.surface != Surface::Ball) *depth = std::min(*depth, *geometric_depth);
-  const double radius = s.surface == Surface::Ball        ? 0.5 * geometry_.ball_diameter_m
-                        : s.surface == Surface::OuterRace ? geometry_.outer_race_radius_m
-                                                          : geometry_.inner_race_radius_m;
-  *angular_width = width / radius;
+  if (s.surface != Surface::Ball) {
+    *depth = std::min(*depth, *geometric_depth);
+    // A rim's crest is half its width out from the edge: the ball rests on it.
+    if (spec_.spall_round_pits) *depth = std::min(*depth, across_drop(width + rim_crest_span(), s.surface));
+  }
+  *angular_width = width / surface_radius(s.surface);
 }
 
 double Imperfections::max_offset_change_m(double outer_race_angle, double inner_race_angle, double spin_angle) const {
@@ -471,20 +506,42 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
     double angular_width = shape.angular_width, depth = shape.depth, geometric_depth = shape.geometric_depth;
     if (!shape.fixed) spall_size(s, phase.time_s, &angular_width, &depth, &geometric_depth);
     const bool sharp = spec_.spall_sharp_edges;
+    const double rim = rim_angle(s), rim_height = rim > 0.0 ? spec_.spall_rim_height_m : 0.0;
+    // A round pit's rim is a ring: over the pit the ball rests on its sides, the rim's height up.
+    const double pit_lift = spec_.spall_round_pits ? rim_height : 0.0;
     if (s.surface == Surface::Ball) {
       // The spot faces the outer and the inner race once each per spin turn.
       const int entry = set.entry_of_ball[s.ball];
       if (entry < 0) continue;
-      struck_chord(i, phase.time_s, &angular_width, &depth);
-      if (depth <= 0.0) continue;
+      // The pit's latitude off the rolling track, as a distance on the ball (m).
+      const double offset_m = std::abs(struck_latitude(i, phase.time_s)) * 0.5 * geometry_.ball_diameter_m;
+      const double half_width_m = 0.25 * angular_width * geometry_.ball_diameter_m;
+      const bool ring = spec_.spall_round_pits && rim_height > 0.0;
+      if (offset_m >= half_width_m && !ring) continue;  // the track misses the pit
       double spin = phase.ball_spin + ball_phase_[s.ball] - s.position_rad;
       if (spec_.ball_spin_slip_rad > 0.0) spin -= spin_slip_rad(i, s.ball, phase);
       const double x = std::remainder(spin, kPi);
       // Even half turns face the outer race, odd ones the inner: the drop against its curvature.
       const bool outer = (std::lround((spin - x) / kPi) & 1) == 0;
+      const Surface race = outer ? Surface::OuterRace : Surface::InnerRace;
+      double ring_height = rim_height, lift = pit_lift;
+      if (offset_m < half_width_m) {
+        angular_width *= std::sqrt(1.0 - (offset_m * offset_m) / (half_width_m * half_width_m));  // the chord
+      } else {
+        // The track passes beside the pit: the ring's nearest crest, e beyond the contact's
+        // centre line, still lifts the ball by h - e^2 / 2 (2 / d - 1 / r_g) (the gap across).
+        const double e = std::max(0.0, offset_m - half_width_m - 0.5 * rim_crest_span());
+        ring_height = rim_height - across_drop(2.0 * e, race);
+        if (ring_height <= 0.0) continue;
+        angular_width = 0.0;
+        lift = 0.0;
+      }
       const double chord_m = angular_width * 0.5 * geometry_.ball_diameter_m;
-      geometric_depth = drop_depth(chord_m, outer ? Surface::OuterRace : Surface::InnerRace);
-      out[entry] -= spall_dip(x, angular_width, std::min(depth, geometric_depth), sharp, geometric_depth);
+      geometric_depth = drop_depth(chord_m, race);
+      double reach = std::min(depth, geometric_depth);
+      if (spec_.spall_round_pits) reach = std::min(reach, across_drop(chord_m + rim_crest_span(), race));
+      if (ring) lift = std::min(lift, ring_height);
+      out[entry] -= spall_dip(x, angular_width, reach, sharp, geometric_depth, ring_height, rim, lift);
     } else {
       // Only the few balls within half a width of the spall centre: find them by index,
       // since the balls of a row are evenly spaced.
@@ -500,7 +557,7 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
       // Ball j of a row sits within the spacing error of row_phase + j pitch: the spall's
       // half width plus that error, in pitches, either side of its centre. Floor and ceil
       // keep a ball of slack against rounding (two balls to look at for a narrow spall).
-      const double reach = (0.5 * angular_width + max_spacing_error_ + std::abs(shift)) * pitches_per_rad;
+      const double reach = (0.5 * angular_width + rim + max_spacing_error_ + std::abs(shift)) * pitches_per_rad;
       {  // the spall's own row only
         const int row = s.row;
         const double centre = -(start + all_base[row * z]) * pitches_per_rad;
@@ -524,7 +581,7 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
           // To [-pi, pi]; the product by 1/(2 pi) can round differently from the quotient
           // only next to +-pi, where no spall reaches (at most a quarter turn wide).
           const double x = angle - kTwoPi * round_to_nearest(angle * kInverseTwoPi);
-          out[entry] -= spall_dip(x, angular_width, depth, sharp, geometric_depth);
+          out[entry] -= spall_dip(x, angular_width, depth, sharp, geometric_depth, rim_height, rim, pit_lift);
         }
       }
     }

@@ -74,6 +74,22 @@ void read_imperfection_keys(const detail::Reader& r, int rows, ImperfectionSpec*
   const std::string edges = r.text("spall_edges", "rounded");
   r.require(edges == "rounded" || edges == "sharp", "spall_edges", "must be 'rounded' or 'sharp'");
   spec.spall_sharp_edges = edges == "sharp";
+  const std::string pits = r.text("spall_pits", "trench");
+  r.require(pits == "trench" || pits == "round", "spall_pits", "must be 'trench' or 'round'");
+  spec.spall_round_pits = pits == "round";
+  // A rim stands a few micrometres proud (an EDM recast lip); past 20 um it is no rim but a
+  // bump the ball could not roll over. Its width is that of the contact's length, < 10 mm
+  // on any bearing the package takes.
+  spec.spall_rim_height_m = r.number("spall_rim_height_um", 0.0) * 1e-6;
+  r.require(spec.spall_rim_height_m >= 0.0 && spec.spall_rim_height_m <= 20e-6, "spall_rim_height_um",
+            "must be in [0, 20] um");
+  r.require(spec.spall_rim_height_m == 0.0 || spec.spall_sharp_edges, "spall_rim_height_um",
+            "needs spall_edges: sharp (a worn, rounded edge has no rim)");
+  spec.spall_rim_width_m = r.number("spall_rim_width_um", 0.0, spec.spall_rim_height_m > 0.0) * 1e-6;
+  r.require(spec.spall_rim_width_m >= 0.0 && spec.spall_rim_width_m < 10e-3, "spall_rim_width_um",
+            "must be in [0, 10000) um (given with spall_rim_height_um)");
+  r.require(spec.spall_rim_height_m == 0.0 || spec.spall_rim_width_m > 0.0, "spall_rim_width_um",
+            "must be > 0 when spall_rim_height_um is");
 }
 
 // `imperfections.waviness`: a list of {surface, order, amplitude_um, phase_deg, row}.
@@ -139,7 +155,8 @@ ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML
                   "ball_spacing_jitter_mm", "cage_slip_percent", "cage_slip_variation_percent",
                   "cage_slip_correlation_s", "ball_place_wander_mm", "ball_place_wander_correlation_s",
                   "ball_spin_axis_wander_deg", "ball_spin_axis_wander_correlation_s", "ball_spin_slip_deg",
-                  "ball_spin_slip_azimuth_deg", "spall_edges"});
+                  "ball_spin_slip_azimuth_deg", "spall_edges", "spall_rim_height_um", "spall_rim_width_um",
+                  "spall_pits"});
     read_imperfection_keys(r, rows, &spec);
     const YAML::Node list = imperfections["waviness"];
     if (list) read_waviness(r, list, source, rows, &spec);

@@ -96,9 +96,17 @@ TEST(ContactKernel, SimdAndScalarKernelsAgreeOnRandomBallsWithEdgeCases) {
           const int b = (2 * k + 4 * (trial % 3)) % n;
           const double width = 0.01 + 0.59 * std::abs(u(rng));
           const double centre = cage + std::atan2(sb[b], cb[b]) + 0.02 * u(rng);
-          windows.push_back({std::cos(centre), std::sin(centre), std::sin(0.5 * width), 3.141592653589793 / width,
-                             2e-5 * std::abs(u(rng)), /*sharp_edges=*/false, /*geometric_depth=*/0.0, k,
-                             k == 0 ? row_z : -row_z});
+          // Every other trial: sharp edges with a rim 0.1-0.4 of the width wide, the first
+          // spall a round pit (the ball kept up by the ring rim over it).
+          const bool sharp = trial % 2 == 1;
+          const double rim = sharp ? width * (0.1 + 0.3 * std::abs(u(rng))) : 0.0;
+          const double rim_height = sharp ? 3e-6 * std::abs(u(rng)) : 0.0;
+          windows.push_back({std::cos(centre), std::sin(centre), std::sin(0.5 * width + rim), 3.141592653589793 / width,
+                             2e-5 * std::abs(u(rng)), sharp,
+                             /*geometric_depth=*/sharp ? 4e-5 * std::abs(u(rng)) : 0.0,
+                             /*half_width=*/0.5 * width, rim_height,
+                             /*rim_pi_over_width=*/sharp ? 3.141592653589793 / rim : 0.0, k, k == 0 ? row_z : -row_z,
+                             /*pit_lift=*/sharp && k == 0 ? rim_height : 0.0});
         }
         const detail::ContactKernelInput in{std::cos(cage),
                                             std::sin(cage),
@@ -213,7 +221,11 @@ TEST(ContactKernel, RaceSpallWindowsGiveTheOffsetsDips) {
   test::for_each_simd_target([&] {
     // Rounded and sharp edges (docs/model.md 9.6).
     for (const Surface surface : {Surface::OuterRace, Surface::InnerRace})
-      for (const char* edges : {"", "imperfections: {spall_edges: sharp}\n"}) {
+      for (const char* edges :
+           {"", "imperfections: {spall_edges: sharp}\n",
+            "imperfections: {spall_edges: sharp, spall_rim_height_um: 3, spall_rim_width_um: 400}\n",
+            "imperfections: {spall_edges: sharp, spall_pits: round, spall_rim_height_um: 3, "
+            "spall_rim_width_um: 400}\n"}) {
         BearingModel model = test::bearing_6205(edges);
         // Centred on ball 0's azimuth at cage angle 0 in the race's frame (the inner ring at 0.37 rad).
         Spall spall{surface, surface == Surface::InnerRace ? -0.37 : 0.0, 0, 1.5e-3, 20e-6};

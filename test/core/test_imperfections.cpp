@@ -173,6 +173,78 @@ TEST(Spall, ASharpEdgedSpallShallowerThanTheBallCanDropHasAFlatFloor) {
   }
 }
 
+// A round pit (an EDM hole, 0.5334 mm across, 279.4 um deep) under ball 0 of a bearing whose
+// grooves' radii are 0.52 d: across the track the groove nearly conforms to the ball, the gap
+// between them y^2 / 2 (2 / d - 1 / (0.52 d)) at a distance y from the contact's centre line, so
+// the ball rests on the pit's sides after w^2 / 8 (2 / d - 1 / (0.52 d)) = 0.34 um, long before
+// it would rest on its edges along the track (7.4 um in the outer race, 11.2 um in the inner).
+// Near an edge, where the pivoting drop along the track is the smaller, that one holds.
+TEST(Spall, ABallOverARoundPitRestsOnItsSidesAcrossTheTrack) {
+  const double w = 0.5334e-3, d = 7.94e-3, dm = 39.04e-3;
+  const double across = w * w / 8.0 * (2.0 / d - 1.0 / (0.52 * d));
+  const BearingModel a(deep_groove(""));
+  const Vector5 q = solve_static(a, test::load5(1000.0, 0, 0, 0, 0)).displacement;
+  for (const char* race : {"outer_race", "inner_race"}) {
+    const BearingModel b(deep_groove(std::string("imperfections: {spall_edges: sharp, spall_pits: round}\n"
+                                                 "defects:\n  - {surface: ") +
+                                     race + ", position_deg: 0, width_mm: 0.5334, depth_um: 279.4}\n"));
+    EXPECT_NEAR(a.ball_states(q, 0.0)[0].deflection_m - b.ball_states(q, 0.0)[0].deflection_m, across, 1e-12) << race;
+  }
+  // Along the outer race (radius R at the contact): the smaller of the two drops.
+  const double R = 0.5 * (dm + d), along = w * w / 8.0 * (2.0 / d - 1.0 / R);
+  const BearingModel b(
+      deep_groove("imperfections: {spall_edges: sharp, spall_pits: round}\n"
+                  "defects:\n  - {surface: outer_race, position_deg: 0, width_mm: 0.5334, depth_um: 279.4}\n"));
+  for (const double f : {0.5, 0.9, 0.97}) {
+    const double cage = f * 0.5 * w / R, u = 1.0 - f;
+    EXPECT_NEAR(a.ball_states(q, cage)[0].deflection_m - b.ball_states(q, cage)[0].deflection_m,
+                std::min(across, along * u * u), 1e-12)
+        << "at " << f << " of the half width";
+  }
+}
+
+// Its recast rim, 1 um high and 100 um wide, a ring round the pit: the ball gains the rim's
+// height on its crest, half the rim's width past the edge along the track; over the pit it
+// rests on the ring's crest across the track, (w + b) / 2 from the centre, and keeps
+// h - (w + b)^2 / 8 (2 / d - 1 / (0.52 d)) = 0.51 um of it. Past the rim nothing changes. A
+// trench-shaped pit with the same rim drops the ball along the track as without one.
+TEST(Spall, ARoundPitsRecastRimLiftsTheBallOnItsCrestAndOverThePit) {
+  const double w = 0.5334e-3, b = 100e-6, h = 1e-6, d = 7.94e-3, R = 0.5 * (39.04e-3 + 7.94e-3);
+  const std::string pit = "defects:\n  - {surface: outer_race, position_deg: 0, width_mm: 0.5334, depth_um: 279.4}\n";
+  const BearingModel a(deep_groove(""));
+  const BearingModel round(deep_groove(
+      "imperfections: {spall_edges: sharp, spall_pits: round, spall_rim_height_um: 1, spall_rim_width_um: 100}\n" +
+      pit));
+  const BearingModel trench(
+      deep_groove("imperfections: {spall_edges: sharp, spall_rim_height_um: 1, spall_rim_width_um: 100}\n" + pit));
+  const Vector5 q = solve_static(a, test::load5(1000.0, 0, 0, 0, 0)).displacement;
+  const auto drop = [&](const BearingModel& m, double along_m) {
+    return a.ball_states(q, along_m / R)[0].deflection_m - m.ball_states(q, along_m / R)[0].deflection_m;
+  };
+  EXPECT_NEAR(drop(round, 0.0), (w + b) * (w + b) / 8.0 * (2.0 / d - 1.0 / (0.52 * d)) - h, 1e-12);
+  EXPECT_NEAR(drop(trench, 0.0), w * w / 8.0 * (2.0 / d - 1.0 / R), 1e-12);
+  for (const BearingModel* m : {&round, &trench}) {
+    EXPECT_NEAR(drop(*m, 0.5 * w + 0.5 * b), -h, 1e-12);          // the crest
+    EXPECT_NEAR(drop(*m, -0.5 * w - 0.25 * b), -0.5 * h, 1e-12);  // halfway up its flank, sin^2
+    EXPECT_DOUBLE_EQ(drop(*m, 0.5 * w + 1.01 * b), 0.0);          // past it
+  }
+}
+
+TEST(Spall, UnknownPitShapesAndRimsWithoutSharpEdgesAreRefusedNamingTheKey) {
+  test::expect_config_error([] { BearingModel m(deep_groove("imperfections: {spall_pits: square}\n")); },
+                            {"imperfections.spall_pits", "'trench' or 'round'"}, "spall_pits: square");
+  test::expect_config_error(
+      [] { BearingModel m(deep_groove("imperfections: {spall_rim_height_um: 1, spall_rim_width_um: 100}\n")); },
+      {"imperfections.spall_rim_height_um", "spall_edges: sharp"}, "a rim on a rounded edge");
+  test::expect_config_error(
+      [] {
+        BearingModel m(
+            deep_groove("imperfections: {spall_edges: sharp, spall_rim_height_um: 30, "
+                        "spall_rim_width_um: 100}\n"));
+      },
+      {"imperfections.spall_rim_height_um", "[0, 20] um"}, "a 30 um rim");
+}
+
 TEST(Spall, AnUnknownSpallEdgeIsRefusedNamingTheKey) {
   test::expect_config_error([] { BearingModel m(deep_groove("imperfections: {spall_edges: jagged}\n")); },
                             {"imperfections.spall_edges", "'rounded' or 'sharp'"}, "spall_edges: jagged");

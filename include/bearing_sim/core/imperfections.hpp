@@ -94,6 +94,17 @@ struct ImperfectionSpec {
   // on the nearer edge, its centre drops by min(h, D (1 - 2|x| / w)^2) (D = drop_depth, the
   // drop resting on both edges), steepest where it meets the far edge (docs/model.md 9.6).
   bool spall_sharp_edges = false;
+  // Round pits (an EDM hole) narrower than the contact is wide: the ball drops at most until it
+  // rests on the pit's sides across the track (Imperfections::across_drop).
+  bool spall_round_pits = false;
+  // A sharp edge's rim (sharp edges only): an EDM pit's recast lip or a fresh spall's raised
+  // edge stands proud of the race, and a ball rolling over it gains deflection, struck
+  // whatever its load. A raised-cosine bump of this height just outside each edge, as wide as
+  // the contact's length along the track smooths the lip (the height is the one the contact
+  // feels: docs/model.md 9.6). Round a round pit the rim is a ring: over the pit the ball
+  // rests on the ring's crest across the track. Zero: no rim.
+  double spall_rim_height_m = 0.0;
+  double spall_rim_width_m = 0.0;  // along the rolling direction; > 0 when there is a rim
   std::vector<Spall> spalls;
   bool empty() const {
     return waviness.empty() && ball_diameter_variation_m == 0.0 && roughness_rms_m == 0.0 && spalls.empty() &&
@@ -143,7 +154,8 @@ class Imperfections {
     // cos of the unloaded contact angle: a race's curvature along the rolling direction in the
     // contact plane is cos a0 / its radius at the contact (the ball's drop into a spall).
     double cos_contact_angle = 1.0;
-    std::vector<double> base_azimuth;  // of every ball at cage angle 0, in [0, 2 pi)
+    double outer_groove_radius_m = 0.0, inner_groove_radius_m = 0.0;  // across the track
+    std::vector<double> base_azimuth;                                 // of every ball at cage angle 0, in [0, 2 pi)
   };
   Imperfections() = default;
   // Throws InvalidInputError for an imperfection or defect that does not fit the bearing.
@@ -167,7 +179,8 @@ class Imperfections {
   BallSet ball_set(const std::vector<int>& balls) const;
   void fill_ball_set(const std::vector<int>& balls, BallSet* set) const;  // reusing set's storage
   // Adds the time-varying deflection change of each ball of the set to out[0..set size).
-  // Spalls only ever remove deflection, so leaving them out gives an upper bound.
+  // Spalls only ever remove deflection, except their rims: leaving them out gives an upper
+  // bound once max_rim_height_m() is added.
   void add_offsets(const RollingPhase& phase, const BallSet& set, double* out, bool include_spalls = true) const {
     add_offsets(phase, set, out, out, include_spalls);
   }
@@ -179,15 +192,21 @@ class Imperfections {
   // centre psi loses depth cos(pi (phi - psi) / w) of deflection (the dip of add_offsets).
   struct SpallWindow {
     double cos_centre, sin_centre;  // psi, in the bearing frame
-    double sin_half_width;          // sin(w / 2); w <= pi / 2
+    double sin_half_width;          // sin(w / 2 + r): the window holds the pit and its rims
     double pi_over_width, depth;    // rad^-1, m
     // Sharp edges (ImperfectionSpec::spall_sharp_edges): the dip is
     // min(depth, geometric_depth (1 - 2|x| / w)^2), geometric_depth the drop resting on both
     // edges (drop_depth), in metres.
     bool sharp_edges;
     double geometric_depth;
+    // Sharp edges with a rim (ImperfectionSpec::spall_rim_height_m): for w/2 <= |x| < w/2 + r
+    // the dip is -rim_height sin^2(pi (|x| - w/2) / r), r the rim's angular width.
+    double half_width;         // w / 2, rad
+    double rim_height;         // m; 0: no rim, the window is the pit alone
+    double rim_pi_over_width;  // pi / r, rad^-1
     int row;
     double row_groove_centre_z;  // set by the model: the row's balls are the ones at this z
+    double pit_lift = 0.0;       // round pits: the ring rim's height, which the ball keeps over the pit
   };
   // The race spalls at `phase` into windows[0..count), count returned; -1 when there are
   // more than `capacity`.
@@ -212,6 +231,8 @@ class Imperfections {
     race_spall_count_ = 0;
   }
   const std::vector<Spall>& spalls() const { return spalls_; }
+  // The most a spall's rim adds to a ball's deflection (0 without spalls or rims), m.
+  double max_rim_height_m() const { return spalls_.empty() ? 0.0 : spec_.spall_rim_height_m; }
   const ImperfectionSpec& spec() const { return spec_; }
   // Bound on the change of a ball's deflection offset (spalls left out) when it travels
   // the given angles over the outer race, the inner race and its own surface (spin), for
@@ -229,15 +250,22 @@ class Imperfections {
   // the rolling direction (the outer race curves towards the ball, -cos a0 / R_o; the inner
   // away from it, +cos a0 / R_i; a flat race 0, w^2 / (4 d)).
   double drop_depth(double width_m, Surface race) const;
+  // A round pit's drop across the track: the groove nearly conforms to the ball, so over a
+  // pit w across the ball rests on its sides after w^2 / 8 (2 / d - 1 / r_g), r_g the groove's
+  // radius (spall_round_pits).
+  double across_drop(double width_m, Surface race) const;
+  double rim_crest_span() const;  // what the rims' crests add to a pit's width across, m
+  // The angle the rims' width spans on the spall's surface (0 without rims), rad.
+  double rim_angle(const Spall& s) const;
+  double surface_radius(Surface surface) const;  // at the contact (ball: its radius), m
   // A growing spall's window terms at time t (spall_windows).
   void grown_window(const Spall& s, double time_s, SpallWindow* w) const;
   // How far the ball nearest race spall `index` is from its even place at time t, as an
   // angle, for a spall of that angular width (bounded so that the nearest ball changes only
   // while no ball is over the spall). `start` is cage - ring - spall position.
   double place_shift_rad(std::size_t index, const Spall& s, double start, double angular_width, double time_s) const;
-  // A ball spall's chord at time t: the width struck, from its latitude (depth 0 while the
-  // track misses the spall).
-  void struck_chord(std::size_t index, double time_s, double* angular_width, double* depth) const;
+  // A ball spall's latitude off the rolling track at time t (its spin axis wanders), rad.
+  double struck_latitude(std::size_t index, double time_s) const;
   // The spin angle ball spall `index` (on `ball`) has lost by `phase`: the slips of its
   // ball's passages through the unloaded arc so far, rad.
   double spin_slip_rad(std::size_t index, int ball, const RollingPhase& phase) const;
