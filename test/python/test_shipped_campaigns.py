@@ -59,6 +59,12 @@ def test_cwru_rig_runs_are_labelled_none_inner_ball_outer_with_the_drive_end_sen
         assert 0.6 - 0.01 <= scale[0] <= 1.84 + 0.01 and abs(scale[1] / scale[0] - 1.0) < 0.02
         assert modes[3]['participation'] == file_modes[3]['participation']
         assert abs(sum(m['participation'] for m in modes) - sum(m['participation'] for m in file_modes)) <= 0.002
+        # The EDM pits are round with a recast rim 0.1 mm wide, its height the run's draw within
+        # a factor 2 of the bearing file's 1 um.
+        imperfections = yaml.safe_load(run.derived_files['bearing_file'][1])['imperfections']
+        assert imperfections['spall_pits'] == 'round' and imperfections['spall_rim_width_um'] == 100.0
+        assert imperfections['spall_rim_height_um'] == drawn['rim_height_um']
+        assert 0.5 <= drawn['rim_height_um'] <= 2.0
         record = run_index(str(CWRU_RIG), text, str(tmp_path), index)
         assert record['status'] == 'ok', record.get('error')
         labels = record['labels']
