@@ -517,31 +517,27 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
       const double offset_m = std::abs(struck_latitude(i, phase.time_s)) * 0.5 * geometry_.ball_diameter_m;
       const double half_width_m = 0.25 * angular_width * geometry_.ball_diameter_m;
       const bool ring = spec_.spall_round_pits && rim_height > 0.0;
-      if (offset_m >= half_width_m && !ring) continue;  // the track misses the pit
+      if (offset_m >= half_width_m && !ring) continue;  // the track misses the pit and has no ring
       double spin = phase.ball_spin + ball_phase_[s.ball] - s.position_rad;
       if (spec_.ball_spin_slip_rad > 0.0) spin -= spin_slip_rad(i, s.ball, phase);
       const double x = std::remainder(spin, kPi);
       // Even half turns face the outer race, odd ones the inner: the drop against its curvature.
       const bool outer = (std::lround((spin - x) / kPi) & 1) == 0;
       const Surface race = outer ? Surface::OuterRace : Surface::InnerRace;
-      double ring_height = rim_height, lift = pit_lift;
-      if (offset_m < half_width_m) {
-        angular_width *= std::sqrt(1.0 - (offset_m * offset_m) / (half_width_m * half_width_m));  // the chord
-      } else {
+      if (offset_m >= half_width_m) {
         // The track passes beside the pit: the ring's nearest crest, e beyond the contact's
         // centre line, still lifts the ball by h - e^2 / 2 (2 / d - 1 / r_g) (the gap across).
         const double e = std::max(0.0, offset_m - half_width_m - 0.5 * rim_crest_span());
-        ring_height = rim_height - across_drop(2.0 * e, race);
-        if (ring_height <= 0.0) continue;
-        angular_width = 0.0;
-        lift = 0.0;
+        const double height = rim_height - across_drop(2.0 * e, race);
+        if (height > 0.0) out[entry] -= spall_dip(x, 0.0, 0.0, sharp, 0.0, height, rim);
+        continue;
       }
+      angular_width *= std::sqrt(1.0 - (offset_m * offset_m) / (half_width_m * half_width_m));  // the chord
       const double chord_m = angular_width * 0.5 * geometry_.ball_diameter_m;
       geometric_depth = drop_depth(chord_m, race);
       double reach = std::min(depth, geometric_depth);
       if (spec_.spall_round_pits) reach = std::min(reach, across_drop(chord_m + rim_crest_span(), race));
-      if (ring) lift = std::min(lift, ring_height);
-      out[entry] -= spall_dip(x, angular_width, reach, sharp, geometric_depth, ring_height, rim, lift);
+      out[entry] -= spall_dip(x, angular_width, reach, sharp, geometric_depth, rim_height, rim, pit_lift);
     } else {
       // Only the few balls within half a width of the spall centre: find them by index,
       // since the balls of a row are evenly spaced.
