@@ -33,14 +33,19 @@ HWY_NOINLINE V WindowDip(D d, V sin_x, M inside, const Imperfections::SpallWindo
   if (w.sharp_edges) {  // min(depth, geometric_depth (1 - 2|x| / width)^2)
     const V ax = hn::Abs(hn::Asin(d, sin_x));
     const V u = hn::NegMulAdd(ax, hn::Set(d, w.pi_over_width * (2.0 / bearing_sim::kPi)), hn::Set(d, 1.0));
-    const V pit = hn::Sub(hn::Min(hn::Set(d, w.depth), hn::Mul(hn::Set(d, w.geometric_depth), hn::Mul(u, u))),
-                          hn::Set(d, w.pit_lift));
+    const V pit = hn::Min(hn::Set(d, w.depth), hn::Mul(hn::Set(d, w.geometric_depth), hn::Mul(u, u)));
     if (w.rim_height == 0.0) return hn::IfThenElseZero(inside, pit);
     // Past the edge, the rim: -h sin^2(pi (|x| - w/2) / r).
     const V half = hn::Set(d, w.half_width);
     const V v = hn::Sin(d, hn::Mul(hn::Sub(ax, half), hn::Set(d, w.rim_pi_over_width)));
     const V rim = hn::Mul(hn::Set(d, -w.rim_height), hn::Mul(v, v));
-    return hn::IfThenElseZero(inside, hn::IfThenElse(hn::Lt(ax, half), pit, rim));
+    if (w.ring_drop == 0.0) return hn::IfThenElseZero(inside, hn::IfThenElse(hn::Lt(ax, half), pit, rim));
+    // A round pit's ring: within its crest, ring_drop (crest^2 - x^2) - h, or the pit's dip if smaller.
+    const V on_ring =
+        hn::MulSub(hn::Set(d, w.ring_drop), hn::NegMulAdd(ax, ax, hn::Set(d, w.ring_crest * w.ring_crest)),
+                   hn::Set(d, w.rim_height));
+    const V inner = hn::Min(on_ring, hn::IfThenElseZero(hn::Lt(ax, half), pit));
+    return hn::IfThenElseZero(inside, hn::IfThenElse(hn::Lt(ax, hn::Set(d, w.ring_crest)), inner, rim));
   }
   return hn::IfThenElseZero(
       inside, hn::Mul(hn::Set(d, w.depth), hn::Cos(d, hn::Mul(hn::Asin(d, sin_x), hn::Set(d, w.pi_over_width)))));
@@ -195,9 +200,13 @@ ContactSums contact_sums_scalar(const ContactKernelInput& in) {
       if (cos_x > 0.0 && std::abs(sin_x) < w.sin_half_width && pz == w.row_groove_centre_z) {
         if (w.sharp_edges) {
           const double ax = std::abs(std::asin(sin_x));
-          if (w.rim_height == 0.0 || ax < w.half_width) {
-            const double u = 1.0 - ax * (w.pi_over_width * (2.0 / bearing_sim::kPi));
-            offset -= std::min(w.depth, w.geometric_depth * u * u) - w.pit_lift;
+          const double u = 1.0 - ax * (w.pi_over_width * (2.0 / bearing_sim::kPi));
+          const double pit =
+              ax < w.half_width || w.rim_height == 0.0 ? std::min(w.depth, w.geometric_depth * u * u) : 0.0;
+          if (w.ring_drop > 0.0 && ax < w.ring_crest) {  // riding a round pit's ring
+            offset -= std::min(w.ring_drop * (w.ring_crest * w.ring_crest - ax * ax) - w.rim_height, pit);
+          } else if (w.rim_height == 0.0 || ax < w.half_width) {
+            offset -= pit;
           } else {  // the rim
             const double v = std::sin((ax - w.half_width) * w.rim_pi_over_width);
             offset += w.rim_height * v * v;

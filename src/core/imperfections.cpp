@@ -43,9 +43,22 @@ inline double ring_angle(const RollingPhase& phase, Surface race) {
 // edge, geometric_depth (1 - 2|x| / w)^2, at most the effective depth (the spall's floor).
 // Sharp edges with a rim of height h and angular width r: -h sin^2(pi (|x| - w/2) / r) for
 // w/2 <= |x| < w/2 + r (the rim raises the ball).
+// A round pit's rim is a ring whose crest circles the pit at c = w/2 + r/2: inside it the ball
+// rides the crest where the ring passes beside the contact's centre line, sqrt(c^2 - x^2)
+// across, and keeps h - ring_drop (c^2 - x^2) of the lift (ring_drop: the across-track gap
+// per rad^2 of the race, across_drop(2 R)), unless the pit's own drop is the smaller.
 inline double spall_dip(double x, double angular_width, double depth, bool sharp_edges, double geometric_depth,
-                        double rim_height = 0.0, double rim_angle = 0.0, double pit_lift = 0.0) {
+                        double rim_height = 0.0, double rim_angle = 0.0, double ring_drop = 0.0) {
   const double ax = std::abs(x), half = 0.5 * angular_width;
+  if (ring_drop > 0.0) {
+    const double crest = half + 0.5 * rim_angle;
+    if (ax < crest) {
+      const double on_ring = ring_drop * (crest * crest - ax * ax) - rim_height;
+      if (!(ax < half)) return std::min(on_ring, 0.0);
+      const double u = 1.0 - ax / half;
+      return std::min(on_ring, std::min(depth, geometric_depth * u * u));
+    }
+  }
   if (!(ax < half)) {
     if (!(rim_height > 0.0 && ax < half + rim_angle)) return 0.0;
     if (half == 0.0) {  // a ring rim passed beside its pit: one bump, 2 r long
@@ -57,7 +70,7 @@ inline double spall_dip(double x, double angular_width, double depth, bool sharp
   }
   if (!sharp_edges) return depth * std::cos(kPi * x / angular_width);
   const double u = 1.0 - ax / half;
-  return std::min(depth, geometric_depth * u * u) - pit_lift;
+  return std::min(depth, geometric_depth * u * u);
 }
 }  // namespace
 
@@ -289,7 +302,8 @@ int Imperfections::spall_windows(const RollingPhase& phase, SpallWindow* windows
     const double rim = rim_angle(s);
     w.rim_height = rim > 0.0 ? spec_.spall_rim_height_m : 0.0;
     w.rim_pi_over_width = rim > 0.0 ? kPi / rim : 0.0;
-    w.pit_lift = spec_.spall_round_pits ? w.rim_height : 0.0;
+    w.ring_drop = spec_.spall_round_pits && rim > 0.0 ? across_drop(2.0 * surface_radius(s.surface), s.surface) : 0.0;
+    w.ring_crest = w.half_width + 0.5 * rim;
     double centre = ring_angle(phase, s.surface) + s.position_rad;
     if (spec_.ball_place_wander_m > 0.0)
       centre -= place_shift_rad(i, s, phase.cage - centre, std::asin(w.sin_half_width) * 2.0, phase.time_s);
@@ -507,8 +521,8 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
     if (!shape.fixed) spall_size(s, phase.time_s, &angular_width, &depth, &geometric_depth);
     const bool sharp = spec_.spall_sharp_edges;
     const double rim = rim_angle(s), rim_height = rim > 0.0 ? spec_.spall_rim_height_m : 0.0;
-    // A round pit's rim is a ring: over the pit the ball rests on its sides, the rim's height up.
-    const double pit_lift = spec_.spall_round_pits ? rim_height : 0.0;
+    // A round pit's rim is a ring: over the pit the ball rides its crest (spall_dip).
+    const bool ring = spec_.spall_round_pits && rim_height > 0.0;
     if (s.surface == Surface::Ball) {
       // The spot faces the outer and the inner race once each per spin turn.
       const int entry = set.entry_of_ball[s.ball];
@@ -516,7 +530,6 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
       // The pit's latitude off the rolling track, as a distance on the ball (m).
       const double offset_m = std::abs(struck_latitude(i, phase.time_s)) * 0.5 * geometry_.ball_diameter_m;
       const double half_width_m = 0.25 * angular_width * geometry_.ball_diameter_m;
-      const bool ring = spec_.spall_round_pits && rim_height > 0.0;
       if (offset_m >= half_width_m && !ring) continue;  // the track misses the pit and has no ring
       double spin = phase.ball_spin + ball_phase_[s.ball] - s.position_rad;
       if (spec_.ball_spin_slip_rad > 0.0) spin -= spin_slip_rad(i, s.ball, phase);
@@ -537,7 +550,8 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
       geometric_depth = drop_depth(chord_m, race);
       double reach = std::min(depth, geometric_depth);
       if (spec_.spall_round_pits) reach = std::min(reach, across_drop(chord_m + rim_crest_span(), race));
-      out[entry] -= spall_dip(x, angular_width, reach, sharp, geometric_depth, rim_height, rim, pit_lift);
+      const double ring_drop = ring ? across_drop(geometry_.ball_diameter_m, race) : 0.0;
+      out[entry] -= spall_dip(x, angular_width, reach, sharp, geometric_depth, rim_height, rim, ring_drop);
     } else {
       // Only the few balls within half a width of the spall centre: find them by index,
       // since the balls of a row are evenly spaced.
@@ -549,6 +563,7 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
       }
       const int z = geometry_.balls_per_row;
       const double* all_base = geometry_.base_azimuth.data();
+      const double ring_drop = ring ? across_drop(2.0 * surface_radius(s.surface), s.surface) : 0.0;
       const double pitches_per_rad = z / kTwoPi;
       // Ball j of a row sits within the spacing error of row_phase + j pitch: the spall's
       // half width plus that error, in pitches, either side of its centre. Floor and ceil
@@ -577,7 +592,7 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
           // To [-pi, pi]; the product by 1/(2 pi) can round differently from the quotient
           // only next to +-pi, where no spall reaches (at most a quarter turn wide).
           const double x = angle - kTwoPi * round_to_nearest(angle * kInverseTwoPi);
-          out[entry] -= spall_dip(x, angular_width, depth, sharp, geometric_depth, rim_height, rim, pit_lift);
+          out[entry] -= spall_dip(x, angular_width, depth, sharp, geometric_depth, rim_height, rim, ring_drop);
         }
       }
     }

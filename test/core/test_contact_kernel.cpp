@@ -97,7 +97,7 @@ TEST(ContactKernel, SimdAndScalarKernelsAgreeOnRandomBallsWithEdgeCases) {
           const double width = 0.01 + 0.59 * std::abs(u(rng));
           const double centre = cage + std::atan2(sb[b], cb[b]) + 0.02 * u(rng);
           // Every other trial: sharp edges with a rim 0.1-0.4 of the width wide, the first
-          // spall a round pit (the ball kept up by the ring rim over it).
+          // spall a round pit (the ball riding the ring rim's crest over it).
           const bool sharp = trial % 2 == 1;
           const double rim = sharp ? width * (0.1 + 0.3 * std::abs(u(rng))) : 0.0;
           const double rim_height = sharp ? 3e-6 * std::abs(u(rng)) : 0.0;
@@ -106,7 +106,8 @@ TEST(ContactKernel, SimdAndScalarKernelsAgreeOnRandomBallsWithEdgeCases) {
                              /*geometric_depth=*/sharp ? 4e-5 * std::abs(u(rng)) : 0.0,
                              /*half_width=*/0.5 * width, rim_height,
                              /*rim_pi_over_width=*/sharp ? 3.141592653589793 / rim : 0.0, k, k == 0 ? row_z : -row_z,
-                             /*pit_lift=*/sharp && k == 0 ? rim_height : 0.0});
+                             /*ring_drop=*/sharp && k == 0 ? 4e-5 * std::abs(u(rng)) : 0.0,
+                             /*ring_crest=*/0.5 * width + 0.5 * rim});
         }
         const detail::ContactKernelInput in{std::cos(cage),
                                             std::sin(cage),

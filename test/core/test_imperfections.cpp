@@ -203,13 +203,16 @@ TEST(Spall, ABallOverARoundPitRestsOnItsSidesAcrossTheTrack) {
   }
 }
 
-// Its recast rim, 1 um high and 100 um wide, a ring round the pit: the ball gains the rim's
-// height on its crest, half the rim's width past the edge along the track; over the pit it
-// rests on the ring's crest across the track, (w + b) / 2 from the centre, and keeps
-// h - (w + b)^2 / 8 (2 / d - 1 / (0.52 d)) = 0.51 um of it. Past the rim nothing changes. A
-// trench-shaped pit with the same rim drops the ball along the track as without one.
+// Its recast rim, 1 um high and 100 um wide, a ring round the pit whose crest circles it at
+// c = (w + b) / 2: the ball gains the rim's height on the crest, c from the centre along the
+// track. Nearer the centre it rides the crest where the ring passes beside it, y = sqrt(c^2 - x^2)
+// across, and keeps h - y^2 / 2 (2 / d - 1 / (0.52 d)) of the lift: 0.51 um over the centre,
+// nearly all of it over the ring's inner flank. Past the rim nothing changes. A trench-shaped
+// pit with the same rim drops the ball along the track as without one, and its rim is a bump
+// beside each edge: halfway down the inner flank it keeps half the height (sin^2).
 TEST(Spall, ARoundPitsRecastRimLiftsTheBallOnItsCrestAndOverThePit) {
   const double w = 0.5334e-3, b = 100e-6, h = 1e-6, d = 7.94e-3, R = 0.5 * (39.04e-3 + 7.94e-3);
+  const double c = 0.5 * (w + b), across_curvature = 2.0 / d - 1.0 / (0.52 * d);
   const std::string pit = "defects:\n  - {surface: outer_race, position_deg: 0, width_mm: 0.5334, depth_um: 279.4}\n";
   const BearingModel a(deep_groove(""));
   const BearingModel round(deep_groove(
@@ -221,11 +224,13 @@ TEST(Spall, ARoundPitsRecastRimLiftsTheBallOnItsCrestAndOverThePit) {
   const auto drop = [&](const BearingModel& m, double along_m) {
     return a.ball_states(q, along_m / R)[0].deflection_m - m.ball_states(q, along_m / R)[0].deflection_m;
   };
-  EXPECT_NEAR(drop(round, 0.0), (w + b) * (w + b) / 8.0 * (2.0 / d - 1.0 / (0.52 * d)) - h, 1e-12);
+  for (const double x : {0.0, 0.3 * w, 0.5 * w, 0.5 * w + 0.25 * b})
+    EXPECT_NEAR(drop(round, -x), 0.5 * (c * c - x * x) * across_curvature - h, 1e-12) << "at " << x * 1e6 << " um";
   EXPECT_NEAR(drop(trench, 0.0), w * w / 8.0 * (2.0 / d - 1.0 / R), 1e-12);
+  EXPECT_NEAR(drop(trench, -0.5 * w - 0.25 * b), -0.5 * h, 1e-12);  // halfway down the rim's inner flank
   for (const BearingModel* m : {&round, &trench}) {
     EXPECT_NEAR(drop(*m, 0.5 * w + 0.5 * b), -h, 1e-12);          // the crest
-    EXPECT_NEAR(drop(*m, -0.5 * w - 0.25 * b), -0.5 * h, 1e-12);  // halfway up its flank, sin^2
+    EXPECT_NEAR(drop(*m, -0.5 * w - 0.75 * b), -0.5 * h, 1e-12);  // halfway down its outer flank, sin^2
     EXPECT_DOUBLE_EQ(drop(*m, 0.5 * w + 1.01 * b), 0.0);          // past it
   }
 }

@@ -206,7 +206,11 @@ class Imperfections {
     double rim_pi_over_width;  // pi / r, rad^-1
     int row;
     double row_groove_centre_z;  // set by the model: the row's balls are the ones at this z
-    double pit_lift = 0.0;       // round pits: the ring rim's height, which the ball keeps over the pit
+    // Round pits with a rim: a ring whose crest circles the pit at ring_crest = w / 2 + r / 2
+    // (rad); for |x| < ring_crest the dip is min(ring_drop (ring_crest^2 - x^2) - rim_height,
+    // the pit's dip (0 past the edge)), ring_drop the across-track gap per rad^2 (m). 0: none.
+    double ring_drop = 0.0;
+    double ring_crest = 0.0;
   };
   // The race spalls at `phase` into windows[0..count), count returned; -1 when there are
   // more than `capacity`.
