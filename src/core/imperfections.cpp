@@ -50,15 +50,13 @@ inline double ring_angle(const RollingPhase& phase, Surface race) {
 inline double spall_dip(double x, double angular_width, double depth, bool sharp_edges, double geometric_depth,
                         double rim_height = 0.0, double rim_angle = 0.0, double ring_drop = 0.0) {
   const double ax = std::abs(x), half = 0.5 * angular_width;
-  if (ring_drop > 0.0) {
-    const double crest = half + 0.5 * rim_angle;
-    if (ax < crest) {
-      const double on_ring = ring_drop * (crest * crest - ax * ax) - rim_height;
-      if (!(ax < half)) return std::min(on_ring, 0.0);
-      const double u = 1.0 - ax / half;
-      return std::min(on_ring, std::min(depth, geometric_depth * u * u));
-    }
-  }
+  const auto pivoting_drop = [&] {
+    const double u = 1.0 - ax / half;
+    return std::min(depth, geometric_depth * u * u);
+  };
+  const double crest = half + 0.5 * rim_angle;
+  if (ring_drop > 0.0 && ax < crest)
+    return std::min(ring_drop * (crest * crest - ax * ax) - rim_height, ax < half ? pivoting_drop() : 0.0);
   if (!(ax < half)) {
     if (!(rim_height > 0.0 && ax < half + rim_angle)) return 0.0;
     if (half == 0.0) {  // a ring rim passed beside its pit: one bump, 2 r long
@@ -69,8 +67,7 @@ inline double spall_dip(double x, double angular_width, double depth, bool sharp
     return -rim_height * v * v;
   }
   if (!sharp_edges) return depth * std::cos(kPi * x / angular_width);
-  const double u = 1.0 - ax / half;
-  return std::min(depth, geometric_depth * u * u);
+  return pivoting_drop();
 }
 }  // namespace
 
@@ -302,7 +299,7 @@ int Imperfections::spall_windows(const RollingPhase& phase, SpallWindow* windows
     const double rim = rim_angle(s);
     w.rim_height = rim > 0.0 ? spec_.spall_rim_height_m : 0.0;
     w.rim_pi_over_width = rim > 0.0 ? kPi / rim : 0.0;
-    w.ring_drop = spec_.spall_round_pits && rim > 0.0 ? across_drop(2.0 * surface_radius(s.surface), s.surface) : 0.0;
+    w.ring_drop = ring_drop(s, s.surface);
     w.ring_crest = w.half_width + 0.5 * rim;
     double centre = ring_angle(phase, s.surface) + s.position_rad;
     if (spec_.ball_place_wander_m > 0.0)
@@ -385,6 +382,10 @@ double Imperfections::surface_radius(Surface surface) const {
   return surface == Surface::Ball        ? 0.5 * geometry_.ball_diameter_m
          : surface == Surface::OuterRace ? geometry_.outer_race_radius_m
                                          : geometry_.inner_race_radius_m;
+}
+
+double Imperfections::ring_drop(const Spall& s, Surface race) const {
+  return spec_.spall_round_pits && rim_angle(s) > 0.0 ? across_drop(2.0 * surface_radius(s.surface), race) : 0.0;
 }
 
 double Imperfections::rim_angle(const Spall& s) const {
@@ -550,8 +551,7 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
       geometric_depth = drop_depth(chord_m, race);
       double reach = std::min(depth, geometric_depth);
       if (spec_.spall_round_pits) reach = std::min(reach, across_drop(chord_m + rim_crest_span(), race));
-      const double ring_drop = ring ? across_drop(geometry_.ball_diameter_m, race) : 0.0;
-      out[entry] -= spall_dip(x, angular_width, reach, sharp, geometric_depth, rim_height, rim, ring_drop);
+      out[entry] -= spall_dip(x, angular_width, reach, sharp, geometric_depth, rim_height, rim, ring_drop(s, race));
     } else {
       // Only the few balls within half a width of the spall centre: find them by index,
       // since the balls of a row are evenly spaced.
@@ -563,7 +563,7 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
       }
       const int z = geometry_.balls_per_row;
       const double* all_base = geometry_.base_azimuth.data();
-      const double ring_drop = ring ? across_drop(2.0 * surface_radius(s.surface), s.surface) : 0.0;
+      const double ring_gap = ring_drop(s, s.surface);
       const double pitches_per_rad = z / kTwoPi;
       // Ball j of a row sits within the spacing error of row_phase + j pitch: the spall's
       // half width plus that error, in pitches, either side of its centre. Floor and ceil
@@ -592,7 +592,7 @@ void Imperfections::add_offsets(const RollingPhase& phase, const BallSet& set, c
           // To [-pi, pi]; the product by 1/(2 pi) can round differently from the quotient
           // only next to +-pi, where no spall reaches (at most a quarter turn wide).
           const double x = angle - kTwoPi * round_to_nearest(angle * kInverseTwoPi);
-          out[entry] -= spall_dip(x, angular_width, depth, sharp, geometric_depth, rim_height, rim, ring_drop);
+          out[entry] -= spall_dip(x, angular_width, depth, sharp, geometric_depth, rim_height, rim, ring_gap);
         }
       }
     }

@@ -261,6 +261,9 @@ class Imperfections {
   double rim_crest_span() const;  // what the rims' crests add to a pit's width across, m
   // The angle the rims' width spans on the spall's surface (0 without rims), rad.
   double rim_angle(const Spall& s) const;
+  // A round pit's ring (none: 0): the across-track gap against `race` per rad^2 of the pit's
+  // surface, across_drop(2 radius), which the ball keeps off the ring's crest (spall_dip).
+  double ring_drop(const Spall& s, Surface race) const;
   double surface_radius(Surface surface) const;  // at the contact (ball: its radius), m
   // A growing spall's window terms at time t (spall_windows).
   void grown_window(const Spall& s, double time_s, SpallWindow* w) const;
