@@ -101,8 +101,8 @@ struct ImperfectionSpec {
   // edge stands proud of the race, and a ball rolling over it gains deflection, struck
   // whatever its load. A raised-cosine bump of this height just outside each edge, as wide as
   // the contact's length along the track smooths the lip (the height is the one the contact
-  // feels: docs/model.md 9.6). Round a round pit the rim is a ring: over the pit the ball
-  // rests on the ring's crest across the track. Zero: no rim.
+  // feels: docs/model.md 9.6). Round a round pit the rim is a ring: inside its crest circle
+  // the ball rides the crest where it passes beside the contact. Zero: no rim.
   double spall_rim_height_m = 0.0;
   double spall_rim_width_m = 0.0;  // along the rolling direction; > 0 when there is a rim
   std::vector<Spall> spalls;
