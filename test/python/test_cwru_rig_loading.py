@@ -54,7 +54,7 @@ def test_a_drop_into_a_pit_at_six_oclock_reads_positive_up(tmp_path):
     # records at 6 o'clock, 234-237: skewness +0.09 to +0.13). A ball's drop into a pit taken as
     # a trench, without a rim, under the radial load alone reads positive with that axis (+0.29;
     # along +x, down, the sign is the opposite). The file's round pits with their rim lift the
-    # ball instead and read -0.36 here (docs/cwru_rig.md, "Round pits and their recast rim").
+    # ball instead and read -0.37 here (docs/cwru_rig.md, "Round pits and their recast rim").
     text = pathlib.Path(BEARING).read_text(encoding='utf-8')
     for line in ('  spall_pits: round', '  spall_rim_height_um: 1.0', '  spall_rim_width_um: 100.0'):
         assert line in text
