@@ -338,10 +338,11 @@ double Imperfections::place_shift_rad(std::size_t index, const Spall& s, double 
 }
 
 double Imperfections::struck_latitude(std::size_t index, double time_s) const {
-  if (spec_.ball_spin_axis_wander_rad <= 0.0) return 0.0;
+  if (spec_.ball_spin_axis_wander_rad <= 0.0) return spec_.ball_spall_latitude_rad;
   const std::uint64_t key = detail::mix64(spec_.seed ^ 0x3c6ef372fe94f82bull) ^ detail::mix64(index);
-  return spec_.ball_spin_axis_wander_rad *
-         detail::smooth_normal(key, time_s / spec_.ball_spin_axis_wander_correlation_s);
+  return spec_.ball_spall_latitude_rad +
+         spec_.ball_spin_axis_wander_rad *
+             detail::smooth_normal(key, time_s / spec_.ball_spin_axis_wander_correlation_s);
 }
 
 double Imperfections::drop_depth(double width_m, Surface race) const {

@@ -60,6 +60,9 @@ void read_imperfection_keys(const detail::Reader& r, int rows, ImperfectionSpec*
   spec.ball_spin_axis_wander_rad = r.number("ball_spin_axis_wander_deg", 0.0) * kPi / 180.0;
   r.require(spec.ball_spin_axis_wander_rad >= 0.0 && spec.ball_spin_axis_wander_rad < 0.5 * kPi,
             "ball_spin_axis_wander_deg", "must be in [0, 90) deg");
+  spec.ball_spall_latitude_rad = r.number("ball_spall_latitude_deg", 0.0) * kPi / 180.0;
+  r.require(spec.ball_spall_latitude_rad >= 0.0 && spec.ball_spall_latitude_rad <= 0.5 * kPi, "ball_spall_latitude_deg",
+            "must be in [0, 90] deg");
   spec.ball_spin_axis_wander_correlation_s = r.number("ball_spin_axis_wander_correlation_s", 0.1);
   r.require(spec.ball_spin_axis_wander_correlation_s >= 1e-4 && spec.ball_spin_axis_wander_correlation_s <= 1e3,
             "ball_spin_axis_wander_correlation_s", "must be in [1e-4, 1e3] s");
@@ -151,11 +154,25 @@ ImperfectionSpec parse_imperfections(const YAML::Node& imperfections, const YAML
   if (imperfections) {
     if (!imperfections.IsMap()) throw ConfigError(source + ": key 'imperfections': expected a mapping");
     detail::Reader r(imperfections, source, "imperfections.");
-    r.check_keys({"seed", "waviness", "ball_diameter_variation_um", "roughness_rms_um", "roughness_row",
-                  "ball_spacing_jitter_mm", "cage_slip_percent", "cage_slip_variation_percent",
-                  "cage_slip_correlation_s", "ball_place_wander_mm", "ball_place_wander_correlation_s",
-                  "ball_spin_axis_wander_deg", "ball_spin_axis_wander_correlation_s", "ball_spin_slip_deg",
-                  "ball_spin_slip_azimuth_deg", "spall_edges", "spall_rim_height_um", "spall_rim_width_um",
+    r.check_keys({"seed",
+                  "waviness",
+                  "ball_diameter_variation_um",
+                  "roughness_rms_um",
+                  "roughness_row",
+                  "ball_spacing_jitter_mm",
+                  "cage_slip_percent",
+                  "cage_slip_variation_percent",
+                  "cage_slip_correlation_s",
+                  "ball_place_wander_mm",
+                  "ball_place_wander_correlation_s",
+                  "ball_spin_axis_wander_deg",
+                  "ball_spin_axis_wander_correlation_s",
+                  "ball_spall_latitude_deg",
+                  "ball_spin_slip_deg",
+                  "ball_spin_slip_azimuth_deg",
+                  "spall_edges",
+                  "spall_rim_height_um",
+                  "spall_rim_width_um",
                   "spall_pits"});
     read_imperfection_keys(r, rows, &spec);
     const YAML::Node list = imperfections["waviness"];

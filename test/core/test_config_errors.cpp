@@ -131,8 +131,8 @@ TEST(ConfigErrors, OutOfRange) {
   // A row phase beyond a turn (1e308 lost every digit of the azimuth; 1e20 put all balls at one).
   expect_bearing_error(yaml({{"rows", "2"}, {"row_spacing_mm", "10"}, {"row_phase_deg", "1e308"}}), {"row_phase_deg"});
   expect_bearing_error(yaml({{"rows", "2"}, {"row_spacing_mm", "10"}, {"row_phase_deg", "-361"}}), {"row_phase_deg"});
-  EXPECT_NO_THROW(
-      bearing_config_from_string(yaml({{"rows", "2"}, {"row_spacing_mm", "10"}, {"row_phase_deg", "-360"}}), kBearingSource));
+  EXPECT_NO_THROW(bearing_config_from_string(yaml({{"rows", "2"}, {"row_spacing_mm", "10"}, {"row_phase_deg", "-360"}}),
+                                             kBearingSource));
   // Balls that do not fit on the pitch circle: 40 x 7.94 mm > pi x 39.04 mm.
   expect_bearing_error(yaml({{"balls_per_row", "40"}}), {"balls_per_row"});
   // Limits are open/closed as documented: 0 deg and just under 60 deg are accepted.
@@ -147,7 +147,7 @@ TEST(ConfigErrors, NonFinite) {
     expect_bearing_error(yaml({{"clearance_um", v}}), {"clearance_um"});
     expect_bearing_error(yaml({{"material", std::string("{youngs_modulus_GPa: ") + v + "}"}}), {"youngs_modulus_GPa"});
     expect_bearing_error(yaml({{"damping", std::string("{contact_damping_Ns_per_m: ") + v + "}"}}),
-                 {"contact_damping_Ns_per_m"});
+                         {"contact_damping_Ns_per_m"});
   }
 }
 
@@ -278,6 +278,14 @@ TEST(ConfigErrors, TheBallSpinSlipIsReadInDegrees) {
   EXPECT_NEAR(absent.ball_spin_slip_azimuth_rad, kPi, 1e-15);
 }
 
+// A ball spall's mean latitude is given in degrees; without the key the spall is on the track.
+TEST(ConfigErrors, TheBallSpallLatitudeIsReadInDegrees) {
+  const ImperfectionSpec given =
+      imperfections_from_string("imperfections: {ball_spall_latitude_deg: 30}\n", kBearingSource, 1);
+  EXPECT_NEAR(given.ball_spall_latitude_rad, kPi / 6.0, 1e-15);
+  EXPECT_EQ(imperfections_from_string("imperfections: {}\n", kBearingSource, 1).ball_spall_latitude_rad, 0.0);
+}
+
 // Its keys are checked as a bearing file's, and a key of neither section is refused by name.
 TEST(ConfigErrors, AnImperfectionsTextWithABadKeyIsRefusedNamingIt) {
   const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
@@ -288,6 +296,10 @@ TEST(ConfigErrors, AnImperfectionsTextWithABadKeyIsRefusedNamingIt) {
       {"imperfections: {ball_spin_slip_deg: 181}\n", {"key 'imperfections.ball_spin_slip_deg'", "[0, 180] deg"}},
       {"imperfections: {ball_spin_slip_deg: .nan}\n", {"key 'imperfections.ball_spin_slip_deg'", "finite"}},
       {"imperfections: {ball_spin_slip_deg: ten}\n", {"key 'imperfections.ball_spin_slip_deg'", "a number"}},
+      {"imperfections: {ball_spall_latitude_deg: -1}\n",
+       {"key 'imperfections.ball_spall_latitude_deg'", "[0, 90] deg"}},
+      {"imperfections: {ball_spall_latitude_deg: 91}\n",
+       {"key 'imperfections.ball_spall_latitude_deg'", "[0, 90] deg"}},
       {"imperfections: {ball_spin_slip_azimuth_deg: 400}\n",
        {"key 'imperfections.ball_spin_slip_azimuth_deg'", "[-360, 360] deg"}},
       {"- a list\n", {"expected a YAML mapping"}}};

@@ -141,6 +141,52 @@ TEST(ImpactScatter, WanderingSpinAxisStrikesTheShareOfTimeTheLatitudeIsOnTheSpal
   for (int k = 0; k < 20; ++k) EXPECT_TRUE(struck_at(steady, 0.1 * k + 0.05));
 }
 
+// The same spall left by the assembly at a mean latitude L off the track, wandering about it:
+// struck while |L + s Z| < h, a share Phi((h - L) / s) - Phi((-h - L) / s) of the time
+// (Z standard normal). Sampled as above (binomial standard error <= 0.8 %; 3 %). Without
+// wander, a spall off the track (L > h, no rim) is never struck, one on it always.
+TEST(ImpactScatter, ASpallLeftOffTheTrackIsStruckOnlyWhileTheWanderBringsItBack) {
+  ImperfectionSpec spec;
+  spec.seed = 5;
+  Spall s;
+  s.surface = Surface::Ball;
+  s.ball = 0;
+  s.width_m = 0.5e-3;
+  s.depth_m = 20e-6;
+  spec.spalls.push_back(s);
+  const double half_width = 0.5 * s.width_m / (0.5 * 7.94e-3);
+  const auto struck_at = [&](const Imperfections& imp, double t) {
+    std::vector<double> out(9);
+    for (double spin = 0.0; spin < kTwoPi; spin += 0.1 * 2.0 * half_width) {
+      RollingPhase p;
+      p.time_s = t;
+      p.ball_spin = spin;
+      std::fill(out.begin(), out.end(), 0.0);
+      imp.add_offsets(p, out.data());
+      if (out[0] < 0.0) return true;
+    }
+    return false;
+  };
+  const auto phi = [](double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); };
+  spec.ball_spall_latitude_rad = 1.5 * half_width;
+  spec.ball_spin_axis_wander_rad = 1.0 * half_width;
+  spec.ball_spin_axis_wander_correlation_s = 0.1;
+  const Imperfections imp(spec, row_of_nine());
+  int struck = 0;
+  const int draws = 4000;
+  for (int k = 0; k < draws; ++k) struck += struck_at(imp, 0.1 * k + 0.05) ? 1 : 0;
+  const double expected = phi((1.0 - 1.5) / 1.0) - phi((-1.0 - 1.5) / 1.0);  // 0.302
+  EXPECT_NEAR(static_cast<double>(struck) / draws, expected, 0.03);
+  spec.ball_spin_axis_wander_rad = 0.0;
+  const Imperfections off_track(spec, row_of_nine());
+  spec.ball_spall_latitude_rad = 0.5 * half_width;
+  const Imperfections on_track(spec, row_of_nine());
+  for (int k = 0; k < 20; ++k) {
+    EXPECT_FALSE(struck_at(off_track, 0.1 * k + 0.05));
+    EXPECT_TRUE(struck_at(on_track, 0.1 * k + 0.05));
+  }
+}
+
 // The spin angle at which ball 0's spall is deepest at `phase` (the spin swept over the half
 // turn in which the spall meets a race, time and cage held), from the dip's centroid on the
 // circle of doubled angles (the dip repeats every half turn), in [-pi/2, pi/2).

@@ -65,6 +65,7 @@ def test_cwru_rig_runs_are_labelled_none_inner_ball_outer_with_the_drive_end_sen
         assert imperfections['spall_pits'] == 'round' and imperfections['spall_rim_width_um'] == 100.0
         assert imperfections['spall_rim_height_um'] == drawn['rim_height_um']
         assert 0.5 <= drawn['rim_height_um'] <= 2.0
+        assert imperfections['ball_spall_latitude_deg'] == drawn['ball_spall_latitude_deg']
         record = run_index(str(CWRU_RIG), text, str(tmp_path), index)
         assert record['status'] == 'ok', record.get('error')
         labels = record['labels']
@@ -80,3 +81,16 @@ def test_cwru_rig_runs_are_labelled_none_inner_ball_outer_with_the_drive_end_sen
         assert 1e-4 < rms_g < 10.0, rms_g
         status = json.loads((tmp_path / 'runs' / f'run_{index:07d}.json').read_text())
         assert status['parameters']['defects'] == run.parameters['defects']
+
+
+def test_cwru_rig_ball_pits_lie_at_the_latitudes_of_a_spot_at_random_on_a_sphere():
+    """Where the assembly left the ball's pit (docs/model.md 9.5): a spot at random on a sphere
+    has a latitude whose sine is uniform (equal-height zones have equal areas), so the
+    campaign's equally likely choices are the midpoints of n equal bins of the sine. Rounded to
+    0.1 deg, each sine is off by at most 0.05 deg x pi / 180 < 0.001."""
+    spec = yaml.safe_load(CWRU_RIG.read_text(encoding='utf-8'))['parameters']['ball_spall_latitude_deg']
+    latitudes = sorted(spec['choice'])
+    n = len(latitudes)
+    assert n >= 10
+    for k, degrees in enumerate(latitudes):
+        assert abs(np.sin(np.radians(degrees)) - (k + 0.5) / n) < 1e-3, (k, degrees)

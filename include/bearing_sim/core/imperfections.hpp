@@ -80,6 +80,10 @@ struct ImperfectionSpec {
   // all while that latitude exceeds its half width.
   double ball_spin_axis_wander_rad = 0.0;  // standard deviation of the spall's latitude
   double ball_spin_axis_wander_correlation_s = 0.1;
+  // Where the assembly left a ball spall: its mean latitude off the rolling track, about which
+  // the wander moves it (a pit seeded at a random spot of the ball lies at any latitude: the
+  // sine of a random spot's latitude is uniform). Every ball spall alike; 0: on the track.
+  double ball_spall_latitude_rad = 0.0;
   // A ball's spin phase is kept only while the races drive it: out of the load zone it is
   // held by the cage and the lubricant alone, slows and skids back up on re-entry, so on
   // each passage through the unloaded arc it gains or loses an angle of spin. The angles of
