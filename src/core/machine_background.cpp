@@ -83,8 +83,8 @@ InstallationProblem installation_problem(const InstallationConfig& c) {
   }
   if (!(c.line_frequency_hz >= 1.0 && c.line_frequency_hz <= 1000.0))
     return {"line_frequency_Hz", "must be in [1, 1000] Hz (mains: 50 or 60)"};
-  if (!(c.shaft_modulation_depth >= 0.0 && c.shaft_modulation_depth <= 1.0))
-    return {"shaft_modulation_depth", "must be in [0, 1] (a fraction of the bearing's signal)"};
+  if (!(c.shaft_modulation_depth >= 0.0 && c.shaft_modulation_depth <= 4.0))
+    return {"shaft_modulation_depth", "must be in [0, 4] (past 1 the bearing's signal stops for part of each turn)"};
   if (!(std::abs(c.shaft_modulation_phase_rad) <= 2.0 * kPi))
     return {"shaft_modulation_phase_deg", "must be in [-360, 360]"};
   if (!(c.rolling_noise_m_s2_per_sqrt_hz >= 0.0 && c.rolling_noise_m_s2_per_sqrt_hz <= kMaxFloorDensity_m_s2))
@@ -195,8 +195,9 @@ MachineBackground::Sample MachineBackground::step(double angle) {
     s.lines_m_s2 += series(line_series_, line_series_.size(), line_turn, line_turn);
   }
   if (modulation_depth_ > 0.0) {
-    s.bearing_gain = 1.0 + modulation_depth_ *
-                               (turn.real() * std::cos(modulation_phase_) - turn.imag() * std::sin(modulation_phase_));
+    // A load that swings past zero leaves the spot unloaded, not pulling: no negative gain.
+    s.bearing_gain = std::max(0.0, 1.0 + modulation_depth_ * (turn.real() * std::cos(modulation_phase_) -
+                                                              turn.imag() * std::sin(modulation_phase_)));
   }
   return s;
 }

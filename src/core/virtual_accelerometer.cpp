@@ -188,10 +188,13 @@ bool VirtualAccelerometer::push_axis_acceleration(double a_m_s2, double* output)
 bool VirtualAccelerometer::push_sample(double a_m_s2, const MachineBackground::Sample& background, double* output) {
   // A NaN would stay in the filter states for good: refuse it.
   if (!std::isfinite(a_m_s2)) throw InvalidInputError("VirtualAccelerometer: non-finite input acceleration");
-  // The rolling noise is the bearing's: it takes the path, and the load's variation with it.
-  if (rolling_noise_sigma_m_s2_ > 0.0) a_m_s2 += rolling_noise_sigma_m_s2_ * rolling_noise_();
-  // The shaft-rate load variation modulates the bearing's own vibration at its source.
+  // The shaft-rate load variation modulates the bearing's own vibration at its source: a
+  // spall's strikes follow the load where the spall is.
   if (has_background_) a_m_s2 *= background.bearing_gain;
+  // The rolling noise is the bearing's too and takes the path, but not that modulation: it is
+  // the random part of every loaded contact round the zone, whose sum a turning load hardly
+  // changes (the real CWRU records without a fault signal show none of it; docs/sensor.md).
+  if (rolling_noise_sigma_m_s2_ > 0.0) a_m_s2 += rolling_noise_sigma_m_s2_ * rolling_noise_();
   double y = has_path_ ? path_.process(a_m_s2) : a_m_s2;
   // The sensor on its mount: in series with the structure (its lines below are measured
   // through it already).

@@ -186,6 +186,49 @@ TEST(MachineBackground, ShaftRateModulationGivesSidebandsOfHalfTheDepth) {
   EXPECT_LT(line(quiet, fs, f_r), 1e-6);
 }
 
+TEST(MachineBackground, ShaftRateModulationPastOneStopsTheSignalForPartOfTheTurn) {
+  // m = 2: the gain max(0, 1 + m cos u) is zero where cos u < -1/m, a third of the turn. Its
+  // Fourier series (u0 = arccos(-1/m), integrals of (1 + m cos u) cos(k u) over |u| < u0):
+  // a0 = (u0 + m sin u0) / pi, a1 = (2 / pi) (sin u0 + m (u0 / 2 + sin(2 u0) / 4)),
+  // a2 = (2 / pi) (sin(2 u0) / 2 + m (sin u0 / 2 + sin(3 u0) / 6)). On a 1 kHz tone: the carrier
+  // a0, sidebands at +- f_r of a1 / 2, at +- 2 f_r of a2 / 2. Tolerance as above.
+  AccelerometerConfig c = clean_config();
+  const double m = 2.0;
+  c.installation.shaft_modulation_depth = m;
+  c.installation.shaft_modulation_phase_rad = 0.7;
+  const double fs = c.output_rate_hz, f_r = 25.0;
+  const std::vector<double> out = run(c, f_r, 2.0, 0.5, carrier_1kHz);
+  const double u0 = std::acos(-1.0 / m);
+  const double a0 = (u0 + m * std::sin(u0)) / kPi;
+  const double a1 = 2.0 / kPi * (std::sin(u0) + m * (0.5 * u0 + 0.25 * std::sin(2.0 * u0)));
+  const double a2 = 2.0 / kPi * (0.5 * std::sin(2.0 * u0) + m * (0.5 * std::sin(u0) + std::sin(3.0 * u0) / 6.0));
+  EXPECT_NEAR(line(out, fs, 1000.0), a0, 1e-3);
+  EXPECT_NEAR(line(out, fs, 1000.0 - f_r), 0.5 * a1, 1e-3);
+  EXPECT_NEAR(line(out, fs, 1000.0 + f_r), 0.5 * a1, 1e-3);
+  EXPECT_NEAR(line(out, fs, 1000.0 + 2.0 * f_r), 0.5 * std::abs(a2), 1e-3);
+}
+
+TEST(MachineBackground, RollingNoiseDoesNotFollowTheShaftRateModulation) {
+  // Rolling noise alone under m = 0.9: were it modulated, its power would go as
+  // (1 + m cos u)^2, whose f_r component over its mean is 2 m / (1 + m^2 / 2) = 1.28. It is
+  // not: 20 s of 12 kHz give ~240,000 nearly independent squares (chi^2, variance 2 mean^2),
+  // so the component's noise is ~2 sqrt(2 / 240000) = 0.006; bound 0.05.
+  AccelerometerConfig c = clean_config();
+  c.installation.shaft_modulation_depth = 0.9;
+  c.installation.rolling_noise_m_s2_per_sqrt_hz = 200e-6 * kG;
+  const double fs = c.output_rate_hz, f_r = 25.0;
+  const std::vector<double> out = run(c, f_r, 20.0);
+  std::complex<double> at_f_r = 0.0;
+  double mean = 0.0;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const double power = out[i] * out[i];
+    mean += power;
+    at_f_r += power * std::polar(1.0, -2.0 * kPi * f_r * static_cast<double>(i) / fs);
+  }
+  ASSERT_GT(mean, 0.0);
+  EXPECT_LT(2.0 * std::abs(at_f_r) / mean, 0.05);
+}
+
 // --- coloured floor -------------------------------------------------------------------------
 
 // log-log interpolation between (f, D) points, held outside: written here from its definition.
@@ -585,7 +628,7 @@ TEST(MachineBackground, BadKeysAreRefusedNamingThem) {
   expect_background_error("  installation: {speed_locked_orders: [{order: 2, amplitude_mg: 1, phase: 0}]}\n",
                       "sensor.installation.speed_locked_orders[0].phase");
   expect_background_error("  installation: {speed_locked_orders: [3]}\n", "sensor.installation.speed_locked_orders[0]");
-  expect_background_error("  installation: {shaft_modulation_depth: 1.5}\n", "sensor.installation.shaft_modulation_depth");
+  expect_background_error("  installation: {shaft_modulation_depth: 4.5}\n", "sensor.installation.shaft_modulation_depth");
   expect_background_error("  installation: {shaft_modulation_phase_deg: 400}\n",
                       "sensor.installation.shaft_modulation_phase_deg");
   expect_background_error("  installation: {floor: {frequencies_Hz: [100, 50], density_ug_per_sqrt_Hz: [1, 2]}}\n",

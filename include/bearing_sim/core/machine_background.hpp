@@ -25,14 +25,17 @@ struct InstallationConfig {
   std::vector<SpeedLockedOrder> speed_locked_orders;
   double line_frequency_hz = 50.0;
   std::vector<double> line_harmonics_m_s2;  // 1, 2, ..., H x the line frequency (peak)
-  double shaft_modulation_depth = 0.0;      // m: bearing signal x (1 + m cos(theta + phase))
+  // m: the bearing's signal x max(0, 1 + m cos(theta + phase)), in [0, 4]: past m = 1 the load
+  // leaves the struck spot for part of each turn and its strikes stop there.
+  double shaft_modulation_depth = 0.0;
   double shaft_modulation_phase_rad = 0.0;
   std::vector<double> floor_frequencies_hz;  // increasing; empty: no floor
   std::vector<double> floor_density_m_s2_per_sqrt_hz;
   // The bearing's rolling noise that the contact model leaves out (its roughness is a frozen
   // profile, a line comb; real rolling over rough surfaces, debris and an assembly's damage is
   // random): white acceleration of this one-sided density at the ring, on the
-  // sensing axis, passed through the path and the mount like the bearing's own signal. 0: none.
+  // sensing axis, passed through the path and the mount like the bearing's own signal but not
+  // through the shaft-rate modulation. 0: none.
   double rolling_noise_m_s2_per_sqrt_hz = 0.0;
 
   bool has_lines() const {
