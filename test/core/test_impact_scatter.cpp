@@ -99,6 +99,22 @@ TEST(ImpactScatter, PlaceWanderScattersPassesAboutTheirGridWithoutAccumulating) 
   for (double ti : exact) EXPECT_NEAR(ti, period * std::round(ti / period), 6e-6);
 }
 
+// Ball 0's spall of half width `half_width` (angle on the ball) is struck at time t: it dips
+// the ball somewhere in a spin turn (the spin angle swept in steps of a tenth of its width,
+// time held: the latitude at t).
+bool ball_spall_struck_at(const Imperfections& imp, double half_width, double t) {
+  std::vector<double> out(9);
+  for (double spin = 0.0; spin < kTwoPi; spin += 0.1 * 2.0 * half_width) {
+    RollingPhase p;
+    p.time_s = t;
+    p.ball_spin = spin;
+    std::fill(out.begin(), out.end(), 0.0);
+    imp.add_offsets(p, out.data());
+    if (out[0] < 0.0) return true;
+  }
+  return false;
+}
+
 // A ball spall of half width h (angle on the ball) whose latitude wanders as a stationary
 // Gaussian of standard deviation s is struck while |latitude| < h: a share erf(h / (s sqrt 2))
 // of the time. Sampled at 4000 instants a correlation time apart (independent): binomial
@@ -115,20 +131,7 @@ TEST(ImpactScatter, WanderingSpinAxisStrikesTheShareOfTimeTheLatitudeIsOnTheSpal
   const double half_width = 0.5 * s.width_m / (0.5 * 7.94e-3);
   spec.ball_spin_axis_wander_rad = 1.5 * half_width;
   spec.ball_spin_axis_wander_correlation_s = 0.1;
-  // Struck at time t: the spall dips the ball somewhere in a spin turn (the spin angle swept
-  // in steps of a tenth of its width, time held: the latitude at t).
-  const auto struck_at = [&](const Imperfections& imp, double t) {
-    std::vector<double> out(9);
-    for (double spin = 0.0; spin < kTwoPi; spin += 0.1 * 2.0 * half_width) {
-      RollingPhase p;
-      p.time_s = t;
-      p.ball_spin = spin;
-      std::fill(out.begin(), out.end(), 0.0);
-      imp.add_offsets(p, out.data());
-      if (out[0] < 0.0) return true;
-    }
-    return false;
-  };
+  const auto struck_at = [&](const Imperfections& imp, double t) { return ball_spall_struck_at(imp, half_width, t); };
   const Imperfections imp(spec, row_of_nine());
   int struck = 0;
   const int draws = 4000;
@@ -155,18 +158,7 @@ TEST(ImpactScatter, ASpallLeftOffTheTrackIsStruckOnlyWhileTheWanderBringsItBack)
   s.depth_m = 20e-6;
   spec.spalls.push_back(s);
   const double half_width = 0.5 * s.width_m / (0.5 * 7.94e-3);
-  const auto struck_at = [&](const Imperfections& imp, double t) {
-    std::vector<double> out(9);
-    for (double spin = 0.0; spin < kTwoPi; spin += 0.1 * 2.0 * half_width) {
-      RollingPhase p;
-      p.time_s = t;
-      p.ball_spin = spin;
-      std::fill(out.begin(), out.end(), 0.0);
-      imp.add_offsets(p, out.data());
-      if (out[0] < 0.0) return true;
-    }
-    return false;
-  };
+  const auto struck_at = [&](const Imperfections& imp, double t) { return ball_spall_struck_at(imp, half_width, t); };
   const auto phi = [](double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); };
   spec.ball_spall_latitude_rad = 1.5 * half_width;
   spec.ball_spin_axis_wander_rad = 1.0 * half_width;
