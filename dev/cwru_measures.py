@@ -118,6 +118,41 @@ def pass_scatter(signal, sample_rate_hz, fault_hz, shaft_hz, band_hz=PASS_BAND_H
     return float(s.std() / s.mean()), float(depth)
 
 
+def fault_frequency(signal, sample_rate_hz, nominal_hz, tolerance=0.02, band_hz=PASS_BAND_HZ):
+    """The fault's actual impact rate near nominal_hz (slip moves it 1-2 %): the highest bin of the
+    squared envelope's spectrum within +-tolerance of it, zero-padded to a sixteenth of a bin."""
+    from scipy.signal import butter, hilbert, sosfiltfilt
+    nyquist = sample_rate_hz / 2.0
+    sos = butter(4, [band_hz[0] / nyquist, min(band_hz[1], 0.98 * nyquist) / nyquist], btype='bandpass',
+                 output='sos')
+    envelope = np.abs(hilbert(sosfiltfilt(sos, np.asarray(signal, dtype=float)))) ** 2
+    envelope -= envelope.mean()
+    n = 16 * envelope.size
+    spectrum = np.abs(np.fft.rfft(envelope, n))
+    f = np.fft.rfftfreq(n, 1.0 / sample_rate_hz)
+    near = np.abs(f - nominal_hz) <= tolerance * nominal_hz
+    return float(f[near][np.argmax(spectrum[near])])
+
+
+def ball_scatter(signal, sample_rate_hz, fault_hz, balls, band_hz=PASS_BAND_HZ, shuffles=20, seed=0):
+    """How unequally the balls strike a standing (outer-race) fault: the balls pass it in their
+    order, so pass k is ball k mod `balls`. Returns (coefficient of variation of the balls' mean
+    pass strengths, the same with the passes shuffled: what the pass-to-pass scatter alone
+    leaves in means of as many passes). fault_hz must be the actual rate (fault_frequency), or
+    the passes slide across the periods."""
+    s, _ = pass_strengths(signal, sample_rate_hz, fault_hz, band_hz)
+    s = s[:(s.size // balls) * balls]
+    if s.size < 2 * balls or s.mean() <= 0.0:
+        return float('nan'), float('nan')
+
+    def spread(strengths):
+        means = strengths.reshape(-1, balls).mean(axis=0)
+        return float(means.std() / means.mean())
+
+    rng = np.random.default_rng(seed)
+    return spread(s), float(np.mean([spread(rng.permutation(s)) for _ in range(shuffles)]))
+
+
 def spin_axis_wander_deg(snr_drop_db, half_width_deg):
     """The balls' spin-axis wander (standard deviation of a ball spall's latitude from the
     rolling track, deg) that lowers a ball spall's 2 x BSF envelope line by snr_drop_db: a

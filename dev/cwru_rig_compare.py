@@ -259,11 +259,26 @@ def measure(x, rate_hz, rpm, fault, bearing):
     kinematics = bearing.frequencies(2.0 * math.pi * shaft_hz)
     fault_hz = kinematics[FAULT_HZ_KEY[fault]] if fault in FAULT_HZ_KEY else None
     cv, depth = cwru_measures.pass_scatter(x, rate_hz, fault_hz, shaft_hz) if fault_hz else (math.nan, math.nan)
+    ball_cv = balls_scatter(x, rate_hz, fault_hz, bearing.balls_per_row) if fault == 'outer race' else math.nan
     return {'rms_g': result['rms_m_s2'] / G, 'crest_factor': result['crest_factor'], 'kurtosis': result['kurtosis'],
             **{f'band_{i}': s for i, s in enumerate(cwru_measures.band_shares(f, p))},
             'line_share': cwru_measures.line_share(f, p),
             'fault_snr_db': line['snr_db'] if line else math.nan, 'pass_cv': cv, 'pass_shaft_depth': depth,
+            'pass_ball_cv': ball_cv,
             'verdict': cwru_scoring.classify(cwru_scoring.verdict_of(result))}
+
+
+def balls_scatter(x, rate_hz, nominal_hz, balls, window_s=1.0):
+    """How unequally the balls strike a standing fault: the median over the record's 1 s windows
+    of the coefficient of variation of the balls' mean pass strengths (cwru_measures.ball_scatter),
+    each window at its own impact rate (slip wanders within a record)."""
+    n = int(window_s * rate_hz)
+    values = []
+    for start in range(0, x.size - n + 1, n):
+        w = x[start:start + n]
+        values.append(cwru_measures.ball_scatter(w, rate_hz, cwru_measures.fault_frequency(w, rate_hz, nominal_hz),
+                                                 balls)[0])
+    return float(np.nanmedian(values)) if values else math.nan
 
 
 def condition_name(meta):
@@ -275,7 +290,7 @@ def condition_name(meta):
 
 BAND_NAMES = [f'{lo / 1000:g}-{hi / 1000:g} kHz' for lo, hi in cwru_measures.BANDS_HZ]
 MEASURES = ['rms_g', 'crest_factor', 'kurtosis'] + [f'band_{i}' for i in range(len(BAND_NAMES))] + \
-    ['line_share', 'fault_snr_db', 'pass_cv', 'pass_shaft_depth', 'verdict']
+    ['line_share', 'fault_snr_db', 'pass_cv', 'pass_shaft_depth', 'pass_ball_cv', 'verdict']
 
 
 def targets(rows):
@@ -324,13 +339,15 @@ def fmt(value, name):
 def markdown(rows, target_lines, notes):
     head = (['condition', 'record', 'rpm', 'RMS (g)', 'crest factor', 'kurtosis']
             + [f'{b} (%)' for b in BAND_NAMES] + ['lines (%)', 'fault line SNR (dB)', 'pass CV',
-                                                  'pass depth at f_r', 'verdict'])
+                                                  'pass depth at f_r', 'ball CV', 'verdict'])
     out = ['# CWRU drive end: real and simulated, per condition', '',
            'Each cell: real / simulated. Bands and lines: share of the power (%); lines: the PSD bins > 10 dB over '
            'its 51 Hz running median (dev/cwru_measures.py). Fault line SNR: the envelope SNR of the record\'s '
            'fault series (BPFI, 2xBSF, BPFO) from bearing_sim.analyze; verdict: its class (bearing_sim.cwru_scoring). '
            'Pass CV and depth at f_r: the 2-4.5 kHz band\'s RMS per fault period, its coefficient of variation and '
-           'the depth of its modulation at the shaft rate (dev/cwru_measures.pass_scatter).',
+           'the depth of its modulation at the shaft rate (dev/cwru_measures.pass_scatter). Ball CV (outer race): how '
+           'unequally the balls strike it, the coefficient of variation of each ball\'s mean pass strength '
+           '(dev/cwru_measures.ball_scatter, median of the 1 s windows).',
            '', *notes, '', '| ' + ' | '.join(head) + ' |', '|' + '---|' * len(head)]
     for r in rows:
         cells = [r['condition'], str(r['record']), f"{r['rpm']:.0f}"]

@@ -94,6 +94,33 @@ def test_pass_scatter_reads_a_shaft_rate_modulation_of_the_impacts():
     assert cv < 0.04 and depth < 0.01
 
 
+def test_ball_scatter_reads_each_balls_own_strength_and_the_fault_frequency_its_rate():
+    # Nine balls striking a standing fault at 104.9 Hz (2 % below the nominal 107.0: slip), ball b
+    # with strength g_b: the means of the passes of each ball are the g_b, whose coefficient of
+    # variation is written out here. Each ringing (3 % damped, 30 % of a period long) stays in its
+    # own period, 0.3 of a period from its start; whole samples and the filter's ringing across
+    # periods: 0.01. Shuffled, the passes of a ball are any nine-th of them: their means' spread
+    # is that of g over sqrt(passes per ball) (~1 / 10 of it here), far below.
+    fault_hz, nominal_hz, balls = 104.9, 107.0, 9
+    n = int(10.0 * FS)
+    times = np.arange(0.3 / fault_hz, 10.0 - 1.0 / fault_hz, 1.0 / fault_hz)
+    gains = 1.0 + 0.3 * np.sin(np.arange(balls) * 2.1)
+    impacts = np.zeros(n)
+    impacts[np.rint(times * FS).astype(int)] = gains[np.arange(times.size) % balls]
+    t = np.arange(int(0.3 * FS / fault_hz)) / FS
+    ring = np.exp(-0.03 * 2 * math.pi * 3000.0 * t) * np.sin(2 * math.pi * 3000.0 * t)
+    x = np.convolve(impacts, ring)[:n] + 0.001 * white(10.0, 1.0)
+    found = cwru_measures.fault_frequency(x, FS, nominal_hz)
+    assert abs(found - fault_hz) < 0.01 * fault_hz
+    cv, shuffled = cwru_measures.ball_scatter(x, FS, fault_hz, balls)
+    assert abs(cv - gains.std() / gains.mean()) < 0.01
+    assert shuffled < 0.3 * cv
+    # Equal balls: no spread but the samples' rounding.
+    impacts[impacts > 0] = 1.0
+    cv, _ = cwru_measures.ball_scatter(np.convolve(impacts, ring)[:n], FS, fault_hz, balls)
+    assert cv < 0.01
+
+
 def test_spin_axis_wander_that_halves_a_ball_line_is_the_half_width_over_the_normal_quartile():
     # A line lowered by 20 log10 2 = 6.02 dB: the spall is struck half the time, so its latitude
     # lies within the half width h half the time: h is the normal's quartile, 0.67449 sigma
