@@ -115,33 +115,43 @@ bool ball_spall_struck_at(const Imperfections& imp, double half_width, double t)
   return false;
 }
 
+// Ball 0 of a row of nine with a spall 0.5 mm wide and 20 um deep; its half width as an
+// angle on the ball (7.94 mm).
+constexpr double kBallSpallWidthM = 0.5e-3;
+constexpr double kBallSpallHalfWidth = 0.5 * kBallSpallWidthM / (0.5 * 7.94e-3);
+ImperfectionSpec one_ball_spall(std::uint64_t seed) {
+  ImperfectionSpec spec;
+  spec.seed = seed;
+  Spall s;
+  s.surface = Surface::Ball;
+  s.ball = 0;
+  s.width_m = kBallSpallWidthM;
+  s.depth_m = 20e-6;
+  spec.spalls.push_back(s);
+  return spec;
+}
+
+// The share of `draws` instants a correlation time (0.1 s) apart, independent, at which the
+// spall is struck.
+double struck_share(const Imperfections& imp, int draws) {
+  int struck = 0;
+  for (int k = 0; k < draws; ++k) struck += ball_spall_struck_at(imp, kBallSpallHalfWidth, 0.1 * k + 0.05) ? 1 : 0;
+  return static_cast<double>(struck) / draws;
+}
+
 // A ball spall of half width h (angle on the ball) whose latitude wanders as a stationary
 // Gaussian of standard deviation s is struck while |latitude| < h: a share erf(h / (s sqrt 2))
 // of the time. Sampled at 4000 instants a correlation time apart (independent): binomial
 // standard error sqrt(p (1 - p) / 4000) = 0.8 %; 3 % is about four of them.
 TEST(ImpactScatter, WanderingSpinAxisStrikesTheShareOfTimeTheLatitudeIsOnTheSpall) {
-  ImperfectionSpec spec;
-  spec.seed = 3;
-  Spall s;
-  s.surface = Surface::Ball;
-  s.ball = 0;
-  s.width_m = 0.5e-3;
-  s.depth_m = 20e-6;
-  spec.spalls.push_back(s);
-  const double half_width = 0.5 * s.width_m / (0.5 * 7.94e-3);
-  spec.ball_spin_axis_wander_rad = 1.5 * half_width;
+  ImperfectionSpec spec = one_ball_spall(3);
+  spec.ball_spin_axis_wander_rad = 1.5 * kBallSpallHalfWidth;
   spec.ball_spin_axis_wander_correlation_s = 0.1;
-  const auto struck_at = [&](const Imperfections& imp, double t) { return ball_spall_struck_at(imp, half_width, t); };
-  const Imperfections imp(spec, row_of_nine());
-  int struck = 0;
-  const int draws = 4000;
-  for (int k = 0; k < draws; ++k) struck += struck_at(imp, 0.1 * k + 0.05) ? 1 : 0;
   const double expected = std::erf(1.0 / (1.5 * std::sqrt(2.0)));
-  EXPECT_NEAR(static_cast<double>(struck) / draws, expected, 0.03);
+  EXPECT_NEAR(struck_share(Imperfections(spec, row_of_nine()), 4000), expected, 0.03);
   // Without wander: always struck.
   spec.ball_spin_axis_wander_rad = 0.0;
-  const Imperfections steady(spec, row_of_nine());
-  for (int k = 0; k < 20; ++k) EXPECT_TRUE(struck_at(steady, 0.1 * k + 0.05));
+  EXPECT_EQ(struck_share(Imperfections(spec, row_of_nine()), 20), 1.0);
 }
 
 // The same spall left by the assembly at a mean latitude L off the track, wandering about it:
@@ -149,34 +159,17 @@ TEST(ImpactScatter, WanderingSpinAxisStrikesTheShareOfTimeTheLatitudeIsOnTheSpal
 // (Z standard normal). Sampled as above (binomial standard error <= 0.8 %; 3 %). Without
 // wander, a spall off the track (L > h, no rim) is never struck, one on it always.
 TEST(ImpactScatter, ASpallLeftOffTheTrackIsStruckOnlyWhileTheWanderBringsItBack) {
-  ImperfectionSpec spec;
-  spec.seed = 5;
-  Spall s;
-  s.surface = Surface::Ball;
-  s.ball = 0;
-  s.width_m = 0.5e-3;
-  s.depth_m = 20e-6;
-  spec.spalls.push_back(s);
-  const double half_width = 0.5 * s.width_m / (0.5 * 7.94e-3);
-  const auto struck_at = [&](const Imperfections& imp, double t) { return ball_spall_struck_at(imp, half_width, t); };
+  ImperfectionSpec spec = one_ball_spall(5);
   const auto phi = [](double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); };
-  spec.ball_spall_latitude_rad = 1.5 * half_width;
-  spec.ball_spin_axis_wander_rad = 1.0 * half_width;
+  spec.ball_spall_latitude_rad = 1.5 * kBallSpallHalfWidth;
+  spec.ball_spin_axis_wander_rad = 1.0 * kBallSpallHalfWidth;
   spec.ball_spin_axis_wander_correlation_s = 0.1;
-  const Imperfections imp(spec, row_of_nine());
-  int struck = 0;
-  const int draws = 4000;
-  for (int k = 0; k < draws; ++k) struck += struck_at(imp, 0.1 * k + 0.05) ? 1 : 0;
   const double expected = phi((1.0 - 1.5) / 1.0) - phi((-1.0 - 1.5) / 1.0);  // 0.302
-  EXPECT_NEAR(static_cast<double>(struck) / draws, expected, 0.03);
+  EXPECT_NEAR(struck_share(Imperfections(spec, row_of_nine()), 4000), expected, 0.03);
   spec.ball_spin_axis_wander_rad = 0.0;
-  const Imperfections off_track(spec, row_of_nine());
-  spec.ball_spall_latitude_rad = 0.5 * half_width;
-  const Imperfections on_track(spec, row_of_nine());
-  for (int k = 0; k < 20; ++k) {
-    EXPECT_FALSE(struck_at(off_track, 0.1 * k + 0.05));
-    EXPECT_TRUE(struck_at(on_track, 0.1 * k + 0.05));
-  }
+  EXPECT_EQ(struck_share(Imperfections(spec, row_of_nine()), 20), 0.0);  // off the track
+  spec.ball_spall_latitude_rad = 0.5 * kBallSpallHalfWidth;
+  EXPECT_EQ(struck_share(Imperfections(spec, row_of_nine()), 20), 1.0);  // on it
 }
 
 // The spin angle at which ball 0's spall is deepest at `phase` (the spin swept over the half
