@@ -59,15 +59,27 @@ def line_share(frequencies_hz, density, threshold_db=LINE_THRESHOLD_DB, median_h
     return float((p[above] - floor[above]).sum() / total) if total > 0 else 0.0
 
 
-def envelope_spectrum(signal, sample_rate_hz, band_hz):
-    """Squared-envelope spectrum of the signal band-passed to band_hz (Butterworth order 4,
-    zero phase): (frequencies_hz, amplitude), mean removed, normalised by the sample count."""
-    from scipy.signal import butter, hilbert, sosfiltfilt
+def band_passed(signal, sample_rate_hz, band_hz):
+    """The signal band-passed to band_hz (Butterworth order 4, zero phase; the upper edge held
+    below 0.98 x Nyquist)."""
+    from scipy.signal import butter, sosfiltfilt
     nyquist = sample_rate_hz / 2.0
-    high = min(band_hz[1], 0.98 * nyquist)
-    sos = butter(4, [band_hz[0] / nyquist, high / nyquist], btype='bandpass', output='sos')
-    envelope = np.abs(hilbert(sosfiltfilt(sos, np.asarray(signal, dtype=float)))) ** 2
-    envelope -= envelope.mean()
+    sos = butter(4, [band_hz[0] / nyquist, min(band_hz[1], 0.98 * nyquist) / nyquist], btype='bandpass',
+                 output='sos')
+    return sosfiltfilt(sos, np.asarray(signal, dtype=float))
+
+
+def squared_envelope(signal, sample_rate_hz, band_hz):
+    """The squared envelope of the signal band-passed to band_hz, its mean removed."""
+    from scipy.signal import hilbert
+    envelope = np.abs(hilbert(band_passed(signal, sample_rate_hz, band_hz))) ** 2
+    return envelope - envelope.mean()
+
+
+def envelope_spectrum(signal, sample_rate_hz, band_hz):
+    """Squared-envelope spectrum of the signal band-passed to band_hz (band_passed):
+    (frequencies_hz, amplitude), mean removed, normalised by the sample count."""
+    envelope = squared_envelope(signal, sample_rate_hz, band_hz)
     amplitude = np.abs(np.fft.rfft(envelope)) / envelope.size
     return np.fft.rfftfreq(envelope.size, 1.0 / sample_rate_hz), amplitude
 
@@ -93,11 +105,7 @@ def pass_strengths(signal, sample_rate_hz, fault_hz, band_hz=PASS_BAND_HZ):
     """Strength of a fault's impacts pass by pass: the RMS of the signal band-passed to band_hz
     (Butterworth order 4, zero phase) in each whole period 1 / fault_hz from the record's start.
     Returns (strengths, times_s), times_s each period's middle."""
-    from scipy.signal import butter, sosfiltfilt
-    nyquist = sample_rate_hz / 2.0
-    sos = butter(4, [band_hz[0] / nyquist, min(band_hz[1], 0.98 * nyquist) / nyquist], btype='bandpass',
-                 output='sos')
-    y = sosfiltfilt(sos, np.asarray(signal, dtype=float))
+    y = band_passed(signal, sample_rate_hz, band_hz)
     period = sample_rate_hz / fault_hz
     count = int(y.size / period)
     edges = (np.arange(count + 1) * period).astype(int)
@@ -121,12 +129,7 @@ def pass_scatter(signal, sample_rate_hz, fault_hz, shaft_hz, band_hz=PASS_BAND_H
 def fault_frequency(signal, sample_rate_hz, nominal_hz, tolerance=0.02, band_hz=PASS_BAND_HZ):
     """The fault's actual impact rate near nominal_hz (slip moves it 1-2 %): the highest bin of the
     squared envelope's spectrum within +-tolerance of it, zero-padded to a sixteenth of a bin."""
-    from scipy.signal import butter, hilbert, sosfiltfilt
-    nyquist = sample_rate_hz / 2.0
-    sos = butter(4, [band_hz[0] / nyquist, min(band_hz[1], 0.98 * nyquist) / nyquist], btype='bandpass',
-                 output='sos')
-    envelope = np.abs(hilbert(sosfiltfilt(sos, np.asarray(signal, dtype=float)))) ** 2
-    envelope -= envelope.mean()
+    envelope = squared_envelope(signal, sample_rate_hz, band_hz)
     n = 16 * envelope.size
     spectrum = np.abs(np.fft.rfft(envelope, n))
     f = np.fft.rfftfreq(n, 1.0 / sample_rate_hz)
