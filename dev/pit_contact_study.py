@@ -36,11 +36,15 @@ import numpy as np
 
 E_PA, NU = 208e9, 0.3
 E_STAR = E_PA / (2.0 * (1.0 - NU * NU))  # two steel bodies (Johnson's E*)
-BALL_D, PITCH_D, GROOVE_F = 7.94004e-3, 39.0398e-3, 0.53
-R_X = 1.0 / (2.0 / BALL_D - 2.0 / (PITCH_D + BALL_D))  # along the track: the outer race curves towards the ball
-R_Y = 1.0 / (2.0 / BALL_D - 1.0 / (GROOVE_F * BALL_D))  # across: the groove nearly conforms
+BALL_D, PITCH_D = 7.94004e-3, 39.0398e-3
+# The ball's and the race's curvatures summed (1/m), along the track and across it: the outer race
+# curves towards the ball along the track, the inner race away; across, each groove (f = 0.53
+# outer, 0.52 inner) nearly conforms.
+CURVATURES = {'outer': (2.0 / BALL_D - 2.0 / (PITCH_D + BALL_D), 2.0 / BALL_D - 1.0 / (0.53 * BALL_D)),
+              'inner': (2.0 / BALL_D + 2.0 / (PITCH_D - BALL_D), 2.0 / BALL_D - 1.0 / (0.52 * BALL_D))}
+R_X, R_Y = (1.0 / c for c in CURVATURES['outer'])
 INCH = 25.4e-3
-SPEED_M_S = 1.76  # the contact's speed over the outer race at 1797 rpm
+SPEED_M_S = 1.76  # the contacts' speed over either race at 1797 rpm
 
 
 def influence(nx, ny, dx, dy):
@@ -118,11 +122,12 @@ def hertz_sphere_check():
     return approach, exact
 
 
-def package_dip(s, w, rim_h, rim_b):
-    """docs/model.md 9.6's dip (m, positive: a drop) of a round, sharp-edged pit at the outer race,
-    the contact's centre s from the pit's centre along the track."""
-    across = lambda span: span * span / 8.0 * (2.0 / BALL_D - 1.0 / (GROOVE_F * BALL_D))
-    along = w * w / 8.0 * (2.0 / BALL_D - 2.0 / (PITCH_D + BALL_D))
+def package_dip(s, w, rim_h, rim_b, race):
+    """docs/model.md 9.6's dip (m, positive: a drop) of a round, sharp-edged pit in the race, the
+    contact's centre s from the pit's centre along the track."""
+    along_sum, across_sum = CURVATURES[race]
+    across = lambda span: span * span / 8.0 * across_sum
+    along = w * w / 8.0 * along_sum
     half, crest = 0.5 * w, 0.5 * (w + rim_b)
     a = abs(s)
     pit = min(along * (1.0 - a / half) ** 2, across(w + rim_b) if rim_h > 0 else across(w)) if a < half else 0.0
@@ -157,10 +162,11 @@ def pit_surface(hs, s, w, rim_h, rim_b):
     return x, y, height, rho >= 0.5 * w
 
 
-def profile(hs, w, rim_h, rim_b, load, positions):
+def profile(hs, w, rim_h, rim_b, load, positions, race):
     """The pit's equivalent dip (m) at each position of its centre, and the intact approach."""
     x, y = np.meshgrid(hs.x, hs.y, indexing='ij')
-    gap = x * x / (2.0 * R_X) + y * y / (2.0 * R_Y)
+    along_sum, across_sum = CURVATURES[race]
+    gap = 0.5 * (x * x * along_sum + y * y * across_sum)
     _, intact = hs.solve(gap, load, np.ones_like(gap, dtype=bool))
     dips = []
     for s in positions:
@@ -177,6 +183,7 @@ def main(argv=None):
     parser.add_argument('--rims', default='0,1', help='rim heights, um, comma-separated')
     parser.add_argument('--rim-width-um', type=float, default=100.0)
     parser.add_argument('--step-um', type=float, default=10.0, help='pit positions every step')
+    parser.add_argument('--races', default='outer,inner', help='the pit in the outer race, the inner, or both')
     args = parser.parse_args(argv)
     approach, exact = hertz_sphere_check()
     print(f'solver check, sphere on a flat: approach {approach * 1e6:.4f} um, Hertz {exact * 1e6:.4f} um '
@@ -185,53 +192,57 @@ def main(argv=None):
     loads = [float(v) for v in args.loads.split(',')]
     rims = [float(v) * 1e-6 for v in args.rims.split(',')]
     rim_b = args.rim_width_um * 1e-6
+    races = args.races.split(',')
     rows = []
-    print('| pit (in) | rim (um) | load (N) | dip over the centre (um, + drop) | at the crest | strike, largest (N) '
-          '| strike energy 2-4 kHz (N^2 us) | its 1-2 over 2-4 kHz |')
-    print('|---' * 8 + '|')
-    print('| | | | half-space / package | | | | |')
-    for inches in (0.007, 0.014, 0.021):
-        w = inches * INCH
-        reach = 0.5 * w + rim_b + 0.15e-3
-        positions = np.arange(0.0, reach, args.step_um * 1e-6)
-        for rim_h in rims:
-            for load in loads:
-                dips, intact = profile(hs, w, rim_h, rim_b, load, positions)
-                model = np.array([package_dip(s, w, rim_h, rim_b) for s in positions])
-                rows += [(inches, rim_h * 1e6, load, s * 1e3, d * 1e6, m * 1e6, intact * 1e6)
-                         for s, d, m in zip(positions, dips, model)]
-                crest = np.argmin(np.abs(positions - (0.5 * w + 0.5 * rim_b)))
-                ours, theirs = strike(positions, dips, load, intact), strike(positions, model, load, intact)
-                print(f'| {inches:.3f} | {rim_h * 1e6:.1f} | {load:.0f} | {dips[0] * 1e6:+.2f} / {model[0] * 1e6:+.2f} | '
-                      f'{dips[crest] * 1e6:+.2f} / {model[crest] * 1e6:+.2f} | {ours[0]:.1f} / {theirs[0]:.1f} | '
-                      f'{ours[2] * 1e6:.0f} / {theirs[2] * 1e6:.0f} | {ours[1] / ours[2]:.2f} / {theirs[1] / theirs[2]:.2f} |',
-                      flush=True)
+    print('| race | pit (in) | rim (um) | load (N) | dip over the centre (um, + drop) | at the crest '
+          '| strike, largest (N) | strike energy 2-4 kHz (N^2 us) | its 1-2 over 2-4 kHz |')
+    print('|---' * 9 + '|')
+    print('| | | | | half-space / package | | | | |')
+    for race in races:
+        for inches in (0.007, 0.014, 0.021):
+            w = inches * INCH
+            positions = np.arange(0.0, 0.5 * w + rim_b + 0.15e-3, args.step_um * 1e-6)
+            crest = np.argmin(np.abs(positions - (0.5 * w + 0.5 * rim_b)))
+            for rim_h in rims:
+                model = np.array([package_dip(s, w, rim_h, rim_b, race) for s in positions])
+                for load in loads:
+                    dips, intact = profile(hs, w, rim_h, rim_b, load, positions, race)
+                    rows += [(race, inches, rim_h * 1e6, load, s * 1e3, d * 1e6, m * 1e6, intact * 1e6)
+                             for s, d, m in zip(positions, dips, model)]
+                    ours, theirs = strike(positions, dips, load, intact), strike(positions, model, load, intact)
+                    print(f'| {race} | {inches:.3f} | {rim_h * 1e6:.1f} | {load:.0f} | {dips[0] * 1e6:+.2f} / '
+                          f'{model[0] * 1e6:+.2f} | {dips[crest] * 1e6:+.2f} / {model[crest] * 1e6:+.2f} | '
+                          f'{ours[0]:.1f} / {theirs[0]:.1f} | {ours[2] * 1e6:.0f} / {theirs[2] * 1e6:.0f} | '
+                          f'{ours[1] / ours[2]:.2f} / {theirs[1] / theirs[2]:.2f} |', flush=True)
     if args.out:
         args.out.mkdir(parents=True, exist_ok=True)
         with open(args.out / 'pit_contact_profiles.csv', 'w') as f:
-            f.write('pit_in,rim_um,load_N,position_mm,dip_um,package_dip_um,intact_approach_um\n')
-            f.writelines(','.join(f'{v:.6g}' for v in row) + '\n' for row in rows)
-        plot(rows, loads, rims, args.out / 'pit_contact_profiles.png')
+            f.write('race,pit_in,rim_um,load_N,position_mm,dip_um,package_dip_um,intact_approach_um\n')
+            f.writelines(','.join([row[0]] + [f'{v:.6g}' for v in row[1:]]) + '\n' for row in rows)
+        plot(rows, races, loads, rims, args.out / 'pit_contact_profiles.png')
 
 
-def plot(rows, loads, rims, path):
+def plot(rows, races, loads, rims, path):
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
-    data = np.array(rows)
-    fig, axes = plt.subplots(len(rims), 3, figsize=(14, 3.6 * len(rims)), squeeze=False, sharex='col')
-    for i, rim in enumerate(rims):
+    race_of = np.array([row[0] for row in rows])
+    data = np.array([row[1:] for row in rows])
+    panels = [(race, rim) for race in races for rim in rims]
+    fig, axes = plt.subplots(len(panels), 3, figsize=(14, 3.2 * len(panels)), squeeze=False, sharex='col')
+    for i, (race, rim) in enumerate(panels):
         for j, inches in enumerate((0.007, 0.014, 0.021)):
             ax = axes[i][j]
             for load in loads:
-                sel = (data[:, 0] == inches) & (np.abs(data[:, 1] - rim * 1e6) < 1e-9) & (data[:, 2] == load)
+                sel = ((race_of == race) & (data[:, 0] == inches) & (np.abs(data[:, 1] - rim * 1e6) < 1e-9)
+                       & (data[:, 2] == load))
                 s = np.concatenate([-data[sel, 3][::-1], data[sel, 3]])
                 ax.plot(s, np.concatenate([data[sel, 4][::-1], data[sel, 4]]), label=f'half-space, {load:.0f} N')
             ax.plot(s, np.concatenate([data[sel, 5][::-1], data[sel, 5]]), 'k--', label='package (any load)')
-            ax.set_title(f'{inches} in pit, rim {rim * 1e6:g} um')
+            ax.set_title(f'{race} race, {inches} in pit, rim {rim * 1e6:g} um')
             ax.grid(alpha=0.3)
             ax.set_ylabel('dip (um, + drop)')
-            if i == len(rims) - 1:
+            if i == len(panels) - 1:
                 ax.set_xlabel("pit centre from the contact's centre (mm)")
     axes[0][0].legend(fontsize=7)
     fig.tight_layout()
