@@ -5,8 +5,9 @@ elastic half-space, not the package's model (docs/cwru_rig.md, "Round pits and t
 The package takes a pit as an offset of the ball's approach, dip(x) (docs/model.md 9.6): a Hertz
 contact over a surface whose height changes under its centre, the same for every load. Here the
 contact itself is solved: a 6205 ball (d = 7.94 mm) against the outer race (groove f = 0.53,
-race radius (dm + d) / 2 along the track), steel on steel (E = 208 GPa, nu = 0.3), the gap
-between the two unloaded surfaces h0 = x^2 / (2 R_x) + y^2 / (2 R_y), x along the track. The race
+race radius (dm + d) / 2 along the track, curving towards the ball) or the inner race (f = 0.52,
+(dm - d) / 2, curving away), steel on steel (E = 208 GPa, nu = 0.3), the gap between the two
+unloaded surfaces h0 = x^2 / (2 R_x) + y^2 / (2 R_y), x along the track. The race
 holds a round hole w across (no contact inside it; 0.28 mm deep, far deeper than any approach)
 and round it the rim of docs/model.md 9.6: H sin^2(pi (rho - w / 2) / b) for w / 2 <= rho <
 w / 2 + b, rho the distance from the pit's centre. For a load Q and the pit's centre at a
@@ -20,11 +21,11 @@ follows the ball's load.
 
     /usr/bin/python3 dev/pit_contact_study.py [--out DIR]
 
-Printed: the solver against Hertz's closed form for a sphere on a flat; per pit width, rim and
-load, the dip over the pit's centre and at the rim's crest, and the strike: the change of the
+Printed: the solver against Hertz's closed form for a sphere on a flat; per race, pit width, rim
+and load, the dip over the pit's centre and at the rim's crest, and the strike: the change of the
 contact's force, K (delta0 - dip)^1.5 - Q at the approach delta0 that carries Q without the pit
 (this contact alone, its Hertz constant K = Q / delta0^1.5), while the pit passes at 1.76 m/s
-(the 6205's outer race at 1797 rpm), its largest value and its energy in 1-2 and 2-4 kHz; each
+(the 6205's races at 1797 rpm), its largest value and its energy in 1-2 and 2-4 kHz; each
 for the package's dip beside. With --out, the profiles as a CSV and a PNG.
 Not executable and not installed: a development script.
 """
