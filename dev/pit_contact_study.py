@@ -74,6 +74,7 @@ class HalfSpace:
         self.dx, self.dy = dx, dy
         self.x = (np.arange(self.nx) - 0.5 * (self.nx - 1)) * dx
         self.y = (np.arange(self.ny) - 0.5 * (self.ny - 1)) * dy
+        self.grid_x, self.grid_y = np.meshgrid(self.x, self.y, indexing='ij')  # each cell's centre
         self.kernel = np.fft.rfft2(influence(self.nx, self.ny, dx, dy))
 
     def displacement(self, p):
@@ -83,7 +84,8 @@ class HalfSpace:
 
     def solve(self, gap0, load_n, allowed, tol=1e-7, iterations=3000):
         """Pressure (Pa) carrying load_n over the cells where allowed, and the rigid approach (m):
-        gap0 + u - approach >= 0, zero where p > 0 (Polonsky and Keer's conjugate gradients)."""
+        the gap gap0 + u - approach is >= 0 everywhere and 0 where p > 0 (Polonsky and Keer's
+        conjugate gradients)."""
         area = self.dx * self.dy
         p = np.where(allowed, load_n / (area * allowed.sum()), 0.0)
         t = np.zeros_like(p)
@@ -118,8 +120,8 @@ def hertz_sphere_check():
     exact = (3.0 * load / (4.0 * E_STAR * math.sqrt(radius))) ** (2.0 / 3.0)
     a = math.sqrt(exact * radius)
     hs = HalfSpace(1.5 * a, 1.5 * a, a / 40.0, a / 40.0)
-    x, y = np.meshgrid(hs.x, hs.y, indexing='ij')
-    _, approach = hs.solve((x * x + y * y) / (2.0 * radius), load, np.ones_like(x, dtype=bool))
+    gap = (hs.grid_x ** 2 + hs.grid_y ** 2) / (2.0 * radius)
+    _, approach = hs.solve(gap, load, np.ones_like(gap, dtype=bool))
     return approach, exact
 
 
@@ -127,7 +129,10 @@ def package_dip(s, w, rim_h, rim_b, race):
     """docs/model.md 9.6's dip (m, positive: a drop) of a round, sharp-edged pit in the race, the
     contact's centre s from the pit's centre along the track."""
     along_sum, across_sum = CURVATURES[race]
-    across = lambda span: span * span / 8.0 * across_sum
+
+    def across(span):  # the gap across the track over a span: the ball rests on its ends
+        return span * span / 8.0 * across_sum
+
     along = w * w / 8.0 * along_sum
     half, crest = 0.5 * w, 0.5 * (w + rim_b)
     a = abs(s)
@@ -154,24 +159,22 @@ def strike(positions, dips, load, approach):
 
 
 def pit_surface(hs, s, w, rim_h, rim_b):
-    """The race's height (m, towards the ball) and the cells outside the hole, the pit's centre at
-    (s, 0) from the contact's centre."""
-    x, y = np.meshgrid(hs.x, hs.y, indexing='ij')
-    rho = np.hypot(x - s, y)
+    """The race's height (m, towards the ball) on each cell and the cells outside the hole, the
+    pit's centre at (s, 0) from the contact's centre."""
+    rho = np.hypot(hs.grid_x - s, hs.grid_y)
     on_rim = (rho >= 0.5 * w) & (rho < 0.5 * w + rim_b)
     height = np.where(on_rim, rim_h * np.sin(math.pi * (rho - 0.5 * w) / rim_b) ** 2, 0.0)
-    return x, y, height, rho >= 0.5 * w
+    return height, rho >= 0.5 * w
 
 
 def profile(hs, w, rim_h, rim_b, load, positions, race):
     """The pit's equivalent dip (m) at each position of its centre, and the intact approach."""
-    x, y = np.meshgrid(hs.x, hs.y, indexing='ij')
     along_sum, across_sum = CURVATURES[race]
-    gap = 0.5 * (x * x * along_sum + y * y * across_sum)
+    gap = 0.5 * (hs.grid_x ** 2 * along_sum + hs.grid_y ** 2 * across_sum)
     _, intact = hs.solve(gap, load, np.ones_like(gap, dtype=bool))
     dips = []
     for s in positions:
-        _, _, height, allowed = pit_surface(hs, s, w, rim_h, rim_b)
+        height, allowed = pit_surface(hs, s, w, rim_h, rim_b)
         _, approach = hs.solve(gap - height, load, allowed)
         dips.append(approach - intact)
     return np.array(dips), intact

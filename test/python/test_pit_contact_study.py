@@ -25,9 +25,8 @@ def test_a_sphere_on_a_flat_takes_hertz_approach():
 def test_the_6205_outer_race_contact_takes_hertz_elliptical_approach_and_width():
     load = 24.0
     hs = study.HalfSpace(0.2e-3, 0.6e-3, 4e-6, 10e-6)
-    x, y = np.meshgrid(hs.x, hs.y, indexing='ij')
-    pressure, approach = hs.solve(x * x / (2 * study.R_X) + y * y / (2 * study.R_Y), load,
-                                  np.ones_like(x, dtype=bool))
+    gap = hs.grid_x ** 2 / (2 * study.R_X) + hs.grid_y ** 2 / (2 * study.R_Y)
+    pressure, approach = hs.solve(gap, load, np.ones_like(gap, dtype=bool))
     # Hertz: gap A y^2 + B x^2 (y across the track, the ellipse's long axis a), m = e^2 = 1 - b^2/a^2:
     # B / A = ((a/b)^2 E - K) / (K - E), A = 3 P (K - E) / (2 pi E* a^3 e^2), approach p0 b K / E*.
     long_curvature, short_curvature = 0.5 / study.R_Y, 0.5 / study.R_X
@@ -41,21 +40,20 @@ def test_the_6205_outer_race_contact_takes_hertz_elliptical_approach_and_width()
     exact = 3 * load / (2 * math.pi * a * b) * b * ellipk(m) / study.E_STAR
     assert approach == pytest.approx(exact, rel=0.005)
     # The loaded cells reach the ellipse's long semi-axis to within a cell (10 um of ~310).
-    half_width = np.abs(y[pressure > 0]).max() + 0.5 * hs.dy
+    half_width = np.abs(hs.grid_y[pressure > 0]).max() + 0.5 * hs.dy
     assert half_width == pytest.approx(a, rel=hs.dy / a)
 
 
 def test_a_hole_carries_nothing_and_lets_the_ball_sink_a_rim_lifts_it():
     hs = study.HalfSpace(0.2e-3, 0.6e-3, 4e-6, 10e-6)
-    x, y = np.meshgrid(hs.x, hs.y, indexing='ij')
-    gap = x * x / (2 * study.R_X) + y * y / (2 * study.R_Y)
-    _, intact = hs.solve(gap, 24.0, np.ones_like(x, dtype=bool))
+    gap = hs.grid_x ** 2 / (2 * study.R_X) + hs.grid_y ** 2 / (2 * study.R_Y)
+    _, intact = hs.solve(gap, 24.0, np.ones_like(gap, dtype=bool))
     width = 0.014 * study.INCH
-    _, _, _, outside = study.pit_surface(hs, 0.0, width, 0.0, 1e-4)
+    _, outside = study.pit_surface(hs, 0.0, width, 0.0, 1e-4)
     pressure, holed = hs.solve(gap, 24.0, outside)
     assert not pressure[~outside].any()
     # Less surface to carry the same load: the ball sinks.
     assert holed > intact
-    _, _, height, outside = study.pit_surface(hs, 0.0, width, 1e-6, 1e-4)
+    height, outside = study.pit_surface(hs, 0.0, width, 1e-6, 1e-4)
     _, rimmed = hs.solve(gap - height, 24.0, outside)
     assert rimmed < holed
