@@ -43,7 +43,6 @@ BALL_D, PITCH_D = 7.94004e-3, 39.0398e-3
 # outer, 0.52 inner) nearly conforms.
 CURVATURES = {'outer': (2.0 / BALL_D - 2.0 / (PITCH_D + BALL_D), 2.0 / BALL_D - 1.0 / (0.53 * BALL_D)),
               'inner': (2.0 / BALL_D + 2.0 / (PITCH_D - BALL_D), 2.0 / BALL_D - 1.0 / (0.52 * BALL_D))}
-R_X, R_Y = (1.0 / c for c in CURVATURES['outer'])
 INCH = 25.4e-3
 SPEED_M_S = 1.76  # the contacts' speed over either race at 1797 rpm
 
@@ -167,17 +166,25 @@ def pit_surface(hs, s, w, rim_h, rim_b):
     return height, rho >= 0.5 * w
 
 
-def profile(hs, w, rim_h, rim_b, load, positions, race):
-    """The pit's equivalent dip (m) at each position of its centre, and the intact approach."""
+def race_gap(hs, race):
+    """The gap (m) between the unloaded ball and the intact race on each cell."""
     along_sum, across_sum = CURVATURES[race]
-    gap = 0.5 * (hs.grid_x ** 2 * along_sum + hs.grid_y ** 2 * across_sum)
-    _, intact = hs.solve(gap, load, np.ones_like(gap, dtype=bool))
+    return 0.5 * (hs.grid_x ** 2 * along_sum + hs.grid_y ** 2 * across_sum)
+
+
+def intact_approach(hs, gap, load):
+    """The approach (m) that carries load on the intact race."""
+    return hs.solve(gap, load, np.ones_like(gap, dtype=bool))[1]
+
+
+def profile(hs, gap, intact, w, rim_h, rim_b, load, positions):
+    """The pit's equivalent dip (m) at each position of its centre: the approach over it less the
+    intact one."""
     dips = []
     for s in positions:
         height, allowed = pit_surface(hs, s, w, rim_h, rim_b)
-        _, approach = hs.solve(gap - height, load, allowed)
-        dips.append(approach - intact)
-    return np.array(dips), intact
+        dips.append(hs.solve(gap - height, load, allowed)[1] - intact)
+    return np.array(dips)
 
 
 def main(argv=None):
@@ -203,6 +210,8 @@ def main(argv=None):
     print('|---' * 9 + '|')
     print('| | | | | half-space / package | | | | |')
     for race in races:
+        gap = race_gap(hs, race)
+        intact_by_load = {load: intact_approach(hs, gap, load) for load in loads}  # one per load, not per pit
         for inches in (0.007, 0.014, 0.021):
             w = inches * INCH
             positions = np.arange(0.0, 0.5 * w + rim_b + 0.15e-3, args.step_um * 1e-6)
@@ -210,7 +219,8 @@ def main(argv=None):
             for rim_h in rims:
                 model = np.array([package_dip(s, w, rim_h, rim_b, race) for s in positions])
                 for load in loads:
-                    dips, intact = profile(hs, w, rim_h, rim_b, load, positions, race)
+                    intact = intact_by_load[load]
+                    dips = profile(hs, gap, intact, w, rim_h, rim_b, load, positions)
                     rows += [(race, inches, rim_h * 1e6, load, s * 1e3, d * 1e6, m * 1e6, intact * 1e6)
                              for s, d, m in zip(positions, dips, model)]
                     ours, theirs = strike(positions, dips, load, intact), strike(positions, model, load, intact)

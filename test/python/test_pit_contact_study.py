@@ -25,11 +25,10 @@ def test_a_sphere_on_a_flat_takes_hertz_approach():
 def test_the_6205_outer_race_contact_takes_hertz_elliptical_approach_and_width():
     load = 24.0
     hs = study.HalfSpace(0.2e-3, 0.6e-3, 4e-6, 10e-6)
-    gap = hs.grid_x ** 2 / (2 * study.R_X) + hs.grid_y ** 2 / (2 * study.R_Y)
-    pressure, approach = hs.solve(gap, load, np.ones_like(gap, dtype=bool))
+    pressure, approach = hs.solve(study.race_gap(hs, 'outer'), load, np.ones((hs.nx, hs.ny), dtype=bool))
     # Hertz: gap A y^2 + B x^2 (y across the track, the ellipse's long axis a), m = e^2 = 1 - b^2/a^2:
     # B / A = ((a/b)^2 E - K) / (K - E), A = 3 P (K - E) / (2 pi E* a^3 e^2), approach p0 b K / E*.
-    long_curvature, short_curvature = 0.5 / study.R_Y, 0.5 / study.R_X
+    short_curvature, long_curvature = (0.5 * c for c in study.CURVATURES['outer'])
 
     def curvature_ratio_error(m):
         return (ellipe(m) / (1 - m) - ellipk(m)) / (ellipk(m) - ellipe(m)) - short_curvature / long_curvature
@@ -46,8 +45,8 @@ def test_the_6205_outer_race_contact_takes_hertz_elliptical_approach_and_width()
 
 def test_a_hole_carries_nothing_and_lets_the_ball_sink_a_rim_lifts_it():
     hs = study.HalfSpace(0.2e-3, 0.6e-3, 4e-6, 10e-6)
-    gap = hs.grid_x ** 2 / (2 * study.R_X) + hs.grid_y ** 2 / (2 * study.R_Y)
-    _, intact = hs.solve(gap, 24.0, np.ones_like(gap, dtype=bool))
+    gap = study.race_gap(hs, 'outer')
+    intact = study.intact_approach(hs, gap, 24.0)
     width = 0.014 * study.INCH
     _, outside = study.pit_surface(hs, 0.0, width, 0.0, 1e-4)
     pressure, holed = hs.solve(gap, 24.0, outside)
