@@ -27,6 +27,9 @@ bands of 125 Hz, the spectrum's shape.
     source scripts/env.sh; source build/devel/setup.bash
     /usr/bin/python3 dev/cwru_classifier_check.py /work/cwru --campaign-dir /tmp/cwru_rig --out /tmp/cwru_check
 
+--coverage lists the features of each real record that lie outside what the campaign's runs of
+its class show (dev/cwru_coverage.py): where a learner trained on the campaign extrapolates.
+
 Exit 0 when issue 30's target is met (>= 80 % right, inner race >= 11/12, outer race >=
 25/28, the normal record right), 1 when not, 2 for bad input.
 
@@ -46,6 +49,7 @@ import time
 
 import numpy as np
 
+import cwru_coverage
 import cwru_indicators
 import cwru_measures
 import cwru_rig_compare
@@ -305,6 +309,9 @@ def parser():
     p.add_argument('--battery', action='store_true',
                    help='also train five other learners and the four feature subsets (all, envelope, ordinary, '
                         'spectrum), and a forest on the real records with each condition left out (~3 min more)')
+    p.add_argument('--coverage', action='store_true',
+                   help="also list each real record's features that lie outside its class's 1st-99th percentiles "
+                        'in the campaign (dev/cwru_coverage.py)')
     p.add_argument('--out', type=pathlib.Path, help='also write summary.md and records.csv there')
     return p
 
@@ -367,6 +374,13 @@ def main(argv=None):
             args, train_features, train_labels, records)
         more.append(f'({time.perf_counter() - t:.0f} s)')
         print('\n'.join(more))
+    if args.coverage:
+        found = cwru_coverage.outside(names, train_features, train_labels, records)
+        lines = ['', f"Where the real records lie outside the campaign (--coverage): the median of a record's "
+                     f'windows beyond the {cwru_coverage.LOW:g}th-{cwru_coverage.HIGH:g}th percentiles of its '
+                     "class's runs:", ''] + cwru_coverage.report(names, found, len(records))
+        print('\n'.join(lines))
+        more += lines
     if args.out:
         args.out.mkdir(parents=True, exist_ok=True)
         (args.out / 'summary.md').write_text(
