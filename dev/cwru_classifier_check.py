@@ -111,13 +111,6 @@ def _bearing():
     return _bearings['b']
 
 
-def windows(x, samples):
-    """Non-overlapping windows of `samples`, the last one ending at the record's end."""
-    count = len(x) // samples
-    start = len(x) - count * samples
-    return [x[start + i * samples:start + (i + 1) * samples] for i in range(count)]
-
-
 def _synthetic_job(job):
     path, rpm, samples, scale_free = job
     x = np.load(path)[-samples:, 0].astype(float)
@@ -127,7 +120,7 @@ def _synthetic_job(job):
 def _real_job(job):
     path, meta, samples, scale_free = job
     x, rpm = cwru_rig_compare.real_signal(path, meta, RATE_HZ)
-    return rpm, [window_features(w, rpm, scale_free) for w in windows(x, samples)]
+    return rpm, [window_features(w, rpm, scale_free) for w in cwru_measures.windows(x, samples)]
 
 
 def generate(args):

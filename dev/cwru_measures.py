@@ -19,6 +19,14 @@ LINE_MEDIAN_HZ = 51.0
 SEGMENT_S = 1.0  # Welch segment: 1 Hz resolution, the analyser's with window_s = 1
 
 
+def windows(signal, samples):
+    """Non-overlapping windows of `samples`, the last one ending at the signal's end (a record's
+    start may hold a transient; its end is what the analysis of a record reads)."""
+    count = len(signal) // samples
+    start = len(signal) - count * samples
+    return [signal[start + i * samples:start + (i + 1) * samples] for i in range(count)]
+
+
 def psd(signal, sample_rate_hz, segment_s=SEGMENT_S):
     """One-sided PSD ((m/s^2)^2/Hz) of a record: Welch, Hann segments of segment_s (the whole
     record when shorter), 50 % overlap, mean removed per segment. Returns (frequencies_hz, psd)."""

@@ -272,12 +272,8 @@ def balls_scatter(x, rate_hz, nominal_hz, balls, window_s=1.0):
     """How unequally the balls strike a standing fault: the median over the record's 1 s windows
     of the coefficient of variation of the balls' mean pass strengths (cwru_measures.ball_scatter),
     each window at its own impact rate (slip wanders within a record)."""
-    n = int(window_s * rate_hz)
-    values = []
-    for start in range(0, x.size - n + 1, n):
-        w = x[start:start + n]
-        values.append(cwru_measures.ball_scatter(w, rate_hz, cwru_measures.fault_frequency(w, rate_hz, nominal_hz),
-                                                 balls)[0])
+    values = [cwru_measures.ball_scatter(w, rate_hz, cwru_measures.fault_frequency(w, rate_hz, nominal_hz), balls)[0]
+              for w in cwru_measures.windows(x, int(window_s * rate_hz))]
     return float(np.nanmedian(values)) if values else math.nan
 
 

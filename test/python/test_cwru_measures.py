@@ -133,3 +133,11 @@ def test_spin_axis_wander_that_halves_a_ball_line_is_the_half_width_over_the_nor
     # No drop: always struck, no wander.
     assert cwru_measures.spin_axis_wander_deg(0.0, 2.0) == 0.0
     assert cwru_measures.spin_axis_wander_deg(-3.0, 2.0) == 0.0
+
+
+def test_windows_end_at_the_signal_s_end_and_do_not_overlap():
+    x = np.arange(25)
+    cut = cwru_measures.windows(x, 10)
+    # 25 samples hold two whole windows of 10; the 5 left over are the first ones, dropped.
+    assert [list(w) for w in cut] == [list(range(5, 15)), list(range(15, 25))]
+    assert cwru_measures.windows(x, 30) == []
