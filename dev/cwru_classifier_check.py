@@ -21,8 +21,9 @@ factor, kurtosis, skewness, the shares of the power in the bands and in discrete
 (dev/cwru_measures.py), the squared-envelope spectrum's levels over its floor at f_r,
 FTF, BSF, 2 x BSF, BPFO, 2 x BPFO, BPFI, 2 x BPFI in three bands (1-2, 2-4, 4-5.8 kHz), and
 the analyser's (bearing_sim.analyze) envelope SNR of the BPFO, BPFI, 2xBSF and FTF series
-and its band's kurtosis. --battery adds a subset of its own: the log shares of the power in 48
-bands of 125 Hz, the spectrum's shape.
+and its band's kurtosis. --battery adds two subsets of their own: the log shares of the power in
+48 bands of 125 Hz, the spectrum's shape; and the 2-4 kHz squared envelope's spectrum on the
+shaft's orders, 0.1 to 10 x f_r in bins of 0.1 order.
 
     source scripts/env.sh; source build/devel/setup.bash
     /usr/bin/python3 dev/cwru_classifier_check.py /work/cwru --campaign-dir /tmp/cwru_rig --out /tmp/cwru_check
@@ -63,6 +64,10 @@ TABLE_CLASS = {'none': 'none', 'inner race': 'inner_race', 'ball': 'ball', 'oute
 ENVELOPE_BANDS_HZ = ((1000.0, 2000.0), (2000.0, 4000.0), (4000.0, 5800.0))
 SERIES = ('BPFO', 'BPFI', '2xBSF', 'FTF')  # the analyser's labels
 SPECTRUM_BANDS_HZ = tuple((125.0 * k, 125.0 * (k + 1)) for k in range(48))  # 0-6 kHz
+# The squared envelope's spectrum of the path's band on the shaft's orders: 0.1 to 10 x f_r in
+# bins of 0.1 order (what a pipeline that learns the envelope spectrum itself sees).
+ORDERS_BAND_HZ = (2000.0, 4000.0)
+ORDER_BINS = tuple(0.1 * k for k in range(1, 101))
 # Issue 30's target.
 TARGET_SHARE, TARGET_INNER, TARGET_OUTER = 0.8, 11, 25
 
@@ -93,6 +98,10 @@ def window_features(x, rpm, scale_free):
         fe, amplitude = cwru_measures.envelope_spectrum(x, RATE_HZ, (low, high))
         for name, hz in lines.items():
             out[f'env_{low / 1000:g}_{high / 1000:g}k_{name}_db'] = cwru_measures.line_level_db(fe, amplitude, hz)
+        if (low, high) == ORDERS_BAND_HZ:
+            for order in ORDER_BINS:  # the highest bin within +-0.05 order, over the spectrum's floor
+                out[f'envorder_{100 * order:04.0f}'] = cwru_measures.line_level_db(
+                    fe, amplitude, order * lines['fr'], tolerance=0.05 / order)
     result = bearing_sim.analyze(x, RATE_HZ, bearing, inner_rad_s=2.0 * math.pi * rpm / 60.0)
     by_label = {fault['label']: fault for fault in result['faults']}
     for label in SERIES:
@@ -195,19 +204,23 @@ def report(records, windows_right, windows_total):
 
 
 def main_feature(name):
-    """The forest learns all features but the spectrum's shape, which only the battery uses."""
-    return not name.startswith('spectrum_')
+    """The forest learns all features but the spectrum's shape and the envelope's orders, which
+    only the battery uses."""
+    return not name.startswith(('spectrum_', 'envorder_'))
 
 
 # --battery: other learners and feature subsets, to see whether the result belongs to the data or
 # to one learner. Subsets by feature name: the time statistics with the band and line shares
 # ('ordinary', what a spectrum-blind pipeline uses), the envelope-spectrum levels and the
-# analyser's SNRs ('envelope'), the forest's ('all'), and the log shares of the power in 48
-# bands of 125 Hz ('spectrum', what a pipeline that learns the spectrum's shape sees).
+# analyser's SNRs ('envelope'), the forest's ('all'), the log shares of the power in 48 bands of
+# 125 Hz ('spectrum', what a pipeline that learns the spectrum's shape sees) and the 2-4 kHz
+# squared envelope's spectrum on the shaft's orders ('envelope orders', what one that learns the
+# envelope spectrum sees, without being told the fault frequencies).
 FEATURE_SETS = {'all': main_feature,
                 'envelope': lambda n: n.startswith('env_') or n.startswith('analyser_'),
                 'ordinary': lambda n: main_feature(n) and not (n.startswith('env_') or n.startswith('analyser_')),
-                'spectrum': lambda n: n.startswith('spectrum_')}
+                'spectrum': lambda n: n.startswith('spectrum_'),
+                'envelope orders': lambda n: n.startswith('envorder_')}
 
 
 def learners(seed, workers):
@@ -300,8 +313,9 @@ def parser():
     p.add_argument('--trees', type=int, default=300, help='trees of the random forest (default 300)')
     p.add_argument('--seed', type=int, default=1, help="the forest's random state (default 1)")
     p.add_argument('--battery', action='store_true',
-                   help='also train five other learners and the four feature subsets (all, envelope, ordinary, '
-                        'spectrum), and a forest on the real records with each condition left out (~3 min more)')
+                   help='also train five other learners and the five feature subsets (all, envelope, ordinary, '
+                        'spectrum, envelope orders), and a forest on the real records with each condition left out '
+                        '(~3 min more)')
     p.add_argument('--coverage', action='store_true',
                    help="also list each real record's features that lie outside its class's 1st-99th percentiles "
                         'in the campaign (dev/cwru_coverage.py)')
