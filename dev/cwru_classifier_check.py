@@ -96,12 +96,14 @@ def window_features(x, rpm, scale_free):
              '2bpfi': 2.0 * k['ball_pass_inner_race_hz']}
     for low, high in ENVELOPE_BANDS_HZ:
         fe, amplitude = cwru_measures.envelope_spectrum(x, RATE_HZ, (low, high))
-        for name, hz in lines.items():
-            out[f'env_{low / 1000:g}_{high / 1000:g}k_{name}_db'] = cwru_measures.line_level_db(fe, amplitude, hz)
-        if (low, high) == ORDERS_BAND_HZ:
-            for order in ORDER_BINS:  # the highest bin within +-0.05 order, over the spectrum's floor
-                out[f'envorder_{100 * order:04.0f}'] = cwru_measures.line_level_db(
-                    fe, amplitude, order * lines['fr'], tolerance=0.05 / order)
+        levels = cwru_measures.line_levels_db(fe, amplitude, lines.values(),
+                                              [cwru_measures.LINE_TOLERANCE] * len(lines))
+        for name, level in zip(lines, levels):
+            out[f'env_{low / 1000:g}_{high / 1000:g}k_{name}_db'] = level
+        if (low, high) == ORDERS_BAND_HZ:  # the highest bin within +-0.05 order, over the spectrum's floor
+            levels = cwru_measures.line_levels_db(fe, amplitude, [o * lines['fr'] for o in ORDER_BINS],
+                                                  [0.05 / o for o in ORDER_BINS])
+            out.update((f'envorder_{100 * o:04.0f}', level) for o, level in zip(ORDER_BINS, levels))
     result = bearing_sim.analyze(x, RATE_HZ, bearing, inner_rad_s=2.0 * math.pi * rpm / 60.0)
     by_label = {fault['label']: fault for fault in result['faults']}
     for label in SERIES:

@@ -92,16 +92,26 @@ def envelope_spectrum(signal, sample_rate_hz, band_hz):
     return np.fft.rfftfreq(envelope.size, 1.0 / sample_rate_hz), amplitude
 
 
-def line_level_db(frequencies_hz, amplitude, line_hz, tolerance=0.02, floor_hz=(5.0, 500.0)):
+LINE_TOLERANCE = 0.02  # a fault line's relative search width: slip and speed error (1-2 %)
+
+
+def line_level_db(frequencies_hz, amplitude, line_hz, tolerance=LINE_TOLERANCE, floor_hz=(5.0, 500.0)):
     """Level (dB) of the highest envelope-spectrum bin within +-tolerance (relative) of line_hz
     over the median of the spectrum in floor_hz: how far a fault line stands out of the floor,
     whatever the record's unit and level. The tolerance covers slip and speed error (1-2 %)."""
+    return line_levels_db(frequencies_hz, amplitude, [line_hz], [tolerance], floor_hz)[0]
+
+
+def line_levels_db(frequencies_hz, amplitude, lines_hz, tolerances, floor_hz=(5.0, 500.0)):
+    """line_level_db of several lines of one spectrum, each with its own relative tolerance; the
+    floor's median taken once."""
     f, a = np.asarray(frequencies_hz), np.asarray(amplitude)
-    near = np.abs(f - line_hz) <= tolerance * line_hz
     floor = np.median(a[(f >= floor_hz[0]) & (f <= floor_hz[1])])
-    if not near.any() or floor <= 0.0:
-        return 0.0
-    return float(20.0 * np.log10(a[near].max() / floor))
+    levels = []
+    for line_hz, tolerance in zip(lines_hz, tolerances):
+        near = np.abs(f - line_hz) <= tolerance * line_hz
+        levels.append(float(20.0 * np.log10(a[near].max() / floor)) if near.any() and floor > 0.0 else 0.0)
+    return levels
 
 
 # The band of the per-pass strength: the path's modes that the impacts ring (2.5-3.7 kHz) and
@@ -134,7 +144,7 @@ def pass_scatter(signal, sample_rate_hz, fault_hz, shaft_hz, band_hz=PASS_BAND_H
     return float(s.std() / s.mean()), float(depth)
 
 
-def fault_frequency(signal, sample_rate_hz, nominal_hz, tolerance=0.02, band_hz=PASS_BAND_HZ):
+def fault_frequency(signal, sample_rate_hz, nominal_hz, tolerance=LINE_TOLERANCE, band_hz=PASS_BAND_HZ):
     """The fault's actual impact rate near nominal_hz (slip moves it 1-2 %): the highest bin of the
     squared envelope's spectrum within +-tolerance of it, zero-padded to a sixteenth of a bin."""
     envelope = squared_envelope(signal, sample_rate_hz, band_hz)
